@@ -1,0 +1,40 @@
+// keyturn: the command-line tool. Every failure ends as one line on stderr and
+// a non-zero exit code.
+#include <CLI/CLI.hpp>
+#include <iostream>
+
+#include "commands.h"
+#include "keyturn/core/error.h"
+
+#ifndef KEYTURN_VERSION
+#define KEYTURN_VERSION "unknown"
+#endif
+
+int main(int argc, char** argv) {
+  CLI::App app{"keyturn: ToF keypoint shape signatures (KPD/GKPD) and capture tools"};
+  app.set_version_flag("--version", KEYTURN_VERSION);
+  app.require_subcommand(1);
+  using namespace keyturn::app;
+  std::vector<std::pair<CLI::App*, Runner>> commands;
+  commands.emplace_back(nullptr, addDescribeCommand(app));
+  commands.emplace_back(nullptr, addBenchCommand(app));
+  commands.emplace_back(nullptr, addRenderCommand(app));
+  const auto subs = app.get_subcommands([](CLI::App*) { return true; });
+  for (std::size_t i = 0; i < commands.size(); ++i) commands[i].first = subs[i];
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  try {
+    for (auto& [cmd, run] : commands)
+      if (cmd->parsed()) return run();
+  } catch (const keyturn::Error& e) {
+    std::cerr << "keyturn: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    std::cerr << "keyturn: unexpected failure: " << e.what() << "\n";
+    return 2;
+  }
+  return 0;
+}

@@ -1,0 +1,56 @@
+#pragma once
+// The whole chain for one view: filter → resolution → ISS keypoints →
+// keypoint functions (KPD2/KPD3/KPA3) → local complete graph → geodesic
+// keypoint functions (GKPD1/GKPD2/GKPCD2) → Osada's baselines → PDFs.
+#include <string>
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/core/features.h"
+#include "keyturn/core/filter.h"
+#include "keyturn/core/geodesic.h"
+#include "keyturn/core/iss.h"
+#include "keyturn/core/shape_distributions.h"
+
+namespace keyturn {
+
+struct DescriptorOptions {
+  bool filter = true;
+  FilterOptions filter_options;
+  IssOptions iss;
+  GraphOptions graph;
+  OsadaOptions osada;
+  HistogramOptions histogram;
+  std::vector<Feature> features = {Feature::KPD2, Feature::KPD3, Feature::KPA3,
+                                   Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};
+  int min_keypoints = 3;      // fewer is an error: no triangle, no histogram
+  int low_keypoints = 10;     // fewer is flagged: the histogram is thin
+};
+
+// Milliseconds spent in each stage of one describeView call.
+struct StageTimes {
+  double filter = 0, resolution = 0, iss = 0, kpd = 0, graph = 0, geodesic = 0, osada = 0,
+         histogram = 0, total = 0;
+};
+
+struct ViewDescriptor {
+  std::size_t input_points = 0;     // valid points before filtering
+  std::size_t points = 0;           // valid points after filtering
+  double resolution = 0;            // metres
+  std::vector<Eigen::Vector3f> keypoints;
+  int unreachable_keypoints = 0;    // keypoints outside the centroid's component
+  int unreachable_pairs = 0;
+  bool low_keypoints = false;
+  std::vector<Feature> features;
+  std::vector<std::vector<double>> pdfs;  // one PDF per feature, same order
+  StageTimes times;
+
+  int keypointCount() const { return static_cast<int>(keypoints.size()); }
+  std::vector<double> featureVector() const;  // PDFs concatenated
+};
+
+// Throws keyturn::Error (without a file name: callers add it) for an empty or
+// all-NaN cloud, a cloud the filter empties, or fewer than min_keypoints keypoints.
+ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options);
+
+}  // namespace keyturn

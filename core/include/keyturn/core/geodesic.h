@@ -1,0 +1,55 @@
+#pragma once
+// Geodesic keypoint functions (§4.3, §4.6) on the paper's "local complete
+// graph": each point is joined to every neighbour within r, and those neighbours
+// to each other. Equivalently an edge (j,k) exists when some point lies within r
+// of both, so the adjacency of j is its 2-hop neighbourhood in the r-ball graph.
+#include <Eigen/Core>
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/core/radius_search.h"
+
+namespace keyturn {
+
+struct GraphOptions {
+  double radius = 3.5;               // multiples of the cloud resolution
+  double curvature_epsilon = 1e-4;   // floor of the curvature factor C for coplanar normals
+};
+
+// Compressed adjacency (CSR) with Euclidean and curvature-weighted edge costs.
+struct LocalCompleteGraph {
+  std::vector<int> offsets;       // size n+1
+  std::vector<int> targets;
+  std::vector<float> length;      // Euclidean edge length L
+  std::vector<float> curved;      // max(C, ε) · L, C = sin(arccos(n_i·n_j))
+  std::vector<Eigen::Vector3f> normals;  // PCA normal per vertex (NaN when undefined)
+  std::size_t vertexCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
+  std::size_t edgeCount() const { return targets.size() / 2; }
+};
+
+LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSearch& search,
+                                           double resolution, const GraphOptions& options);
+
+struct GeodesicResult {
+  std::vector<float> gkpd1;   // centroid vertex → each reachable keypoint
+  std::vector<float> gkpd2;   // each reachable keypoint pair (graph distance)
+  std::vector<float> gkpcd2;  // Euclidean length of each pair's curvature-weighted path
+  int centroid_vertex = -1;
+  int unreachable_from_centroid = 0;  // keypoints in another connected component
+  int unreachable_pairs = 0;
+};
+
+enum GeodesicSet { kGkpd1 = 1, kGkpd2 = 2, kGkpcd2 = 4, kAllGeodesics = 7 };
+
+// keypoints index the graph's vertices. Unreachable keypoints are counted,
+// never put into a histogram as infinity.
+GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
+                                         const std::vector<int>& keypoints,
+                                         int which = kAllGeodesics);
+
+// Single-source shortest paths (all vertices), exposed for tests and plots.
+// With curvature=true the path minimises the curved cost and the returned
+// value is the Euclidean length of that path.
+std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int source, bool curvature);
+
+}  // namespace keyturn

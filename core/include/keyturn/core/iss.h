@@ -1,0 +1,32 @@
+#pragma once
+// ISS3D keypoints as the paper's §4.2 (after Zhong 2009) defines them:
+// density weights w = 1/|N(r_density)|, a weighted scatter matrix about p_i in
+// r_frame, eigenvalue-ratio tests λ2/λ1 < γ21 and λ3/λ2 < γ32, saliency λ3 and
+// non-maximum suppression in r_nms. Deterministic: the same cloud gives the
+// same keypoints in ascending index order.
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/core/radius_search.h"
+
+namespace keyturn {
+
+struct IssOptions {
+  // Radii in multiples of the cloud resolution.
+  double density_radius = 2.0;
+  double frame_radius = 6.0;
+  double nms_radius = 4.0;
+  double gamma21 = 0.975;
+  double gamma32 = 0.975;
+  int min_neighbors = 5;
+};
+
+struct IssResult {
+  std::vector<int> keypoints;     // indices into the PointSet, ascending
+  std::vector<double> saliency;   // λ3 per point (0 where the ratio tests failed)
+};
+
+IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,
+                             const IssOptions& options);
+
+}  // namespace keyturn

@@ -1,0 +1,18 @@
+#pragma once
+// Euclidean keypoint functions over ALL pairs and triples of keypoints (§4.4):
+// no random sampling, so the result depends only on the keypoint set.
+#include <Eigen/Core>
+#include <vector>
+
+namespace keyturn {
+
+// KPD2: |a - b| for every unordered pair. K(K-1)/2 values.
+std::vector<float> keypointDistances(const std::vector<Eigen::Vector3f>& kp);
+// KPD3: sqrt(area) of the triangle of every unordered triple. K(K-1)(K-2)/6 values.
+std::vector<float> keypointSqrtAreas(const std::vector<Eigen::Vector3f>& kp);
+// KPA3: every interior angle (radians) of every unordered triple, i.e. the angle
+// at each of its three vertices, so no vertex is privileged by keypoint order.
+// Degenerate triangles (a zero-length side) contribute nothing. Up to 3·C(K,3) values.
+std::vector<float> keypointAngles(const std::vector<Eigen::Vector3f>& kp);
+
+}  // namespace keyturn

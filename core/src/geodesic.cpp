@@ -1,0 +1,194 @@
+#include "keyturn/core/geodesic.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+#include <limits>
+#include <queue>
+
+namespace keyturn {
+namespace {
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+
+Eigen::Vector3f pcaNormal(const PointSet& set, int i, const std::vector<int>& nb, int begin, int end) {
+  if (end - begin < 2) return Eigen::Vector3f::Constant(std::nanf(""));
+  Eigen::Vector3d mean = set.points[i].cast<double>();
+  for (int k = begin; k < end; ++k) mean += set.points[nb[k]].cast<double>();
+  mean /= static_cast<double>(end - begin + 1);
+  Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+  auto add = [&](const Eigen::Vector3f& p) {
+    const Eigen::Vector3d d = p.cast<double>() - mean;
+    cov.noalias() += d * d.transpose();
+  };
+  add(set.points[i]);
+  for (int k = begin; k < end; ++k) add(set.points[nb[k]]);
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(cov);
+  return eig.eigenvectors().col(0).cast<float>();  // smallest eigenvalue
+}
+
+// Dijkstra with a lazy-deletion binary heap. Cost is the Euclidean length or
+// the curvature-weighted cost; `euclid` carries the Euclidean length of the
+// path that minimises the cost. Stops early once `remaining` targets settle.
+class Dijkstra {
+ public:
+  explicit Dijkstra(const LocalCompleteGraph& g)
+      : g_(g), cost_(g.vertexCount(), kInf), euclid_(g.vertexCount(), kInf),
+        settled_(g.vertexCount(), 0) {}
+
+  template <typename OnSettle>
+  void run(int source, bool curved, int remaining, OnSettle&& on_settle) {
+    for (int v : touched_) {
+      cost_[v] = kInf;
+      euclid_[v] = kInf;
+      settled_[v] = 0;
+    }
+    touched_.clear();
+    const std::vector<float>& w = curved ? g_.curved : g_.length;
+    using Item = std::pair<float, int>;
+    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
+    cost_[source] = 0.f;
+    euclid_[source] = 0.f;
+    touched_.push_back(source);
+    heap.emplace(0.f, source);
+    while (!heap.empty()) {
+      const auto [c, v] = heap.top();
+      heap.pop();
+      if (settled_[v] || c > cost_[v]) continue;
+      settled_[v] = 1;
+      if (on_settle(v, euclid_[v]) && --remaining <= 0) return;
+      for (int e = g_.offsets[v]; e < g_.offsets[v + 1]; ++e) {
+        const int t = g_.targets[e];
+        const float nc = c + w[e];
+        if (nc < cost_[t]) {
+          if (cost_[t] == kInf) touched_.push_back(t);
+          cost_[t] = nc;
+          euclid_[t] = euclid_[v] + g_.length[e];
+          heap.emplace(nc, t);
+        }
+      }
+    }
+  }
+
+ private:
+  const LocalCompleteGraph& g_;
+  std::vector<float> cost_, euclid_;
+  std::vector<char> settled_;
+  std::vector<int> touched_;
+};
+
+}  // namespace
+
+LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSearch& search,
+                                           double resolution, const GraphOptions& options) {
+  const int n = static_cast<int>(set.size());
+  const float r = static_cast<float>(options.radius * resolution);
+  LocalCompleteGraph g;
+
+  // r-ball neighbourhoods N(i), without i, in CSR form.
+  std::vector<int> nb_off(n + 1, 0), nb;
+  std::vector<int> tmp;
+  for (int i = 0; i < n; ++i) {
+    search.radius(i, r, tmp);
+    for (int j : tmp)
+      if (j != i) nb.push_back(j);
+    nb_off[i + 1] = static_cast<int>(nb.size());
+  }
+
+  g.normals.resize(n);
+  for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
+
+  // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph.
+  g.offsets.assign(n + 1, 0);
+  std::vector<int> mark(n, -1);
+  const float eps = static_cast<float>(options.curvature_epsilon);
+  for (int j = 0; j < n; ++j) {
+    mark[j] = j;
+    const Eigen::Vector3f& pj = set.points[j];
+    const Eigen::Vector3f& nj = g.normals[j];
+    auto add = [&](int k) {
+      if (mark[k] == j) return;
+      mark[k] = j;
+      const float len = (set.points[k] - pj).norm();
+      const Eigen::Vector3f& nk = g.normals[k];
+      float c = 1.f;  // no normal: treat as maximally curved
+      if (nj.allFinite() && nk.allFinite()) {
+        const float d = std::min(1.f, std::abs(nj.dot(nk)));
+        c = std::sqrt(1.f - d * d);  // sin(arccos(n_j·n_k))
+      }
+      g.targets.push_back(k);
+      g.length.push_back(len);
+      g.curved.push_back(std::max(c, eps) * len);
+    };
+    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
+      const int i = nb[a];
+      add(i);
+      for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) add(nb[b]);
+    }
+    g.offsets[j + 1] = static_cast<int>(g.targets.size());
+  }
+  return g;
+}
+
+std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int source, bool curvature) {
+  std::vector<float> out(graph.vertexCount(), kInf);
+  Dijkstra dj(graph);
+  dj.run(source, curvature, std::numeric_limits<int>::max(), [&](int v, float e) {
+    out[v] = e;
+    return false;
+  });
+  return out;
+}
+
+GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
+                                         const std::vector<int>& keypoints, int which) {
+  GeodesicResult res;
+  const int n = static_cast<int>(graph.vertexCount());
+  const int k = static_cast<int>(keypoints.size());
+  if (n == 0 || k == 0) return res;
+  Dijkstra dj(graph);
+  std::vector<int> slot(n, -1);
+  for (int a = 0; a < k; ++a) slot[keypoints[a]] = a;
+
+  if (which & kGkpd1) {
+    // GKPD1: from the graph vertex nearest the centroid of the view.
+    const Eigen::Vector3f c = set.centroid();
+    float best = kInf;
+    for (int v = 0; v < n; ++v) {
+      const float d = (set.points[v] - c).squaredNorm();
+      if (d < best) {
+        best = d;
+        res.centroid_vertex = v;
+      }
+    }
+    dj.run(res.centroid_vertex, false, k, [&](int v, float e) {
+      if (slot[v] < 0) return false;
+      res.gkpd1.push_back(e);
+      return true;
+    });
+    res.unreachable_from_centroid = k - static_cast<int>(res.gkpd1.size());
+  }
+
+  // GKPD2 / GKPCD2 over unordered pairs: the graph is undirected with symmetric
+  // costs, so the path a→b is b→a reversed; each source only needs later keypoints.
+  for (int pass = 0; pass < 2; ++pass) {
+    const bool curved = pass == 1;
+    if (!(which & (curved ? kGkpcd2 : kGkpd2))) continue;
+    std::vector<float>& out = curved ? res.gkpcd2 : res.gkpd2;
+    int unreachable = 0;
+    for (int a = 0; a + 1 < k; ++a) {
+      int found = 0;
+      dj.run(keypoints[a], curved, k - 1 - a, [&](int v, float e) {
+        if (slot[v] <= a) return false;
+        out.push_back(e);
+        ++found;
+        return true;
+      });
+      unreachable += k - 1 - a - found;
+    }
+    res.unreachable_pairs = unreachable;
+  }
+  return res;
+}
+
+}  // namespace keyturn

@@ -1,0 +1,71 @@
+#include "keyturn/core/iss.h"
+
+#include <Eigen/Eigenvalues>
+#include <cmath>
+
+namespace keyturn {
+namespace {
+constexpr double kPlanarRatio = 1e-9;
+}
+
+IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,
+                             const IssOptions& o) {
+  const int n = static_cast<int>(set.size());
+  const float r_density = static_cast<float>(o.density_radius * resolution);
+  const float r_frame = static_cast<float>(o.frame_radius * resolution);
+  const float r_nms = static_cast<float>(o.nms_radius * resolution);
+  std::vector<int> nb;
+
+  // Eq. (8): weight inversely proportional to the local density.
+  std::vector<double> weight(n);
+  for (int i = 0; i < n; ++i) {
+    search.radius(i, r_density, nb);
+    weight[i] = 1.0 / static_cast<double>(nb.size());  // nb holds i itself, so ≥ 1
+  }
+
+  // Eq. (9): weighted scatter matrix about p_i, then the eigenvalue-ratio tests.
+  IssResult result;
+  result.saliency.assign(n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    search.radius(i, r_frame, nb);
+    if (static_cast<int>(nb.size()) - 1 < o.min_neighbors) continue;
+    const Eigen::Vector3d pi = set.points[i].cast<double>();
+    Eigen::Matrix3d cov = Eigen::Matrix3d::Zero();
+    double wsum = 0.0;
+    for (int j : nb) {
+      const Eigen::Vector3d d = set.points[j].cast<double>() - pi;
+      cov.noalias() += weight[j] * d * d.transpose();
+      wsum += weight[j];
+    }
+    cov /= wsum;
+    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+    eig.computeDirect(cov, Eigen::EigenvaluesOnly);
+    const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
+    const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
+    // A planar or linear patch has λ3 or λ2 = 0 up to float rounding of the
+    // coordinates (~1e-11 of λ1): not salient, and no ratio divides by zero.
+    if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) continue;
+    if (l2 / l1 < o.gamma21 && l3 / l2 < o.gamma32) result.saliency[i] = l3;
+  }
+
+  // Non-maximum suppression on λ3; ties go to the lower index so the outcome
+  // never depends on visiting order.
+  for (int i = 0; i < n; ++i) {
+    const double s = result.saliency[i];
+    if (s <= 0.0) continue;
+    search.radius(i, r_nms, nb);
+    bool is_max = true;
+    for (int j : nb) {
+      if (j == i) continue;
+      const double t = result.saliency[j];
+      if (t > s || (t == s && j < i)) {
+        is_max = false;
+        break;
+      }
+    }
+    if (is_max) result.keypoints.push_back(i);
+  }
+  return result;
+}
+
+}  // namespace keyturn

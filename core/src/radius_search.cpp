@@ -1,0 +1,185 @@
+// Fixed-radius search. For organized ToF clouds the pixel grid already is a
+// spatial index: a point q within r of p sees p's viewing ray at an angle of at
+// most asin(r / (|p| - r)), so a pixel window of that angular half-width,
+// measured with the smallest angle between adjacent rays, is exact.
+#include "keyturn/core/radius_search.h"
+
+#include <pcl/kdtree/kdtree_flann.h>
+#include <pcl/point_cloud.h>
+#include <pcl/point_types.h>
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn {
+
+struct RadiusSearch::Impl {
+  virtual ~Impl() = default;
+  virtual void radius(int i, float r, std::vector<int>& out) const = 0;
+  virtual float nearest(int i) const = 0;
+  virtual bool grid() const = 0;
+};
+
+namespace {
+
+class KdTreeSearch final : public RadiusSearch::Impl {
+ public:
+  explicit KdTreeSearch(const PointSet& set) : cloud_(new pcl::PointCloud<pcl::PointXYZ>) {
+    cloud_->resize(set.size());
+    for (std::size_t i = 0; i < set.size(); ++i)
+      (*cloud_)[i] = pcl::PointXYZ(set.points[i].x(), set.points[i].y(), set.points[i].z());
+    if (!cloud_->empty()) tree_.setInputCloud(cloud_);
+  }
+  void radius(int i, float r, std::vector<int>& out) const override {
+    out.clear();
+    pcl::Indices idx;
+    std::vector<float> d2;
+    tree_.radiusSearch((*cloud_)[i], r, idx, d2);
+    const float r2 = r * r;
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      if (d2[k] < r2) out.push_back(idx[k]);
+    std::sort(out.begin(), out.end());
+  }
+  float nearest(int i) const override {
+    if (cloud_->size() < 2) return std::numeric_limits<float>::infinity();
+    pcl::Indices idx;
+    std::vector<float> d2;
+    tree_.nearestKSearch((*cloud_)[i], 2, idx, d2);
+    for (std::size_t k = 0; k < idx.size(); ++k)
+      if (idx[k] != i) return std::sqrt(d2[k]);
+    return std::numeric_limits<float>::infinity();
+  }
+  bool grid() const override { return false; }
+
+ private:
+  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
+};
+
+class GridSearch final : public RadiusSearch::Impl {
+ public:
+  GridSearch(const PointSet& set, double min_angle) : set_(set), angle_(min_angle) {}
+
+  void radius(int i, float r, std::vector<int>& out) const override {
+    out.clear();
+    const Eigen::Vector3f& p = set_.points[i];
+    const float r2 = r * r;
+    forWindow(i, halfWidth(p.norm(), r), [&](int j) {
+      if ((set_.points[j] - p).squaredNorm() < r2) out.push_back(j);
+    });
+  }
+
+  float nearest(int i) const override {
+    const Eigen::Vector3f& p = set_.points[i];
+    const int max_h = static_cast<int>(std::max(set_.width, set_.height));
+    float best2 = std::numeric_limits<float>::infinity();
+    // Grow the window until some neighbour appears, then make the window wide
+    // enough that no closer point can hide outside it.
+    for (int h = 1; h <= max_h && !std::isfinite(best2); h *= 2) scan(i, h, p, best2);
+    if (!std::isfinite(best2)) return best2;
+    scan(i, halfWidth(p.norm(), std::sqrt(best2)), p, best2);
+    return std::sqrt(best2);
+  }
+  bool grid() const override { return true; }
+
+ private:
+  void scan(int i, int h, const Eigen::Vector3f& p, float& best2) const {
+    forWindow(i, h, [&](int j) {
+      if (j == i) return;
+      best2 = std::min(best2, (set_.points[j] - p).squaredNorm());
+    });
+  }
+
+  int halfWidth(float range, float r) const {
+    const int max_h = static_cast<int>(std::max(set_.width, set_.height));
+    if (range <= 2.0f * r) return max_h;  // too close to the camera for the bound: search all
+    const double theta = std::asin(std::min(1.0, static_cast<double>(r) / (range - r)));
+    return std::min(max_h, static_cast<int>(std::ceil(theta / angle_)));
+  }
+
+  template <typename F>
+  void forWindow(int i, int h, F&& visit) const {
+    const int w = static_cast<int>(set_.width), ht = static_cast<int>(set_.height);
+    const int pix = set_.pixel[i];
+    const int u0 = pix % w, v0 = pix / w;
+    const int ua = std::max(0, u0 - h), ub = std::min(w - 1, u0 + h);
+    const int va = std::max(0, v0 - h), vb = std::min(ht - 1, v0 + h);
+    for (int v = va; v <= vb; ++v) {
+      const int* row = set_.pixel_to_point.data() + static_cast<std::size_t>(v) * w;
+      for (int u = ua; u <= ub; ++u)
+        if (row[u] >= 0) visit(row[u]);
+    }
+  }
+
+  const PointSet& set_;
+  double angle_;  // smallest angle between the rays of adjacent pixels (radians)
+};
+
+double angleBetween(const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+  const double c = static_cast<double>(a.normalized().dot(b.normalized()));
+  return std::acos(std::clamp(c, -1.0, 1.0));
+}
+
+// Smallest angular pixel pitch (2nd percentile, with a 10% margin) measured from
+// the rays of horizontally and vertically adjacent valid pixels. 0 when unknown.
+double minimumRayAngle(const PointSet& set) {
+  std::vector<double> angles;
+  const int w = static_cast<int>(set.width), h = static_cast<int>(set.height);
+  for (std::size_t k = 0; k < set.size(); ++k) {
+    const int pix = set.pixel[k], u = pix % w, v = pix / w;
+    if (u + 1 < w && set.pixel_to_point[pix + 1] >= 0)
+      angles.push_back(angleBetween(set.points[k], set.points[set.pixel_to_point[pix + 1]]));
+    if (v + 1 < h && set.pixel_to_point[pix + w] >= 0)
+      angles.push_back(angleBetween(set.points[k], set.points[set.pixel_to_point[pix + w]]));
+  }
+  if (angles.size() < 8) return 0.0;
+  const std::size_t q = angles.size() / 50;
+  std::nth_element(angles.begin(), angles.begin() + q, angles.end());
+  return 0.9 * angles[q];
+}
+
+}  // namespace
+
+RadiusSearch::RadiusSearch(const PointSet& set) {
+  const double angle = set.organized() ? minimumRayAngle(set) : 0.0;
+  if (angle > 1e-6) impl_ = std::make_unique<GridSearch>(set, angle);
+  else impl_ = std::make_unique<KdTreeSearch>(set);
+}
+
+RadiusSearch::~RadiusSearch() = default;
+
+std::unique_ptr<RadiusSearch> RadiusSearch::kdTree(const PointSet& set) {
+  std::unique_ptr<RadiusSearch> s(new RadiusSearch());
+  s->impl_ = std::make_unique<KdTreeSearch>(set);
+  return s;
+}
+
+void RadiusSearch::radius(int i, float r, std::vector<int>& out) const { impl_->radius(i, r, out); }
+float RadiusSearch::nearestDistance(int i) const { return impl_->nearest(i); }
+bool RadiusSearch::usesGrid() const { return impl_->grid(); }
+
+double cloudResolution(const PointSet& set, const RadiusSearch& search) {
+  if (set.size() < 2) throw Error("cloud resolution needs at least 2 valid points, got " +
+                                  std::to_string(set.size()));
+  double sum = 0.0;
+  std::size_t n = 0;
+  for (std::size_t i = 0; i < set.size(); ++i) {
+    const float d = search.nearestDistance(static_cast<int>(i));
+    if (std::isfinite(d)) {
+      sum += d;
+      ++n;
+    }
+  }
+  if (n == 0) throw Error("cloud resolution undefined: no point has a neighbour");
+  return sum / static_cast<double>(n);
+}
+
+double cloudResolution(const PointSet& set) {
+  RadiusSearch search(set);
+  return cloudResolution(set, search);
+}
+
+}  // namespace keyturn

@@ -1,0 +1,37 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package keyturn needs to build, test and run.
+# Idempotent and quick when everything is already there: it only calls apt-get
+# for packages that dpkg does not report as installed.
+set -euo pipefail
+
+packages=(
+  # toolchain
+  build-essential cmake ninja-build ccache pkg-config
+  # point clouds (PCL pulls in Eigen, FLANN, Boost and VTK)
+  libpcl-dev libeigen3-dev
+  # ray casting for the simulated SR4000 views
+  libembree-dev
+  # command line, configuration, JSON
+  libcli11-dev nlohmann-json3-dev
+  # tests and benchmarks
+  libgtest-dev libgmock-dev libbenchmark-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+
+if [ ${#missing[@]} -eq 0 ]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+echo "install-deps: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

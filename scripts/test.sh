@@ -1,0 +1,7 @@
+#!/usr/bin/env bash
+# Set up, build and run the whole test suite (unit tests + command-line tests).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/install-deps.sh
+bash scripts/configure-build.sh
+ctest --test-dir "${BUILD_DIR:-build}" --output-on-failure --parallel "$(nproc)"

@@ -1,0 +1,25 @@
+#pragma once
+// Triangle meshes for the simulated scene (metres, z up, base on z = 0).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace keyturn::sim {
+
+struct Mesh {
+  std::vector<Eigen::Vector3f> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+
+  Eigen::Vector3f boundsMin() const;
+  Eigen::Vector3f boundsMax() const;
+};
+
+// PLY through PCL (ascii or binary, float or double vertices). Throws
+// keyturn::Error naming the file for a missing, unreadable or face-less mesh.
+Mesh loadMesh(const std::string& path);
+
+// A built-in mug (cylindrical wall with a bottom and a torus-section handle),
+// 8 cm wide and 10 cm tall, so a view can be rendered with no file at all.
+Mesh makeMugMesh();
+
+}  // namespace keyturn::sim

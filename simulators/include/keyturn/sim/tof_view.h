@@ -1,0 +1,57 @@
+#pragma once
+// Renders what an SR4000 sees of an object standing on a turntable: an
+// organized 176 × 144 cloud with amplitude and confidence, ray cast with Embree.
+// The sensor model is deliberately simple here (range noise ∝ 1/amplitude,
+// mixed pixels from 2 × 2 supersampling, an amplitude threshold); the camera
+// simulator grows it.
+#include <cstdint>
+#include <memory>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/sim/mesh.h"
+
+namespace keyturn::sim {
+
+// SR4000 optics: 176 × 144 pixels, 43.6° horizontal field of view with square
+// pixels, so fx = fy = 88 / tan(21.8°) ≈ 219.9 px and the vertical field is 36.3°.
+struct Intrinsics {
+  int width = 176;
+  int height = 144;
+  double fx = 219.9, fy = 219.9, cx = 88.0, cy = 72.0;
+};
+
+struct SceneView {
+  double distance = 0.0;        // camera to object centre (m); 0 = operator placement
+  double elevation_deg = 30.0;  // camera above the turntable plane
+  double turntable_deg = 0.0;   // object rotation about the turntable (z) axis
+  double object_reflectivity = 0.6;
+  double table_reflectivity = 0.35;
+  double table_half_size = 0.6;  // square table (m) the turntable stands on
+  double noise_at_1m = 0.0025;   // range σ (m) for a 50% target head-on at 1 m
+  double amplitude_threshold = 0.02;  // relative to that same target; below → no return
+  std::uint64_t seed = 1;
+  bool noise = true;
+};
+
+// Distance at which an operator would place the camera: the object's bounding
+// sphere spans about 60% of the vertical field, within 0.45–5 m.
+double operatorDistance(const Mesh& mesh, const Intrinsics& k = Intrinsics());
+
+class TofViewRenderer {
+ public:
+  explicit TofViewRenderer(const Mesh& object, Intrinsics k = Intrinsics());
+  ~TofViewRenderer();
+  TofViewRenderer(const TofViewRenderer&) = delete;
+  TofViewRenderer& operator=(const TofViewRenderer&) = delete;
+
+  Cloud render(const SceneView& view) const;
+  const Intrinsics& intrinsics() const { return k_; }
+
+ private:
+  struct Scene;
+  Intrinsics k_;
+  Mesh object_;
+  std::unique_ptr<Scene> scene_;
+};
+
+}  // namespace keyturn::sim

@@ -1,0 +1,114 @@
+#include "keyturn/sim/mesh.h"
+
+#include <pcl/PolygonMesh.h>
+#include <pcl/console/print.h>
+#include <pcl/io/ply_io.h>
+
+#include <cmath>
+#include <filesystem>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+
+namespace keyturn::sim {
+
+Eigen::Vector3f Mesh::boundsMin() const {
+  Eigen::Vector3f m = Eigen::Vector3f::Constant(std::numeric_limits<float>::infinity());
+  for (const auto& v : vertices) m = m.cwiseMin(v);
+  return m;
+}
+
+Eigen::Vector3f Mesh::boundsMax() const {
+  Eigen::Vector3f m = Eigen::Vector3f::Constant(-std::numeric_limits<float>::infinity());
+  for (const auto& v : vertices) m = m.cwiseMax(v);
+  return m;
+}
+
+Mesh loadMesh(const std::string& path) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such mesh file");
+  pcl::PolygonMesh pm;
+  if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
+  Mesh mesh;
+  mesh.vertices = cloudFromPclBlob(path, pm.cloud).points;
+  const int n = static_cast<int>(mesh.vertices.size());
+  for (const auto& poly : pm.polygons) {
+    // Fan-triangulate polygons; reject indices that point outside the vertex list.
+    for (std::size_t k = 2; k < poly.vertices.size(); ++k) {
+      const Eigen::Vector3i t(poly.vertices[0], poly.vertices[k - 1], poly.vertices[k]);
+      if ((t.array() < 0).any() || (t.array() >= n).any())
+        throw Error(path + ": face refers to vertex outside 0.." + std::to_string(n - 1));
+      mesh.triangles.push_back(t);
+    }
+  }
+  if (mesh.triangles.empty()) throw Error(path + ": mesh has no faces");
+  for (const auto& v : mesh.vertices)
+    if (!v.allFinite()) throw Error(path + ": mesh has non-finite vertex coordinates");
+  return mesh;
+}
+
+Mesh makeMugMesh() {
+  Mesh m;
+  const int seg = 48;
+  const float r_out = 0.040f, r_in = 0.036f, h = 0.10f, floor_z = 0.006f;
+  auto ring = [&](float r, float z) {
+    const int base = static_cast<int>(m.vertices.size());
+    for (int i = 0; i < seg; ++i) {
+      const float a = 2.f * static_cast<float>(M_PI) * i / seg;
+      m.vertices.emplace_back(r * std::cos(a), r * std::sin(a), z);
+    }
+    return base;
+  };
+  auto strip = [&](int a, int b, bool flip) {
+    for (int i = 0; i < seg; ++i) {
+      const int j = (i + 1) % seg;
+      if (flip) {
+        m.triangles.emplace_back(a + i, b + j, b + i);
+        m.triangles.emplace_back(a + i, a + j, b + j);
+      } else {
+        m.triangles.emplace_back(a + i, b + i, b + j);
+        m.triangles.emplace_back(a + i, b + j, a + j);
+      }
+    }
+  };
+  auto cap = [&](int ringBase, float z, bool up) {
+    const int c = static_cast<int>(m.vertices.size());
+    m.vertices.emplace_back(0.f, 0.f, z);
+    for (int i = 0; i < seg; ++i) {
+      const int j = (i + 1) % seg;
+      if (up) m.triangles.emplace_back(c, ringBase + i, ringBase + j);
+      else m.triangles.emplace_back(c, ringBase + j, ringBase + i);
+    }
+  };
+  const int o0 = ring(r_out, 0.f), o1 = ring(r_out, h);
+  const int i1 = ring(r_in, h), i0 = ring(r_in, floor_z);
+  strip(o0, o1, false);  // outer wall
+  strip(o1, i1, false);  // rim
+  strip(i1, i0, false);  // inner wall
+  cap(o0, 0.f, false);   // bottom
+  cap(i0, floor_z, true);
+  // Handle: half a torus on the +x side, tube radius 6 mm, centre-line radius 28 mm.
+  const int tseg = 16, hseg = 24;
+  const float R = 0.028f, tube = 0.006f;
+  const Eigen::Vector3f centre(r_out - 0.004f, 0.f, h * 0.5f);
+  const int base = static_cast<int>(m.vertices.size());
+  for (int i = 0; i <= hseg; ++i) {
+    const float a = -static_cast<float>(M_PI) / 2 + static_cast<float>(M_PI) * i / hseg;
+    const Eigen::Vector3f c = centre + Eigen::Vector3f(R * std::cos(a), 0.f, R * std::sin(a));
+    const Eigen::Vector3f radial(std::cos(a), 0.f, std::sin(a));
+    for (int j = 0; j < tseg; ++j) {
+      const float b = 2.f * static_cast<float>(M_PI) * j / tseg;
+      m.vertices.push_back(c + tube * (std::cos(b) * radial + std::sin(b) * Eigen::Vector3f::UnitY()));
+    }
+  }
+  for (int i = 0; i < hseg; ++i)
+    for (int j = 0; j < tseg; ++j) {
+      const int a = base + i * tseg + j, b = base + i * tseg + (j + 1) % tseg;
+      m.triangles.emplace_back(a, a + tseg, b + tseg);
+      m.triangles.emplace_back(a, b + tseg, b);
+    }
+  return m;
+}
+
+}  // namespace keyturn::sim

@@ -1,0 +1,179 @@
+#include "keyturn/sim/tof_view.h"
+
+#include <embree3/rtcore.h>
+
+#include <Eigen/Geometry>
+#include <cmath>
+#include <limits>
+#include <random>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::sim {
+
+namespace {
+constexpr float kPi = static_cast<float>(M_PI);
+}
+
+struct TofViewRenderer::Scene {
+  RTCDevice device = nullptr;
+  RTCScene scene = nullptr;
+  unsigned object_id = 0;
+  unsigned table_id = 0;
+  mutable double built_angle = std::numeric_limits<double>::quiet_NaN();
+  mutable double built_table = std::numeric_limits<double>::quiet_NaN();
+  ~Scene() {
+    if (scene) rtcReleaseScene(scene);
+    if (device) rtcReleaseDevice(device);
+  }
+};
+
+double operatorDistance(const Mesh& mesh, const Intrinsics& k) {
+  const Eigen::Vector3f size = mesh.boundsMax() - mesh.boundsMin();
+  const double radius = 0.5 * size.norm();
+  const double half_fov_v = std::atan(0.5 * k.height / k.fy);
+  const double d = radius / std::tan(0.6 * half_fov_v);
+  return std::clamp(d, 0.45, 5.0);
+}
+
+TofViewRenderer::TofViewRenderer(const Mesh& object, Intrinsics k)
+    : k_(k), object_(object), scene_(std::make_unique<Scene>()) {
+  if (object_.triangles.empty()) throw Error("simulated scene: object mesh has no triangles");
+  scene_->device = rtcNewDevice("threads=1");
+  if (!scene_->device) throw Error("simulated scene: Embree device could not be created");
+}
+
+TofViewRenderer::~TofViewRenderer() = default;
+
+namespace {
+
+unsigned addTriangles(RTCDevice dev, RTCScene scene, const std::vector<Eigen::Vector3f>& v,
+                      const std::vector<Eigen::Vector3i>& t) {
+  RTCGeometry g = rtcNewGeometry(dev, RTC_GEOMETRY_TYPE_TRIANGLE);
+  auto* vb = static_cast<float*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_VERTEX, 0,
+                                                         RTC_FORMAT_FLOAT3, 3 * sizeof(float), v.size()));
+  for (std::size_t i = 0; i < v.size(); ++i)
+    for (int c = 0; c < 3; ++c) vb[3 * i + c] = v[i][c];
+  auto* ib = static_cast<unsigned*>(rtcSetNewGeometryBuffer(g, RTC_BUFFER_TYPE_INDEX, 0,
+                                                            RTC_FORMAT_UINT3, 3 * sizeof(unsigned), t.size()));
+  for (std::size_t i = 0; i < t.size(); ++i)
+    for (int c = 0; c < 3; ++c) ib[3 * i + c] = static_cast<unsigned>(t[i][c]);
+  rtcCommitGeometry(g);
+  const unsigned id = rtcAttachGeometry(scene, g);
+  rtcReleaseGeometry(g);
+  return id;
+}
+
+struct Hit {
+  bool valid = false;
+  float range = 0.f;
+  float amplitude = 0.f;
+};
+
+}  // namespace
+
+Cloud TofViewRenderer::render(const SceneView& view) const {
+  // (Re)build the scene when the turntable angle changes: the object is turned
+  // on the CPU, which for ≤ 10k triangles costs far less than the BVH build.
+  if (!(scene_->built_angle == view.turntable_deg) || !(scene_->built_table == view.table_half_size)) {
+    if (scene_->scene) rtcReleaseScene(scene_->scene);
+    scene_->scene = rtcNewScene(scene_->device);
+    const Eigen::Matrix3f rot =
+        Eigen::AngleAxisf(static_cast<float>(view.turntable_deg) * kPi / 180.f, Eigen::Vector3f::UnitZ())
+            .toRotationMatrix();
+    std::vector<Eigen::Vector3f> v(object_.vertices.size());
+    for (std::size_t i = 0; i < v.size(); ++i) v[i] = rot * object_.vertices[i];
+    scene_->object_id = addTriangles(scene_->device, scene_->scene, v, object_.triangles);
+    const float s = static_cast<float>(view.table_half_size);
+    scene_->table_id = addTriangles(scene_->device, scene_->scene,
+                                    {{-s, -s, 0.f}, {s, -s, 0.f}, {s, s, 0.f}, {-s, s, 0.f}},
+                                    {{0, 1, 2}, {0, 2, 3}});
+    rtcCommitScene(scene_->scene);
+    scene_->built_angle = view.turntable_deg;
+    scene_->built_table = view.table_half_size;
+  }
+
+  // Camera on the -y side, raised by the elevation, looking at the object centre.
+  const Eigen::Vector3f lo = object_.boundsMin(), hi = object_.boundsMax();
+  const Eigen::Vector3f target(0.f, 0.f, 0.5f * (lo.z() + hi.z()));
+  const double dist = view.distance > 0 ? view.distance : operatorDistance(object_, k_);
+  const float el = static_cast<float>(view.elevation_deg) * kPi / 180.f;
+  const Eigen::Vector3f eye = target + static_cast<float>(dist) * Eigen::Vector3f(0.f, -std::cos(el), std::sin(el));
+  const Eigen::Vector3f fwd = (target - eye).normalized();
+  const Eigen::Vector3f right = fwd.cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f down = fwd.cross(right);
+  Eigen::Matrix3f cam_to_world;
+  cam_to_world << right, down, fwd;
+
+  std::mt19937_64 rng(view.seed);
+  std::normal_distribution<float> gauss(0.f, 1.f);
+  // Reference amplitude: a 50% reflective target, head-on, at 1 m.
+  const float a_ref = 0.5f;
+  const float a_min = static_cast<float>(view.amplitude_threshold) * a_ref;
+
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  auto cast = [&](const Eigen::Vector3f& dir_cam) {
+    Hit h;
+    const Eigen::Vector3f d = cam_to_world * dir_cam;
+    RTCRayHit rh;
+    rh.ray.org_x = eye.x(); rh.ray.org_y = eye.y(); rh.ray.org_z = eye.z();
+    rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
+    rh.ray.tnear = 0.f;
+    rh.ray.tfar = std::numeric_limits<float>::infinity();
+    rh.ray.mask = ~0u;
+    rh.ray.flags = 0;
+    rh.ray.time = 0.f;
+    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+    rtcIntersect1(scene_->scene, &ctx, &rh);
+    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
+    const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
+    const float cos_inc = std::abs(n.dot(d));
+    const float refl = static_cast<float>(rh.hit.geomID == scene_->object_id ? view.object_reflectivity
+                                                                             : view.table_reflectivity);
+    h.valid = true;
+    h.range = rh.ray.tfar;  // d is unit length
+    h.amplitude = refl * cos_inc / (h.range * h.range);
+    return h;
+  };
+
+  Cloud cloud;
+  cloud.width = static_cast<std::uint32_t>(k_.width);
+  cloud.height = static_cast<std::uint32_t>(k_.height);
+  const std::size_t n = static_cast<std::size_t>(k_.width) * k_.height;
+  cloud.points.assign(n, Eigen::Vector3f::Constant(std::nanf("")));
+  cloud.amplitude.assign(n, 0.f);
+  cloud.confidence.assign(n, 0.f);
+  for (int v = 0; v < k_.height; ++v) {
+    for (int u = 0; u < k_.width; ++u) {
+      // 2 × 2 sub-rays: where they disagree in range the pixel mixes both
+      // surfaces, amplitude-weighted, which is how ToF jump edges arise.
+      float wsum = 0.f, rsum = 0.f, asum = 0.f;
+      for (int s = 0; s < 4; ++s) {
+        const float su = u + 0.25f + 0.5f * (s & 1), sv = v + 0.25f + 0.5f * (s >> 1);
+        const Eigen::Vector3f dir(static_cast<float>((su - k_.cx) / k_.fx),
+                                  static_cast<float>((sv - k_.cy) / k_.fy), 1.f);
+        const Hit h = cast(dir.normalized());
+        if (!h.valid) continue;
+        wsum += h.amplitude;
+        rsum += h.amplitude * h.range;
+        asum += h.amplitude;
+      }
+      const float amp = asum / 4.f;
+      const std::size_t i = static_cast<std::size_t>(v) * k_.width + u;
+      cloud.amplitude[i] = amp;
+      if (wsum <= 0.f || amp < a_min) continue;  // below the amplitude threshold: distance 0
+      float range = rsum / wsum;
+      if (view.noise) range += static_cast<float>(view.noise_at_1m) * (a_ref / amp) * gauss(rng);
+      const Eigen::Vector3f ray = Eigen::Vector3f(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
+                                                  static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f)
+                                      .normalized();
+      cloud.points[i] = range * ray;
+      cloud.confidence[i] = std::min(1.f, amp / (4.f * a_min));
+    }
+  }
+  return cloud;
+}
+
+}  // namespace keyturn::sim

@@ -1,0 +1,124 @@
+// Google Benchmark suite for the descriptor chain on the built-in simulated
+// SR4000 view of a mug (one thread). `keyturn bench` reports the same stages
+// per view; this suite adds micro-benchmarks such as grid vs k-d tree search.
+#include <benchmark/benchmark.h>
+
+#include "keyturn/core/descriptor.h"
+#include "keyturn/core/filter.h"
+#include "keyturn/core/geodesic.h"
+#include "keyturn/core/iss.h"
+#include "keyturn/core/keypoint_functions.h"
+#include "keyturn/core/pcl_baselines.h"
+#include "keyturn/core/radius_search.h"
+#include "keyturn/sim/tof_view.h"
+
+using namespace keyturn;
+
+namespace {
+struct Fixture {
+  Cloud raw;
+  Cloud filtered;
+  PointSet set;
+  std::unique_ptr<RadiusSearch> search;
+  double res = 0;
+  std::vector<int> keypoints;
+  LocalCompleteGraph graph;
+  Fixture() {
+    sim::TofViewRenderer r(sim::makeMugMesh());
+    sim::SceneView v;
+    v.turntable_deg = 30;
+    raw = r.render(v);
+    filtered = filterCloud(raw, FilterOptions());
+    set = PointSet::fromCloud(filtered);
+    search = std::make_unique<RadiusSearch>(set);
+    res = cloudResolution(set, *search);
+    keypoints = detectIssKeypoints(set, *search, res, IssOptions()).keypoints;
+    graph = buildLocalCompleteGraph(set, *search, res, GraphOptions());
+  }
+};
+const Fixture& fx() {
+  static const Fixture f;
+  return f;
+}
+}  // namespace
+
+static void BM_Filter(benchmark::State& s) {
+  for (auto _ : s) benchmark::DoNotOptimize(filterCloud(fx().raw, FilterOptions()));
+}
+BENCHMARK(BM_Filter)->Unit(benchmark::kMillisecond);
+
+static void BM_FilterPlaneOnly(benchmark::State& s) {
+  FilterOptions o;
+  for (auto _ : s) {
+    Cloud c = fx().raw;
+    removeDominantPlane(c, o, nullptr);
+    benchmark::DoNotOptimize(c);
+  }
+}
+BENCHMARK(BM_FilterPlaneOnly)->Unit(benchmark::kMillisecond);
+
+static void BM_RadiusGrid(benchmark::State& s) {
+  std::vector<int> nb;
+  const float r = static_cast<float>(6 * fx().res);
+  for (auto _ : s)
+    for (std::size_t i = 0; i < fx().set.size(); ++i) fx().search->radius(static_cast<int>(i), r, nb);
+  s.SetItemsProcessed(s.iterations() * fx().set.size());
+}
+BENCHMARK(BM_RadiusGrid)->Unit(benchmark::kMillisecond);
+
+static void BM_RadiusKdTree(benchmark::State& s) {
+  const auto tree = RadiusSearch::kdTree(fx().set);
+  std::vector<int> nb;
+  const float r = static_cast<float>(6 * fx().res);
+  for (auto _ : s)
+    for (std::size_t i = 0; i < fx().set.size(); ++i) tree->radius(static_cast<int>(i), r, nb);
+  s.SetItemsProcessed(s.iterations() * fx().set.size());
+}
+BENCHMARK(BM_RadiusKdTree)->Unit(benchmark::kMillisecond);
+
+static void BM_Iss(benchmark::State& s) {
+  for (auto _ : s) benchmark::DoNotOptimize(detectIssKeypoints(fx().set, *fx().search, fx().res, IssOptions()));
+  s.counters["K"] = static_cast<double>(fx().keypoints.size());
+}
+BENCHMARK(BM_Iss)->Unit(benchmark::kMillisecond);
+
+static void BM_PclIss(benchmark::State& s) {
+  const IssOptions o;
+  for (auto _ : s)
+    benchmark::DoNotOptimize(pclIssKeypoints(fx().set, o.frame_radius * fx().res, o.nms_radius * fx().res,
+                                             o.gamma21, o.gamma32, o.min_neighbors));
+}
+BENCHMARK(BM_PclIss)->Unit(benchmark::kMillisecond);
+
+static void BM_Kpd(benchmark::State& s) {
+  std::vector<Eigen::Vector3f> kp;
+  for (int i : fx().keypoints) kp.push_back(fx().set.points[i]);
+  for (auto _ : s) {
+    benchmark::DoNotOptimize(keypointDistances(kp));
+    benchmark::DoNotOptimize(keypointSqrtAreas(kp));
+    benchmark::DoNotOptimize(keypointAngles(kp));
+  }
+}
+BENCHMARK(BM_Kpd)->Unit(benchmark::kMicrosecond);
+
+static void BM_GraphBuild(benchmark::State& s) {
+  for (auto _ : s)
+    benchmark::DoNotOptimize(buildLocalCompleteGraph(fx().set, *fx().search, fx().res, GraphOptions()));
+  s.counters["edges"] = static_cast<double>(fx().graph.edgeCount());
+}
+BENCHMARK(BM_GraphBuild)->Unit(benchmark::kMillisecond);
+
+static void BM_Geodesics(benchmark::State& s) {
+  const int which = static_cast<int>(s.range(0));
+  for (auto _ : s)
+    benchmark::DoNotOptimize(geodesicKeypointDistances(fx().graph, fx().set, fx().keypoints, which));
+}
+BENCHMARK(BM_Geodesics)->Arg(kGkpd1)->Arg(kGkpd2)->Arg(kGkpcd2)->Unit(benchmark::kMillisecond);
+
+static void BM_DescribeView(benchmark::State& s) {
+  const DescriptorOptions o;
+  for (auto _ : s) benchmark::DoNotOptimize(describeView(fx().raw, o));
+}
+BENCHMARK(BM_DescribeView)->Unit(benchmark::kMillisecond);
+
+BENCHMARK_MAIN();

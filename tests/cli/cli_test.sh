@@ -1,0 +1,52 @@
+#!/usr/bin/env bash
+# The keyturn command line as a user runs it: render views, describe a folder
+# holding a bad file, bench as JSON. Prints "N passed, N failed".
+set -u
+KT=${KEYTURN:?set KEYTURN to the keyturn binary}
+work=${1:-$(mktemp -d)}
+rm -rf "$work"; mkdir -p "$work/views"
+pass=0; fail=0
+check() {  # check NAME CONDITION...
+  local name=$1; shift
+  if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
+
+"$KT" render builtin:mug --angles 0,90,180 --out "$work/views/mug_{angle}.pcd" 2>"$work/render.err"
+check "render exits 0" test $? -eq 0
+check "render writes three views" test "$(ls "$work"/views/*.pcd | wc -l)" -eq 3
+
+# A truncated copy and an empty file among good views.
+head -c 2000 "$work/views/mug_090.pcd" > "$work/views/broken.pcd"
+: > "$work/views/empty.pcd"
+"$KT" describe "$work/views" --out "$work/features.csv" -q 2>"$work/describe.err"
+rc=$?
+check "describe with bad files exits non-zero" test $rc -ne 0
+check "good rows still written" test "$(wc -l < "$work/features.csv")" -eq 4
+check "truncated file named in one line" grep -q "broken.pcd: truncated PCD" "$work/describe.err"
+check "empty file named" grep -q "empty.pcd: empty file" "$work/describe.err"
+header=$(head -1 "$work/features.csv")
+check "header has keypoint count and 6x32 bins" test "$(echo "$header" | tr ',' '\n' | wc -l)" -eq $((7 + 6 * 32))
+k=$(sed -n 2p "$work/features.csv" | cut -d, -f3)
+check "keypoint count is a positive number" test "${k:-0}" -gt 5
+
+rm "$work/views/broken.pcd" "$work/views/empty.pcd"
+"$KT" describe "$work/views/mug_000.pcd" --features kpd2+gkpd2,d2 --bins 16 -q > "$work/one.csv"
+check "describe one file to stdout exits 0" test $? -eq 0
+check "hybrid + baseline columns" test "$(head -1 "$work/one.csv" | tr ',' '\n' | grep -c '^d2_')" -eq 16
+
+"$KT" describe /nonexistent/view.pcd -q > /dev/null 2>"$work/missing.err"
+check "missing path exits non-zero" test $? -ne 0
+check "missing path named" grep -q "/nonexistent/view.pcd: no such file" "$work/missing.err"
+
+"$KT" describe "$work/views" --features kpd9 2>"$work/badfeat.err"
+check "unknown feature is an error" test $? -ne 0
+check "unknown feature named" grep -q "unknown feature 'kpd9'" "$work/badfeat.err"
+
+"$KT" bench -n 2 --pcl-repetitions 1 --json > "$work/bench.json" 2>/dev/null
+check "bench --json exits 0" test $? -eq 0
+for key in total_ms iss_ms keypoints pcl_iss_ms pcl_esf_ms pcl_vfh_ms; do
+  check "bench json has $key" grep -q "\"$key\": [0-9]" "$work/bench.json"
+done
+
+echo "$pass passed, $fail failed"
+test "$fail" -eq 0

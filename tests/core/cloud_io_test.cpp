@@ -1,0 +1,114 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+#include "support/synthetic_clouds.h"
+
+namespace fs = std::filesystem;
+using namespace keyturn;
+
+namespace {
+fs::path tempDir() {
+  const fs::path d = fs::temp_directory_path() / ("keyturn_io_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  return d;
+}
+
+Cloud sampleOrganized() {
+  Cloud c = test::organizedPlanes(8, 6, 10.f, 1.0f, 0.8f, 2, 5, 1, 4);
+  c.points[7].setConstant(std::nanf(""));
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    c.amplitude.push_back(100.f + i);
+    c.confidence.push_back(0.5f + 0.01f * i);
+  }
+  return c;
+}
+
+std::string expectError(const std::string& path) {
+  try {
+    loadCloud(path);
+  } catch (const Error& e) {
+    return e.what();
+  }
+  ADD_FAILURE() << "no error for " << path;
+  return "";
+}
+}  // namespace
+
+class PcdEncodingTest : public ::testing::TestWithParam<PcdEncoding> {};
+
+TEST_P(PcdEncodingTest, RoundTripKeepsOrganizationNaNsAndFields) {
+  const Cloud c = sampleOrganized();
+  const std::string path = (tempDir() / "rt.pcd").string();
+  saveCloud(path, c, GetParam());
+  const Cloud r = loadCloud(path);
+  ASSERT_EQ(r.width, 8u);
+  ASSERT_EQ(r.height, 6u);
+  ASSERT_EQ(r.amplitude.size(), c.size());
+  ASSERT_EQ(r.confidence.size(), c.size());
+  EXPECT_EQ(r.validCount(), c.size() - 1);
+  EXPECT_FALSE(Cloud::isValid(r.points[7]));
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    if (i == 7) continue;
+    EXPECT_NEAR((r.points[i] - c.points[i]).norm(), 0.f, 1e-5f) << i;
+    EXPECT_NEAR(r.amplitude[i], c.amplitude[i], 1e-3f);
+    EXPECT_NEAR(r.confidence[i], c.confidence[i], 1e-5f);
+  }
+  EXPECT_FALSE(fs::exists(path + ".tmp"));
+}
+
+INSTANTIATE_TEST_SUITE_P(AllEncodings, PcdEncodingTest,
+                         ::testing::Values(PcdEncoding::Ascii, PcdEncoding::Binary,
+                                           PcdEncoding::BinaryCompressed));
+
+TEST(CloudIo, PlyRoundTrip) {
+  Cloud c = test::unorganized(test::cylinderSurface(0.05f, 0.1f, 12, 4));
+  const std::string path = (tempDir() / "rt.ply").string();
+  saveCloud(path, c);
+  const Cloud r = loadCloud(path);
+  ASSERT_EQ(r.size(), c.size());
+  EXPECT_FALSE(r.organized());
+  for (std::size_t i = 0; i < c.size(); ++i) EXPECT_NEAR((r.points[i] - c.points[i]).norm(), 0.f, 1e-6f);
+}
+
+TEST(CloudIo, MissingFileNamesTheFile) {
+  const std::string msg = expectError("/nonexistent/view.pcd");
+  EXPECT_NE(msg.find("/nonexistent/view.pcd"), std::string::npos);
+  EXPECT_NE(msg.find("no such file"), std::string::npos);
+}
+
+TEST(CloudIo, EmptyFile) {
+  const std::string path = (tempDir() / "empty.pcd").string();
+  std::ofstream(path).close();
+  EXPECT_NE(expectError(path).find("empty file"), std::string::npos);
+}
+
+TEST(CloudIo, GarbageHeader) {
+  const std::string path = (tempDir() / "garbage.pcd").string();
+  std::ofstream(path) << "this is not a point cloud\n";
+  EXPECT_NE(expectError(path).find("not a valid PCD"), std::string::npos);
+}
+
+TEST(CloudIo, TruncatedBinaryAndCompressed) {
+  for (auto enc : {PcdEncoding::Binary, PcdEncoding::BinaryCompressed}) {
+    const std::string path = (tempDir() / "trunc.pcd").string();
+    saveCloud(path, sampleOrganized(), enc);
+    // Keep the header and 20 bytes of data (PCL pads files, so cut from the front).
+    std::ifstream in(path, std::ios::binary);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    const auto data = text.find('\n', text.find("DATA ")) + 1;
+    fs::resize_file(path, data + 20);
+    EXPECT_NE(expectError(path).find("truncated PCD"), std::string::npos);
+  }
+}
+
+TEST(CloudIo, UnsupportedExtensionAndDirectory) {
+  const std::string path = (tempDir() / "view.xyz").string();
+  std::ofstream(path) << "1 2 3\n";
+  EXPECT_NE(expectError(path).find("unsupported format"), std::string::npos);
+  EXPECT_NE(expectError(tempDir().string()).find("is a directory"), std::string::npos);
+}

@@ -1,0 +1,112 @@
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+#include <set>
+
+#include "keyturn/core/geodesic.h"
+#include "support/synthetic_clouds.h"
+
+using namespace keyturn;
+
+namespace {
+constexpr float kR = 0.05f, kH = 0.1f;
+constexpr int kAround = 126, kRings = 41;  // ≈ 2.5 mm spacing both ways
+
+int cylinderVertex(int around_index, int ring) { return ring * kAround + around_index; }
+
+struct CylinderGraph {
+  PointSet set;
+  std::unique_ptr<RadiusSearch> search;
+  double res = 0;
+  LocalCompleteGraph graph;
+  CylinderGraph() {
+    set = PointSet::fromCloud(test::unorganized(test::cylinderSurface(kR, kH, kAround, kRings)));
+    search = std::make_unique<RadiusSearch>(set);
+    res = cloudResolution(set, *search);
+    graph = buildLocalCompleteGraph(set, *search, res, GraphOptions());
+  }
+};
+}  // namespace
+
+TEST(LocalCompleteGraph, EdgesAreExactlyTheTwoHopClosure) {
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> u(0.f, 0.1f);
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 150; ++i) pts.emplace_back(u(rng), u(rng), 1.f + 0.2f * u(rng));
+  const PointSet set = PointSet::fromCloud(test::unorganized(pts));
+  const RadiusSearch search(set);
+  const double res = cloudResolution(set, search);
+  const auto g = buildLocalCompleteGraph(set, search, res, GraphOptions());
+  const float r = static_cast<float>(3.5 * res);
+  std::set<std::pair<int, int>> expect;
+  const int n = static_cast<int>(pts.size());
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      if (j == i || (pts[i] - pts[j]).norm() >= r) continue;
+      expect.insert({i, j});  // centre joined to its neighbour
+      for (int k = 0; k < n; ++k)
+        if (k != j && (pts[i] - pts[k]).norm() < r) expect.insert({j, k});  // neighbours joined
+    }
+  std::set<std::pair<int, int>> got;
+  for (int v = 0; v < n; ++v)
+    for (int e = g.offsets[v]; e < g.offsets[v + 1]; ++e) got.insert({v, g.targets[e]});
+  EXPECT_EQ(got, expect);
+  EXPECT_GT(got.size(), 300u);
+}
+
+TEST(Geodesic, AroundACylinderMatchesTheArc) {
+  CylinderGraph c;
+  const int a = cylinderVertex(0, 20), b = cylinderVertex(kAround / 4, 20);
+  const auto d = shortestPathLengths(c.graph, a, false);
+  const double arc = kR * M_PI / 2;
+  EXPECT_NEAR(d[b], arc, 0.02 * arc);
+  // Far longer than the straight chord through the cylinder.
+  EXPECT_GT(d[b], 1.08 * (c.set.points[a] - c.set.points[b]).norm());
+}
+
+TEST(Geodesic, HelixOnACylinderMatchesTheUnrolledLength) {
+  CylinderGraph c;
+  const int a = cylinderVertex(0, 8), b = cylinderVertex(kAround / 4, 32);
+  const double rise = kH * (32 - 8) / (kRings - 1), arc = kR * M_PI / 2;
+  const double analytic = std::hypot(arc, rise);
+  const auto d = shortestPathLengths(c.graph, a, false);
+  EXPECT_NEAR(d[b], analytic, 0.03 * analytic);
+}
+
+TEST(Geodesic, CurvatureWeightedPathIsLongerOnACurvedSurface) {
+  CylinderGraph c;
+  const int a = cylinderVertex(0, 8), b = cylinderVertex(kAround / 4, 32);
+  const GeodesicResult r = geodesicKeypointDistances(c.graph, c.set, {a, b}, kGkpd2 | kGkpcd2);
+  ASSERT_EQ(r.gkpd2.size(), 1u);
+  ASSERT_EQ(r.gkpcd2.size(), 1u);
+  // Along the axis the normals agree (C ≈ ε): the weighted path climbs first,
+  // then goes around — an L, longer than the helix.
+  const double rise = kH * 24 / (kRings - 1), arc = kR * M_PI / 2;
+  EXPECT_GT(r.gkpcd2[0], 1.2 * r.gkpd2[0]);
+  EXPECT_NEAR(r.gkpcd2[0], rise + arc, 0.06 * (rise + arc));
+}
+
+TEST(Geodesic, KeypointsInAnotherComponentAreCountedNotHistogrammed) {
+  auto pts = test::cylinderSurface(kR, kH, 60, 20);
+  const std::size_t first = pts.size();
+  for (const auto& p : test::cylinderSurface(kR, kH, 60, 20)) pts.push_back(p + Eigen::Vector3f(0.5f, 0, 0));
+  const PointSet set = PointSet::fromCloud(test::unorganized(pts));
+  const RadiusSearch search(set);
+  const double res = cloudResolution(set, search);
+  const auto g = buildLocalCompleteGraph(set, search, res, GraphOptions());
+  const std::vector<int> kp = {0, 30, static_cast<int>(first), static_cast<int>(first) + 30};
+  const GeodesicResult r = geodesicKeypointDistances(g, set, kp, kAllGeodesics);
+  EXPECT_EQ(r.unreachable_pairs, 4);  // 2 × 2 pairs across the gap
+  EXPECT_EQ(r.gkpd2.size(), 2u);
+  EXPECT_EQ(r.gkpcd2.size(), 2u);
+  EXPECT_EQ(r.unreachable_from_centroid + static_cast<int>(r.gkpd1.size()), 4);
+  EXPECT_EQ(r.unreachable_from_centroid, 2);
+  for (float v : r.gkpd2) EXPECT_TRUE(std::isfinite(v));
+}
+
+TEST(Geodesic, PairsAreSymmetric) {
+  CylinderGraph c;
+  const int a = cylinderVertex(3, 5), b = cylinderVertex(70, 30);
+  EXPECT_FLOAT_EQ(shortestPathLengths(c.graph, a, false)[b], shortestPathLengths(c.graph, b, false)[a]);
+}

@@ -1,0 +1,59 @@
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+
+#include "keyturn/core/keypoint_functions.h"
+
+using namespace keyturn;
+
+namespace {
+// A 3-4-5 right triangle in the xy plane plus an apex above the origin.
+const std::vector<Eigen::Vector3f> kPts = {{0, 0, 0}, {3, 0, 0}, {0, 4, 0}, {0, 0, 2}};
+}
+
+TEST(Kpd2, AllPairDistances) {
+  auto d = keypointDistances(kPts);
+  std::sort(d.begin(), d.end());
+  const std::vector<float> expect = {2.f, 3.f, 4.f, 5.f, std::sqrt(13.f), std::sqrt(20.f)};
+  std::vector<float> e = expect;
+  std::sort(e.begin(), e.end());
+  ASSERT_EQ(d.size(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) EXPECT_NEAR(d[i], e[i], 1e-5f);
+}
+
+TEST(Kpd3, SqrtTriangleAreas) {
+  auto a = keypointSqrtAreas(kPts);
+  ASSERT_EQ(a.size(), 4u);
+  // Triangles: (0,1,2) area 6; (0,1,3) 3; (0,2,3) 4; (1,2,3): |(−3,4,0)×(−3,0,2)|/2.
+  const float a123 = 0.5f * Eigen::Vector3f(-3, 4, 0).cross(Eigen::Vector3f(-3, 0, 2)).norm();
+  std::vector<float> e = {std::sqrt(6.f), std::sqrt(3.f), std::sqrt(4.f), std::sqrt(a123)};
+  std::sort(a.begin(), a.end());
+  std::sort(e.begin(), e.end());
+  for (std::size_t i = 0; i < 4; ++i) EXPECT_NEAR(a[i], e[i], 1e-5f);
+}
+
+TEST(Kpa3, EveryInteriorAngleOfEveryTriangle) {
+  const auto ang = keypointAngles(kPts);
+  ASSERT_EQ(ang.size(), 12u);
+  // Each consecutive triple is one triangle: its angles sum to π.
+  for (std::size_t t = 0; t < 4; ++t) EXPECT_NEAR(ang[3 * t] + ang[3 * t + 1] + ang[3 * t + 2], M_PI, 1e-5);
+  // Triangle (0,1,2): right angle at vertex 0, atan(4/3) at 1, atan(3/4) at 2.
+  EXPECT_NEAR(ang[0], M_PI / 2, 1e-5);
+  EXPECT_NEAR(ang[1], std::atan(4.0 / 3.0), 1e-5);
+  EXPECT_NEAR(ang[2], std::atan(3.0 / 4.0), 1e-5);
+}
+
+TEST(Kpa3, DegenerateTriangleWithRepeatedPointIsSkipped) {
+  const auto ang = keypointAngles({{0, 0, 0}, {0, 0, 0}, {1, 0, 0}});
+  EXPECT_TRUE(ang.empty());
+}
+
+TEST(KeypointFunctions, CountsGrowAsPairsAndTriples) {
+  std::vector<Eigen::Vector3f> pts;
+  for (int i = 0; i < 20; ++i) pts.emplace_back(std::cos(i * 0.7f), std::sin(i * 1.3f), 0.1f * i);
+  EXPECT_EQ(keypointDistances(pts).size(), 190u);
+  EXPECT_EQ(keypointSqrtAreas(pts).size(), 1140u);
+  EXPECT_EQ(keypointAngles(pts).size(), 3420u);
+}
