@@ -18,6 +18,10 @@ void DescriptorFlags::add(CLI::App& cmd) {
   cmd.add_flag("--no-plane", no_plane, "Keep the dominant plane");
   cmd.add_option("--max-range", max_range, "Drop points farther than this from the camera (m)")
       ->capture_default_str();
+  cmd.add_option("--jump-edge-angle", jump_edge_angle,
+                 "Remove pixels whose segment to a neighbour is within this angle of the viewing ray "
+                 "(degrees, 0 = off)")
+      ->capture_default_str();
   cmd.add_option("--iss-frame", iss_frame, "ISS scatter radius r_frame (× resolution)")->capture_default_str();
   cmd.add_option("--iss-nms", iss_nms, "ISS non-maximum radius (× resolution)")->capture_default_str();
   cmd.add_option("--iss-density", iss_density, "ISS density radius (× resolution)")->capture_default_str();
@@ -39,6 +43,8 @@ DescriptorOptions DescriptorFlags::toOptions() const {
   o.filter = !no_filter;
   o.filter_options.remove_plane = !no_plane;
   o.filter_options.max_range = static_cast<float>(max_range);
+  o.filter_options.jump_edge = jump_edge_angle > 0;
+  o.filter_options.jump_edge_angle_deg = static_cast<float>(jump_edge_angle);
   if (iss_frame <= 0 || iss_nms <= 0 || iss_density <= 0 || graph_radius <= 0)
     throw Error("radii must be positive multiples of the cloud resolution");
   o.iss.frame_radius = iss_frame;

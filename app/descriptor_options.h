@@ -15,6 +15,7 @@ struct DescriptorFlags {
   bool no_filter = false;
   bool no_plane = false;
   double max_range = 3.0;
+  double jump_edge_angle = 10.0;
   double iss_frame = 6.0, iss_nms = 4.0, iss_density = 2.0;
   double graph_radius = 3.5;
   int osada_samples = 20000;

@@ -50,8 +50,10 @@ void cropBox(Cloud& cloud, const Eigen::Vector3f& box_min, const Eigen::Vector3f
 std::size_t removeJumpEdges(Cloud& cloud, float angle_deg) {
   if (!cloud.organized()) return 0;
   const int w = static_cast<int>(cloud.width), h = static_cast<int>(cloud.height);
-  // A mixed pixel sits between foreground and background along its own ray, so
-  // the segment to a neighbour is almost parallel to that ray.
+  // A mixed pixel lies between a foreground and a background surface along its
+  // own ray: it has a neighbour nearly straight in front of it AND one nearly
+  // straight behind it. The true edge pixels of either surface have only one
+  // such neighbour and are kept, so a real surface is never cut back.
   const float cos_limit = std::cos(angle_deg * static_cast<float>(M_PI) / 180.0f);
   std::vector<char> remove(cloud.points.size(), 0);
   for (int v = 0; v < h; ++v) {
@@ -60,20 +62,19 @@ std::size_t removeJumpEdges(Cloud& cloud, float angle_deg) {
       const Eigen::Vector3f& p = cloud.points[i];
       if (!Cloud::isValid(p)) continue;
       const Eigen::Vector3f ray = p.normalized();
-      for (int dv = -1; dv <= 1 && !remove[i]; ++dv) {
+      bool nearer = false, farther = false;
+      for (int dv = -1; dv <= 1; ++dv) {
         for (int du = -1; du <= 1; ++du) {
           const int uu = u + du, vv = v + dv;
           if ((du == 0 && dv == 0) || uu < 0 || vv < 0 || uu >= w || vv >= h) continue;
           const Eigen::Vector3f& q = cloud.points[static_cast<std::size_t>(vv) * w + uu];
           if (!Cloud::isValid(q)) continue;
           const Eigen::Vector3f d = q - p;
-          const float len = d.norm();
-          if (len > 0 && std::abs(ray.dot(d)) > cos_limit * len) {
-            remove[i] = 1;
-            break;
-          }
+          const float along = ray.dot(d);
+          if (std::abs(along) > cos_limit * d.norm()) (along < 0 ? nearer : farther) = true;
         }
       }
+      remove[i] = nearer && farther;
     }
   }
   std::size_t n = 0;

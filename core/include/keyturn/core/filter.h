@@ -18,8 +18,9 @@ struct FilterOptions {
   Eigen::Vector3f box_min{-1.f, -1.f, 0.f};
   Eigen::Vector3f box_max{1.f, 1.f, 3.f};
 
-  // Jump edges (mixed pixels): a pixel whose segment to an 8-neighbour lies
-  // within this angle of its viewing ray is removed. Organized clouds only.
+  // Jump edges (mixed pixels): a pixel with one 8-neighbour nearly straight in
+  // front of it and another nearly straight behind it (segments within this
+  // angle of its viewing ray) is removed. Organized clouds only.
   bool jump_edge = true;
   float jump_edge_angle_deg = 10.0f;
 
