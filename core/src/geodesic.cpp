@@ -3,7 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <cmath>
 #include <limits>
-#include <queue>
+#include <algorithm>
 
 namespace keyturn {
 namespace {
@@ -27,53 +27,133 @@ Eigen::Vector3f pcaNormal(const PointSet& set, int i, const std::vector<int>& nb
   return eig.eigenvectors().col(0).cast<float>();  // smallest eigenvalue
 }
 
-// Dijkstra with a lazy-deletion binary heap. Cost is the Euclidean length or
-// the curvature-weighted cost; `euclid` carries the Euclidean length of the
-// path that minimises the cost. Stops early once `remaining` targets settle.
+// Indexed 4-ary min-heap of vertices keyed by cost: at most one entry per
+// vertex (decrease-key instead of duplicates), so it never outgrows the graph.
+class VertexHeap {
+ public:
+  explicit VertexHeap(std::size_t n) : pos_(n, -1) { heap_.reserve(n); }
+  bool empty() const { return heap_.empty(); }
+  void clear() {
+    for (int v : heap_) pos_[v] = -1;
+    heap_.clear();
+  }
+  void pushOrDecrease(int v, const float* key) {
+    int i = pos_[v];
+    if (i < 0) {
+      i = static_cast<int>(heap_.size());
+      heap_.push_back(v);
+    }
+    siftUp(i, v, key);
+  }
+  int pop(const float* key) {
+    const int top = heap_[0];
+    pos_[top] = -1;
+    const int last = heap_.back();
+    heap_.pop_back();
+    if (!heap_.empty()) siftDown(last, key);
+    return top;
+  }
+
+ private:
+  void siftUp(int i, int v, const float* key) {
+    const float k = key[v];
+    while (i > 0) {
+      const int parent = (i - 1) >> 2;
+      const int pv = heap_[parent];
+      if (key[pv] <= k) break;
+      heap_[i] = pv;
+      pos_[pv] = i;
+      i = parent;
+    }
+    heap_[i] = v;
+    pos_[v] = i;
+  }
+  void siftDown(int v, const float* key) {
+    const int n = static_cast<int>(heap_.size());
+    const float k = key[v];
+    int i = 0;
+    for (;;) {
+      const int first = 4 * i + 1;
+      if (first >= n) break;
+      int best = first;
+      float bk = key[heap_[first]];
+      const int last = std::min(first + 4, n);
+      for (int c = first + 1; c < last; ++c) {
+        const float ck = key[heap_[c]];
+        if (ck < bk) {
+          bk = ck;
+          best = c;
+        }
+      }
+      if (bk >= k) break;
+      heap_[i] = heap_[best];
+      pos_[heap_[i]] = i;
+      i = best;
+    }
+    heap_[i] = v;
+    pos_[v] = i;
+  }
+  std::vector<int> heap_;
+  std::vector<int> pos_;
+};
+
+// Dijkstra over the CSR graph. Cost is the Euclidean length or the curvature-
+// weighted cost; for the latter `euclid` carries the Euclidean length of the
+// path that minimises the cost. Stops once `remaining` targets have settled.
 class Dijkstra {
  public:
   explicit Dijkstra(const LocalCompleteGraph& g)
       : g_(g), cost_(g.vertexCount(), kInf), euclid_(g.vertexCount(), kInf),
-        settled_(g.vertexCount(), 0) {}
+        settled_(g.vertexCount(), 0), heap_(g.vertexCount()) {}
 
   template <typename OnSettle>
   void run(int source, bool curved, int remaining, OnSettle&& on_settle) {
+    if (curved) runImpl<true>(source, remaining, on_settle);
+    else runImpl<false>(source, remaining, on_settle);
+  }
+
+ private:
+  template <bool Curved, typename OnSettle>
+  void runImpl(int source, int remaining, OnSettle& on_settle) {
     for (int v : touched_) {
       cost_[v] = kInf;
-      euclid_[v] = kInf;
+      if (Curved) euclid_[v] = kInf;
       settled_[v] = 0;
     }
     touched_.clear();
-    const std::vector<float>& w = curved ? g_.curved : g_.length;
-    using Item = std::pair<float, int>;
-    std::priority_queue<Item, std::vector<Item>, std::greater<Item>> heap;
-    cost_[source] = 0.f;
-    euclid_[source] = 0.f;
+    heap_.clear();
+    const float* w = Curved ? g_.curved.data() : g_.length.data();
+    const float* len = g_.length.data();
+    const int* off = g_.offsets.data();
+    const int* tgt = g_.targets.data();
+    float* cost = cost_.data();
+    cost[source] = 0.f;
+    if (Curved) euclid_[source] = 0.f;
     touched_.push_back(source);
-    heap.emplace(0.f, source);
-    while (!heap.empty()) {
-      const auto [c, v] = heap.top();
-      heap.pop();
-      if (settled_[v] || c > cost_[v]) continue;
+    heap_.pushOrDecrease(source, cost);
+    while (!heap_.empty()) {
+      const int v = heap_.pop(cost);
       settled_[v] = 1;
-      if (on_settle(v, euclid_[v]) && --remaining <= 0) return;
-      for (int e = g_.offsets[v]; e < g_.offsets[v + 1]; ++e) {
-        const int t = g_.targets[e];
+      if (on_settle(v, Curved ? euclid_[v] : cost[v]) && --remaining <= 0) return;
+      const float c = cost[v];
+      for (int e = off[v], end = off[v + 1]; e < end; ++e) {
+        const int t = tgt[e];
         const float nc = c + w[e];
-        if (nc < cost_[t]) {
-          if (cost_[t] == kInf) touched_.push_back(t);
-          cost_[t] = nc;
-          euclid_[t] = euclid_[v] + g_.length[e];
-          heap.emplace(nc, t);
+        if (nc < cost[t]) {
+          if (settled_[t]) continue;  // rounding only: settled costs are final
+          if (cost[t] == kInf) touched_.push_back(t);
+          cost[t] = nc;
+          if (Curved) euclid_[t] = euclid_[v] + len[e];
+          heap_.pushOrDecrease(t, cost);
         }
       }
     }
   }
 
- private:
   const LocalCompleteGraph& g_;
   std::vector<float> cost_, euclid_;
   std::vector<char> settled_;
+  VertexHeap heap_;
   std::vector<int> touched_;
 };
 
@@ -100,6 +180,11 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
 
   // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph.
   g.offsets.assign(n + 1, 0);
+  // |adj| ≈ 4 |N| on a surface (the 2r ball): reserve once instead of regrowing.
+  const std::size_t expect = 4 * nb.size() + 16;
+  g.targets.reserve(expect);
+  g.length.reserve(expect);
+  g.curved.reserve(expect);
   std::vector<int> mark(n, -1);
   const float eps = static_cast<float>(options.curvature_epsilon);
   for (int j = 0; j < n; ++j) {
@@ -147,8 +232,18 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   const int k = static_cast<int>(keypoints.size());
   if (n == 0 || k == 0) return res;
   Dijkstra dj(graph);
+  // Pairs are symmetric, so source a only needs keypoints after it. Taking the
+  // sources from the outside in (farthest from the keypoints' centroid first)
+  // leaves a shrinking, compact set of targets, so later searches stop sooner.
+  Eigen::Vector3f kc = Eigen::Vector3f::Zero();
+  for (int v : keypoints) kc += set.points[v];
+  kc /= static_cast<float>(k);
+  std::vector<int> order(keypoints);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    return (set.points[a] - kc).squaredNorm() > (set.points[b] - kc).squaredNorm();
+  });
   std::vector<int> slot(n, -1);
-  for (int a = 0; a < k; ++a) slot[keypoints[a]] = a;
+  for (int a = 0; a < k; ++a) slot[order[a]] = a;
 
   if (which & kGkpd1) {
     // GKPD1: from the graph vertex nearest the centroid of the view.
@@ -178,7 +273,7 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
     int unreachable = 0;
     for (int a = 0; a + 1 < k; ++a) {
       int found = 0;
-      dj.run(keypoints[a], curved, k - 1 - a, [&](int v, float e) {
+      dj.run(order[a], curved, k - 1 - a, [&](int v, float e) {
         if (slot[v] <= a) return false;
         out.push_back(e);
         ++found;
