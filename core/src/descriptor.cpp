@@ -93,7 +93,7 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
   out.times.kpd = clock.lap();
 
   if (wants(o.features, isGeodesicFeature)) {
-    const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, out.resolution, o.graph);
+    LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, out.resolution, o.graph);
     out.times.graph = clock.lap();
     int which = 0;
     for (Feature f : o.features) {
@@ -109,6 +109,7 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
       if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2);
       if (o.features[f] == Feature::GKPCD2) values[f] = std::move(geo.gkpcd2);
     }
+    graph = LocalCompleteGraph();  // free it inside the timed geodesic stage
     out.times.geodesic = clock.lap();
   }
 
