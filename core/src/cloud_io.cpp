@@ -14,6 +14,7 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 
 #include "keyturn/core/error.h"
 
@@ -107,51 +108,142 @@ Cloud cloudFromPclBlob(const std::string& path, const pcl::PCLPointCloud2& blob)
 
 namespace {
 
-// PCL trusts the header; check that the file really holds the data it promises
-// so a truncated file is named as such instead of failing somewhere inside PCL.
-void checkPcdPayload(const std::string& path, const pcl::PCLPointCloud2& header, int data_type,
-                     unsigned data_idx, std::uintmax_t file_size) {
-  const std::uint64_t expected =
-      static_cast<std::uint64_t>(header.width) * header.height * header.point_step;
-  if (data_type == 1) {
-    if (data_idx + expected > file_size)
-      fail(path, "truncated PCD: header promises " + std::to_string(header.width * header.height) +
-                     " points (" + std::to_string(expected) + " bytes of data) but the file has " +
-                     std::to_string(file_size > data_idx ? file_size - data_idx : 0));
-  } else if (data_type == 2) {
+// What a PCD header promises, read from its text before PCL sees the file:
+// PCL's reader allocates for the promised points first, so a corrupt or
+// truncated header must be caught here.
+struct PcdPromise {
+  std::uint64_t points = 0;
+  std::uint64_t point_step = 0;  // bytes per point (binary)
+  std::uint64_t values = 0;      // values per point (ascii)
+  std::string data;              // ascii | binary | binary_compressed
+  std::uint64_t data_offset = 0;
+};
+
+PcdPromise readPcdPromise(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  PcdPromise p;
+  std::vector<std::uint64_t> sizes, counts;
+  std::uint64_t width = 0, height = 0;
+  std::string line;
+  for (int n = 0; n < 64 && std::getline(in, line); ++n) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "SIZE") for (std::uint64_t v; ls >> v;) sizes.push_back(v);
+    else if (key == "COUNT") for (std::uint64_t v; ls >> v;) counts.push_back(v);
+    else if (key == "WIDTH") ls >> width;
+    else if (key == "HEIGHT") ls >> height;
+    else if (key == "POINTS") ls >> p.points;
+    else if (key == "DATA") {
+      ls >> p.data;
+      p.data_offset = static_cast<std::uint64_t>(in.tellg());
+      break;
+    }
+  }
+  if (p.data.empty() || sizes.empty()) fail(path, "not a valid PCD file (no FIELDS/SIZE/DATA header)");
+  if (width * height != p.points && width != 0)
+    fail(path, "corrupt PCD header: WIDTH × HEIGHT = " + std::to_string(width * height) +
+                   " but POINTS = " + std::to_string(p.points));
+  if (p.points == 0) fail(path, "empty point cloud (0 points)");
+  for (std::size_t i = 0; i < sizes.size(); ++i) {
+    const std::uint64_t c = i < counts.size() ? counts[i] : 1;
+    p.point_step += sizes[i] * c;
+    p.values += c;
+  }
+  return p;
+}
+
+void checkPcdPayload(const std::string& path, const PcdPromise& p, std::uintmax_t file_size) {
+  const std::uint64_t room = file_size > p.data_offset ? file_size - p.data_offset : 0;
+  const std::string promise = "header promises " + std::to_string(p.points) + " points";
+  if (p.data == "ascii") {
+    // Every ascii value takes at least one character and one separator.
+    if (p.points > (room + 1) / (2 * std::max<std::uint64_t>(p.values, 1)))
+      fail(path, "truncated PCD: " + promise + " but only " + std::to_string(room) +
+                     " bytes of ascii data follow");
+  } else if (p.data == "binary") {
+    if (p.points > room / std::max<std::uint64_t>(p.point_step, 1))
+      fail(path, "truncated PCD: " + promise + " (" + std::to_string(p.points * p.point_step) +
+                     " bytes of data) but the file has " + std::to_string(room));
+  } else if (p.data == "binary_compressed") {
     std::ifstream in(path, std::ios::binary);
-    in.seekg(data_idx);
+    in.seekg(static_cast<std::streamoff>(p.data_offset));
     std::uint32_t sizes[2] = {0, 0};
     in.read(reinterpret_cast<char*>(sizes), sizeof(sizes));
     if (!in) fail(path, "truncated PCD: compressed data header missing");
-    if (data_idx + 8ull + sizes[0] > file_size)
+    if (8ull + sizes[0] > room)
       fail(path, "truncated PCD: compressed block of " + std::to_string(sizes[0]) +
-                     " bytes but the file ends after " + std::to_string(file_size - data_idx - 8));
-    if (sizes[1] != expected)
+                     " bytes but the file ends after " + std::to_string(room - 8));
+    if (sizes[1] != p.points * p.point_step)
       fail(path, "corrupt PCD: compressed block unpacks to " + std::to_string(sizes[1]) +
-                     " bytes, header needs " + std::to_string(expected));
+                     " bytes, the header needs " + std::to_string(p.points * p.point_step));
+  } else {
+    fail(path, "not a valid PCD file (unknown DATA type '" + p.data + "')");
   }
 }
 
 Cloud loadPcd(const std::string& path, std::uintmax_t file_size) {
+  checkPcdPayload(path, readPcdPromise(path), file_size);
   pcl::PCDReader reader;
-  pcl::PCLPointCloud2 header;
+  pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
-  int version = 0, data_type = 0;
-  unsigned int data_idx = 0;
-  if (reader.readHeader(path, header, origin, orientation, version, data_type, data_idx) < 0)
-    fail(path, "not a valid PCD file (header unreadable)");
-  if (header.fields.empty()) fail(path, "not a valid PCD file (no FIELDS in the header)");
-  if (header.width == 0 || header.height == 0) fail(path, "empty point cloud (0 points)");
-  checkPcdPayload(path, header, data_type, data_idx, file_size);
-  pcl::PCLPointCloud2 blob;
+  int version = 0;
   if (reader.read(path, blob, origin, orientation, version) < 0)
     fail(path, "corrupt PCD: PCL could not read the point data");
+  if (blob.fields.empty()) fail(path, "not a valid PCD file (no fields)");
   return cloudFromPclBlob(path, blob);
 }
 
+}  // namespace
+
+void checkPlyHeader(const std::string& path) {
+  std::error_code ec;
+  const auto file_size = fs::file_size(path, ec);
+  if (ec) fail(path, "cannot read file size: " + ec.message());
+  std::ifstream in(path, std::ios::binary);
+  std::string line, format;
+  std::uint64_t min_bytes = 0, current = 0, per_item = 0;
+  bool ascii = false, ended = false;
+  auto close_element = [&] { min_bytes += current * per_item; };
+  for (int n = 0; n < 256 && std::getline(in, line); ++n) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key == "format") {
+      ls >> format;
+      ascii = format == "ascii";
+    } else if (key == "element") {
+      close_element();
+      std::string name;
+      ls >> name >> current;
+      per_item = 0;
+    } else if (key == "property") {
+      std::string type;
+      ls >> type;
+      // Scalars: their size (ascii: a digit and a separator); a list holds at least its count.
+      const bool wide = type == "double" || type == "float64" || type == "int64" || type == "uint64";
+      const bool mid = type == "float" || type == "float32" || type == "int" || type == "uint" ||
+                       type == "int32" || type == "uint32";
+      const bool small = type == "short" || type == "ushort" || type == "int16" || type == "uint16";
+      per_item += ascii ? 2 : type == "list" ? 1 : wide ? 8 : mid ? 4 : small ? 2 : 1;
+    } else if (key == "end_header") {
+      ended = true;
+      break;
+    }
+  }
+  if (!ended) fail(path, "not a valid PLY file (no end_header)");
+  close_element();
+  const std::uint64_t room = file_size - std::min<std::uint64_t>(file_size, in.tellg());
+  if (min_bytes > room + 1)
+    fail(path, "truncated PLY: its header needs at least " + std::to_string(min_bytes) +
+                   " bytes of data but the file has " + std::to_string(room));
+}
+
+namespace {
+
 Cloud loadPly(const std::string& path) {
+  checkPlyHeader(path);
   pcl::PLYReader reader;
   pcl::PCLPointCloud2 blob;
   Eigen::Vector4f origin;

@@ -28,6 +28,7 @@ Mesh loadMesh(const std::string& path) {
   pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such mesh file");
+  checkPlyHeader(path);
   pcl::PolygonMesh pm;
   if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
   Mesh mesh;

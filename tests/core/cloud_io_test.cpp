@@ -112,3 +112,28 @@ TEST(CloudIo, UnsupportedExtensionAndDirectory) {
   EXPECT_NE(expectError(path).find("unsupported format"), std::string::npos);
   EXPECT_NE(expectError(tempDir().string()).find("is a directory"), std::string::npos);
 }
+
+TEST(CloudIo, AsciiHeaderPromisingBillionsOfPointsIsRejectedBeforeAllocating) {
+  const std::string path = (tempDir() / "huge.pcd").string();
+  std::ofstream(path) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                         "WIDTH 2000000000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2000000000\n"
+                         "DATA ascii\n0 0 1\n";
+  const std::string msg = expectError(path);
+  EXPECT_NE(msg.find("header promises 2000000000 points"), std::string::npos) << msg;
+}
+
+TEST(CloudIo, AsciiWithFewerRowsThanPromisedIsAnError) {
+  const std::string path = (tempDir() / "short.pcd").string();
+  std::ofstream(path) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
+                         "WIDTH 4\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
+                         "0 0 1\n0.1 0 1\n";
+  EXPECT_FALSE(expectError(path).empty());
+}
+
+TEST(CloudIo, PlyHeaderPromisingMoreVerticesThanTheFileHoldsIsRejected) {
+  const std::string path = (tempDir() / "huge.ply").string();
+  std::ofstream(path, std::ios::binary) << "ply\nformat binary_little_endian 1.0\n"
+                                           "element vertex 2000000000\nproperty float x\n"
+                                           "property float y\nproperty float z\nend_header\n";
+  EXPECT_NE(expectError(path).find("truncated PLY"), std::string::npos);
+}
