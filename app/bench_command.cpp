@@ -165,7 +165,7 @@ int runBench(const BenchArgs& a) {
 
 }  // namespace
 
-Runner addBenchCommand(CLI::App& app) {
+Command addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = app.add_subcommand("bench", "Time every stage of the chain against PCL's ISS, ESF and VFH");
   cmd->add_option("files", args->files, "Extra PCD/PLY views to time (the built-in view always runs first)");
@@ -175,7 +175,7 @@ Runner addBenchCommand(CLI::App& app) {
   cmd->add_flag("--json", args->json, "Print one JSON object (milliseconds) instead of a table");
   cmd->add_flag("--no-builtin", args->no_builtin, "Skip the built-in synthetic SR4000 view");
   args->flags.add(*cmd);
-  return [args] { return runBench(*args); };
+  return {cmd, [args] { return runBench(*args); }};
 }
 
 }  // namespace keyturn::app

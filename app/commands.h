@@ -6,10 +6,13 @@
 
 namespace keyturn::app {
 
-using Runner = std::function<int()>;
+struct Command {
+  CLI::App* cli;            // the parsed subcommand
+  std::function<int()> run; // runs it, returns the exit code
+};
 
-Runner addDescribeCommand(CLI::App& app);
-Runner addBenchCommand(CLI::App& app);
-Runner addRenderCommand(CLI::App& app);
+Command addDescribeCommand(CLI::App& app);
+Command addBenchCommand(CLI::App& app);
+Command addRenderCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -131,7 +131,7 @@ int runDescribe(const DescribeArgs& a) {
 
 }  // namespace
 
-Runner addDescribeCommand(CLI::App& app) {
+Command addDescribeCommand(CLI::App& app) {
   auto args = std::make_shared<DescribeArgs>();
   auto* cmd = app.add_subcommand("describe", "Describe views by keypoint/shape-function PDFs (CSV)");
   cmd->add_option("inputs", args->inputs, "PCD/PLY files or folders of them")->required();
@@ -139,7 +139,7 @@ Runner addDescribeCommand(CLI::App& app) {
   cmd->add_option("--jobs,-j", args->jobs, "Parallel files (default: all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress or summary");
   args->flags.add(*cmd);
-  return [args] { return runDescribe(*args); };
+  return {cmd, [args] { return runDescribe(*args); }};
 }
 
 }  // namespace keyturn::app

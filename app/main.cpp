@@ -15,20 +15,15 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", KEYTURN_VERSION);
   app.require_subcommand(1);
   using namespace keyturn::app;
-  std::vector<std::pair<CLI::App*, Runner>> commands;
-  commands.emplace_back(nullptr, addDescribeCommand(app));
-  commands.emplace_back(nullptr, addBenchCommand(app));
-  commands.emplace_back(nullptr, addRenderCommand(app));
-  const auto subs = app.get_subcommands([](CLI::App*) { return true; });
-  for (std::size_t i = 0; i < commands.size(); ++i) commands[i].first = subs[i];
+  const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return app.exit(e);
   }
   try {
-    for (auto& [cmd, run] : commands)
-      if (cmd->parsed()) return run();
+    for (const auto& c : commands)
+      if (c.cli->parsed()) return c.run();
   } catch (const keyturn::Error& e) {
     std::cerr << "keyturn: " << e.what() << "\n";
     return 1;

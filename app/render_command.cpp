@@ -74,7 +74,7 @@ int runRender(const RenderArgs& a) {
 
 }  // namespace
 
-Runner addRenderCommand(CLI::App& app) {
+Command addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render a simulated SR4000 view of a mesh on a turntable (organized PCD)");
   cmd->add_option("mesh", args->mesh, "PLY mesh (metres, z up, base on z = 0) or builtin:mug")->required();
@@ -85,7 +85,7 @@ Runner addRenderCommand(CLI::App& app) {
                   "Camera to object centre (m); default: the object spans ~60% of the vertical field, 0.45–5 m");
   cmd->add_option("--seed", args->seed, "Noise seed")->capture_default_str();
   cmd->add_flag("--no-noise", args->no_noise, "Exact ranges (no sensor noise)");
-  return [args] { return runRender(*args); };
+  return {cmd, [args] { return runRender(*args); }};
 }
 
 }  // namespace keyturn::app

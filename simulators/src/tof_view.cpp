@@ -149,22 +149,21 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
     for (int u = 0; u < k_.width; ++u) {
       // 2 × 2 sub-rays: where they disagree in range the pixel mixes both
       // surfaces, amplitude-weighted, which is how ToF jump edges arise.
-      float wsum = 0.f, rsum = 0.f, asum = 0.f;
+      float asum = 0.f, rsum = 0.f;  // amplitude and amplitude-weighted range
       for (int s = 0; s < 4; ++s) {
         const float su = u + 0.25f + 0.5f * (s & 1), sv = v + 0.25f + 0.5f * (s >> 1);
         const Eigen::Vector3f dir(static_cast<float>((su - k_.cx) / k_.fx),
                                   static_cast<float>((sv - k_.cy) / k_.fy), 1.f);
         const Hit h = cast(dir.normalized());
         if (!h.valid) continue;
-        wsum += h.amplitude;
-        rsum += h.amplitude * h.range;
         asum += h.amplitude;
+        rsum += h.amplitude * h.range;
       }
       const float amp = asum / 4.f;
       const std::size_t i = static_cast<std::size_t>(v) * k_.width + u;
       cloud.amplitude[i] = amp;
-      if (wsum <= 0.f || amp < a_min) continue;  // below the amplitude threshold: distance 0
-      float range = rsum / wsum;
+      if (asum <= 0.f || amp < a_min) continue;  // below the amplitude threshold: distance 0
+      float range = rsum / asum;
       if (view.noise) range += static_cast<float>(view.noise_at_1m) * (a_ref / amp) * gauss(rng);
       const Eigen::Vector3f ray = Eigen::Vector3f(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
                                                   static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f)
