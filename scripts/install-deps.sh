@@ -11,6 +11,10 @@ packages=(
   libpcl-dev libeigen3-dev
   # ray casting for the simulated SR4000 views
   libembree-dev
+  # devices: USB discovery (libusb) and its emulation in tests (umockdev)
+  libusb-1.0-0-dev umockdev libumockdev-dev
+  # images: 16-bit PNGs of raw distance, amplitude and confidence
+  libopencv-imgcodecs-dev
   # command line, configuration, JSON
   libcli11-dev nlohmann-json3-dev
   # tests and benchmarks

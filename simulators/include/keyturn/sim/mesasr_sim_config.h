@@ -1,0 +1,50 @@
+#pragma once
+// Configuration of libmesasr-sim, the simulated libMesaSR: a JSON file named
+// by $MESASR_SIM_CONFIG, read when a camera is opened. Everything is optional.
+//
+// {
+//   "mesh": "builtin:mug" | "path/to/object.ply",   (relative to the config file)
+//   "distance": 0,             camera to object centre, m; 0 = operator placement
+//   "elevation": 30,           degrees
+//   "turntable_deg": 0,        object rotation when no world file is given
+//   "world": "world.json",     shared world state: {"turntable_deg": A} read at every acquire
+//   "serial": 4000123, "seed": 1,
+//   "faults": { "open_fail": false,      every open returns -1
+//               "timeout_every": 0,      every Nth acquire times out (returns -1)
+//               "corrupt_every": 0,      every Nth acquire transfers a short frame
+//               "disconnect_after": 0 }  after N frames the camera stops answering until reopened
+// }
+#include <cstdint>
+#include <string>
+
+namespace keyturn::sim {
+
+struct MesaSrSimFaults {
+  bool open_fail = false;
+  int timeout_every = 0;
+  int corrupt_every = 0;
+  int disconnect_after = 0;
+};
+
+struct MesaSrSimConfig {
+  std::string mesh = "builtin:mug";
+  double distance = 0.0;
+  double elevation = 30.0;
+  double turntable_deg = 0.0;
+  std::string world;
+  std::uint32_t serial = 4000123;
+  std::uint64_t seed = 1;
+  MesaSrSimFaults faults;
+
+  // From $MESASR_SIM_CONFIG, or defaults when unset. Throws keyturn::Error.
+  static MesaSrSimConfig fromEnvironment();
+  static MesaSrSimConfig fromFile(const std::string& path);
+  void save(const std::string& path) const;
+};
+
+// The shared simulated world: the turntable angle the simulated rig reports
+// and the simulated camera renders. Written atomically (temp + rename).
+double readWorldTurntable(const std::string& path, double fallback);
+void writeWorldTurntable(const std::string& path, double degrees);
+
+}  // namespace keyturn::sim

@@ -1,0 +1,86 @@
+#include "keyturn/sim/mesasr_sim_config.h"
+
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "keyturn/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace keyturn::sim {
+
+MesaSrSimConfig MesaSrSimConfig::fromEnvironment() {
+  const char* p = std::getenv("MESASR_SIM_CONFIG");
+  return p && *p ? fromFile(p) : MesaSrSimConfig();
+}
+
+MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": cannot open simulator configuration");
+  nlohmann::json j;
+  try {
+    in >> j;
+  } catch (const std::exception& e) {
+    throw Error(path + ": not valid JSON: " + e.what());
+  }
+  MesaSrSimConfig c;
+  try {
+    c.mesh = j.value("mesh", c.mesh);
+    c.distance = j.value("distance", c.distance);
+    c.elevation = j.value("elevation", c.elevation);
+    c.turntable_deg = j.value("turntable_deg", c.turntable_deg);
+    c.world = j.value("world", c.world);
+    c.serial = j.value("serial", c.serial);
+    c.seed = j.value("seed", c.seed);
+    if (j.contains("faults")) {
+      const auto& f = j.at("faults");
+      c.faults.open_fail = f.value("open_fail", false);
+      c.faults.timeout_every = f.value("timeout_every", 0);
+      c.faults.corrupt_every = f.value("corrupt_every", 0);
+      c.faults.disconnect_after = f.value("disconnect_after", 0);
+    }
+  } catch (const std::exception& e) {
+    throw Error(path + ": bad simulator configuration: " + e.what());
+  }
+  const fs::path base = fs::path(path).parent_path();
+  auto resolve = [&](std::string& p) {
+    if (!p.empty() && p.rfind("builtin:", 0) != 0 && fs::path(p).is_relative()) p = (base / p).string();
+  };
+  resolve(c.mesh);
+  resolve(c.world);
+  return c;
+}
+
+void MesaSrSimConfig::save(const std::string& path) const {
+  nlohmann::json j = {{"mesh", mesh},       {"distance", distance}, {"elevation", elevation},
+                      {"turntable_deg", turntable_deg}, {"serial", serial}, {"seed", seed},
+                      {"faults", {{"open_fail", faults.open_fail}, {"timeout_every", faults.timeout_every},
+                                  {"corrupt_every", faults.corrupt_every},
+                                  {"disconnect_after", faults.disconnect_after}}}};
+  if (!world.empty()) j["world"] = world;
+  std::ofstream(path) << j.dump(2) << "\n";
+}
+
+double readWorldTurntable(const std::string& path, double fallback) {
+  std::ifstream in(path);
+  if (!in) return fallback;
+  try {
+    nlohmann::json j;
+    in >> j;
+    return j.value("turntable_deg", fallback);
+  } catch (const std::exception&) {
+    return fallback;  // a writer mid-rename never leaves a torn file; anything else keeps the last pose
+  }
+}
+
+void writeWorldTurntable(const std::string& path, double degrees) {
+  const std::string tmp = path + ".tmp";
+  std::ofstream(tmp) << nlohmann::json{{"turntable_deg", degrees}}.dump() << "\n";
+  std::error_code ec;
+  fs::rename(tmp, path, ec);
+  if (ec) throw Error(path + ": cannot write world state: " + ec.message());
+}
+
+}  // namespace keyturn::sim
