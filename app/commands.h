@@ -14,5 +14,7 @@ struct Command {
 Command addDescribeCommand(CLI::App& app);
 Command addBenchCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
+Command addGrabCommand(CLI::App& app);
+Command addDevicesCommand(CLI::App& app);
 
 }  // namespace keyturn::app

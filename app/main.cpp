@@ -15,7 +15,8 @@ int main(int argc, char** argv) {
   app.set_version_flag("--version", KEYTURN_VERSION);
   app.require_subcommand(1);
   using namespace keyturn::app;
-  const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app)};
+  const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
+                             addGrabCommand(app), addDevicesCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -263,3 +263,21 @@ TEST_F(Sr4000SimTest, CameraSeesTheTurntableAngleOfTheSharedWorld) {
     if (std::abs(static_cast<int>(a.distance[i]) - static_cast<int>(b.distance[i])) > 200) ++changed;
   EXPECT_GT(changed, 100u);
 }
+
+TEST_F(Sr4000SimTest, ShorterIntegrationTimeIsNoisier) {
+  auto cam = open();
+  auto spread = [&](int it) {
+    TofSettings s;
+    s.integration_time = static_cast<std::uint8_t>(it);
+    s.auto_exposure.enabled = false;
+    cam->configure(s);
+    std::vector<double> d;
+    for (int i = 0; i < 15; ++i) d.push_back(cam->acquire().cloud.points[72 * 176 + 88].norm());
+    double mean = 0, var = 0;
+    for (double x : d) mean += x / d.size();
+    for (double x : d) var += (x - mean) * (x - mean) / d.size();
+    return std::sqrt(var);
+  };
+  const double short_it = spread(3), long_it = spread(200);
+  EXPECT_GT(short_it, 2.0 * long_it);  // σ ∝ 1/sqrt(0.3 ms + n·0.1 ms): 0.6 ms vs 20.3 ms
+}

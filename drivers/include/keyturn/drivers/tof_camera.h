@@ -60,3 +60,12 @@ class TofCamera {
 };
 
 }  // namespace keyturn::drivers
+
+namespace keyturn::drivers {
+
+// Per-pixel median of several frames of one camera: the raw distance's median
+// sample (lower median for an even count) and that sample's point, amplitude
+// and confidence; a pixel is valid when most frames saw it. Throws for none.
+TofFrame medianFrame(const std::vector<TofFrame>& frames);
+
+}  // namespace keyturn::drivers
