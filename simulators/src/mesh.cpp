@@ -2,10 +2,14 @@
 
 #include <pcl/PolygonMesh.h>
 #include <pcl/console/print.h>
+#include <pcl/io/obj_io.h>
 #include <pcl/io/ply_io.h>
+#include <pcl/io/vtk_lib_io.h>
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <sstream>
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
@@ -24,24 +28,100 @@ Eigen::Vector3f Mesh::boundsMax() const {
   return m;
 }
 
-Mesh loadMesh(const std::string& path) {
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such mesh file");
-  checkPlyHeader(path);
-  pcl::PolygonMesh pm;
-  if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
+namespace {
+
+Mesh fromPolygonMesh(const std::string& path, const pcl::PolygonMesh& pm) {
   Mesh mesh;
   mesh.vertices = cloudFromPclBlob(path, pm.cloud).points;
   const int n = static_cast<int>(mesh.vertices.size());
   for (const auto& poly : pm.polygons) {
     // Fan-triangulate polygons; reject indices that point outside the vertex list.
     for (std::size_t k = 2; k < poly.vertices.size(); ++k) {
-      const Eigen::Vector3i t(poly.vertices[0], poly.vertices[k - 1], poly.vertices[k]);
+      const Eigen::Vector3i t(static_cast<int>(poly.vertices[0]), static_cast<int>(poly.vertices[k - 1]),
+                              static_cast<int>(poly.vertices[k]));
       if ((t.array() < 0).any() || (t.array() >= n).any())
         throw Error(path + ": face refers to vertex outside 0.." + std::to_string(n - 1));
       mesh.triangles.push_back(t);
     }
+  }
+  return mesh;
+}
+
+// OFF ("Object File Format"): "OFF", then "V F E", V vertex lines, F faces "n i0 i1 …".
+Mesh loadOff(const std::string& path) {
+  std::ifstream in(path);
+  std::string line;
+  auto next = [&](std::istringstream& ls) {
+    while (std::getline(in, line)) {
+      const auto hash = line.find('#');
+      if (hash != std::string::npos) line.resize(hash);
+      if (line.find_first_not_of(" \t\r") == std::string::npos) continue;
+      ls.clear();
+      ls.str(line);
+      return true;
+    }
+    return false;
+  };
+  std::istringstream ls;
+  std::string magic;
+  if (!next(ls) || !(ls >> magic) || magic != "OFF") throw Error(path + ": not an OFF file (no OFF header)");
+  long nv = 0, nf = 0;
+  if (!(ls >> nv >> nf) && !(next(ls) && (ls >> nv >> nf)))
+    throw Error(path + ": OFF header lacks vertex and face counts");
+  std::error_code ec;
+  const auto size = std::filesystem::file_size(path, ec);
+  if (nv < 0 || nf < 0 || static_cast<std::uintmax_t>(nv + nf) > size)
+    throw Error(path + ": OFF header promises " + std::to_string(nv) + " vertices and " + std::to_string(nf) +
+                " faces, more than the file can hold");
+  Mesh mesh;
+  for (long i = 0; i < nv; ++i) {
+    float x, y, z;
+    if (!next(ls) || !(ls >> x >> y >> z)) throw Error(path + ": OFF vertex " + std::to_string(i) + " unreadable");
+    mesh.vertices.emplace_back(x, y, z);
+  }
+  for (long f = 0; f < nf; ++f) {
+    int k = 0;
+    if (!next(ls) || !(ls >> k) || k < 3) throw Error(path + ": OFF face " + std::to_string(f) + " unreadable");
+    std::vector<int> idx(static_cast<std::size_t>(k));
+    for (int& i : idx)
+      if (!(ls >> i) || i < 0 || i >= nv)
+        throw Error(path + ": OFF face " + std::to_string(f) + " refers to a missing vertex");
+    for (int j = 2; j < k; ++j) mesh.triangles.emplace_back(idx[0], idx[j - 1], idx[j]);
+  }
+  return mesh;
+}
+
+std::string lowerExtension(const std::string& path) {
+  std::string ext = std::filesystem::path(path).extension().string();
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext;
+}
+
+}  // namespace
+
+Mesh loadMesh(const std::string& path) {
+  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such mesh file");
+  if (std::filesystem::file_size(path, ec) == 0) throw Error(path + ": empty file (0 bytes)");
+  const std::string ext = lowerExtension(path);
+  Mesh mesh;
+  pcl::PolygonMesh pm;
+  if (ext == ".ply") {
+    checkPlyHeader(path);
+    if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
+    mesh = fromPolygonMesh(path, pm);
+  } else if (ext == ".obj") {
+    if (pcl::io::loadOBJFile(path, pm) < 0) throw Error(path + ": not a readable OBJ mesh");
+    mesh = fromPolygonMesh(path, pm);
+  } else if (ext == ".stl") {
+    if (pcl::io::loadPolygonFileSTL(path, pm) == 0 || pm.polygons.empty())
+      throw Error(path + ": not a readable STL mesh");
+    mesh = fromPolygonMesh(path, pm);
+  } else if (ext == ".off") {
+    mesh = loadOff(path);
+  } else {
+    throw Error(path + ": unsupported mesh format '" + ext + "' (expected .ply, .obj, .stl or .off)");
   }
   if (mesh.triangles.empty()) throw Error(path + ": mesh has no faces");
   for (const auto& v : mesh.vertices)

@@ -14,8 +14,10 @@ struct Mesh {
   Eigen::Vector3f boundsMax() const;
 };
 
-// PLY through PCL (ascii or binary, float or double vertices). Throws
-// keyturn::Error naming the file for a missing, unreadable or face-less mesh.
+// PLY (ascii or binary, float or double vertices) and OBJ through PCL, STL
+// through PCL's VTK reader, OFF by keyturn's own small parser. Polygons are
+// fan-triangulated. Throws keyturn::Error naming the file for a missing,
+// unreadable, truncated or face-less mesh.
 Mesh loadMesh(const std::string& path);
 
 // A built-in mug (cylindrical wall with a bottom and a torus-section handle),
