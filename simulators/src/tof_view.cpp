@@ -113,30 +113,37 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
 
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  auto cast = [&](const Eigen::Vector3f& dir_cam) {
-    Hit h;
-    const Eigen::Vector3f d = cam_to_world * dir_cam;
-    RTCRayHit rh;
-    rh.ray.org_x = eye.x(); rh.ray.org_y = eye.y(); rh.ray.org_z = eye.z();
-    rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
-    rh.ray.tnear = 0.f;
-    rh.ray.tfar = std::numeric_limits<float>::infinity();
-    rh.ray.mask = ~0u;
-    rh.ray.flags = 0;
-    rh.ray.time = 0.f;
-    rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-    rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-    rtcIntersect1(scene_->scene, &ctx, &rh);
-    if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return h;
-    const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
-    const float cos_inc = std::abs(n.dot(d));
-    const float refl = static_cast<float>(rh.hit.geomID == scene_->object_id ? view.object_reflectivity
-                                                                             : view.table_reflectivity);
-    h.valid = true;
-    h.range = rh.ray.tfar;  // d is unit length
-    h.amplitude = refl * cos_inc / (h.range * h.range);
-    return h;
-  };
+  // Rays through the (W+1) × (H+1) pixel corners: each pixel mixes its four
+  // corners, so a pixel straddling a depth edge mixes both surfaces (a ToF
+  // mixed pixel) at a quarter of the rays of 2 × 2 sub-pixel sampling.
+  const int cw = k_.width + 1, ch = k_.height + 1;
+  std::vector<Hit> corner(static_cast<std::size_t>(cw) * ch);
+  for (int v = 0; v < ch; ++v) {
+    for (int u = 0; u < cw; ++u) {
+      const Eigen::Vector3f d = (cam_to_world * Eigen::Vector3f(static_cast<float>((u - k_.cx) / k_.fx),
+                                                                static_cast<float>((v - k_.cy) / k_.fy), 1.f))
+                                    .normalized();
+      RTCRayHit rh;
+      rh.ray.org_x = eye.x(); rh.ray.org_y = eye.y(); rh.ray.org_z = eye.z();
+      rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
+      rh.ray.tnear = 0.f;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = ~0u;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_->scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      Hit& h = corner[static_cast<std::size_t>(v) * cw + u];
+      const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
+      const float refl = static_cast<float>(rh.hit.geomID == scene_->object_id ? view.object_reflectivity
+                                                                               : view.table_reflectivity);
+      h.valid = true;
+      h.range = rh.ray.tfar;  // d is unit length
+      h.amplitude = refl * std::abs(n.dot(d)) / (h.range * h.range);
+    }
+  }
 
   Cloud cloud;
   cloud.width = static_cast<std::uint32_t>(k_.width);
@@ -147,14 +154,11 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
   cloud.confidence.assign(n, 0.f);
   for (int v = 0; v < k_.height; ++v) {
     for (int u = 0; u < k_.width; ++u) {
-      // 2 × 2 sub-rays: where they disagree in range the pixel mixes both
-      // surfaces, amplitude-weighted, which is how ToF jump edges arise.
+      // Where the corners disagree in range the pixel mixes both surfaces,
+      // amplitude-weighted, which is how ToF jump edges arise.
       float asum = 0.f, rsum = 0.f;  // amplitude and amplitude-weighted range
-      for (int s = 0; s < 4; ++s) {
-        const float su = u + 0.25f + 0.5f * (s & 1), sv = v + 0.25f + 0.5f * (s >> 1);
-        const Eigen::Vector3f dir(static_cast<float>((su - k_.cx) / k_.fx),
-                                  static_cast<float>((sv - k_.cy) / k_.fy), 1.f);
-        const Hit h = cast(dir.normalized());
+      const std::size_t c0 = static_cast<std::size_t>(v) * cw + u;
+      for (const Hit& h : {corner[c0], corner[c0 + 1], corner[c0 + cw], corner[c0 + cw + 1]}) {
         if (!h.valid) continue;
         asum += h.amplitude;
         rsum += h.amplitude * h.range;

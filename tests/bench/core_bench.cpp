@@ -121,4 +121,17 @@ static void BM_DescribeView(benchmark::State& s) {
 }
 BENCHMARK(BM_DescribeView)->Unit(benchmark::kMillisecond);
 
+// One simulated SR4000 frame (176 × 144, rays through the 177 × 145 pixel corners) of a
+// 10k-triangle YCB mesh on the turntable.
+static void BM_RenderView(benchmark::State& s) {
+  sim::TofViewRenderer r(sim::loadMesh(KEYTURN_DATA_DIR "/objects/drill__ycb_035_power_drill.ply"));
+  sim::SceneView v;
+  r.render(v);  // BVH built once per turntable angle
+  for (auto _ : s) {
+    v.seed++;
+    benchmark::DoNotOptimize(r.render(v));
+  }
+}
+BENCHMARK(BM_RenderView)->Unit(benchmark::kMillisecond);
+
 BENCHMARK_MAIN();

@@ -2,7 +2,8 @@
 // Renders what an SR4000 sees of an object standing on a turntable: an
 // organized 176 × 144 cloud with amplitude and confidence, ray cast with Embree.
 // The sensor model is deliberately simple here (range noise ∝ 1/amplitude,
-// mixed pixels from 2 × 2 supersampling, an amplitude threshold); the camera
+// mixed pixels from sampling each pixel at its four corners, an amplitude
+// threshold, and in libmesasr-sim phase wrap, saturation and integration time); the camera
 // simulator grows it.
 #include <cstdint>
 #include <memory>
