@@ -104,8 +104,9 @@ void renderFrame(CMesaDevice& d) {
   const Cloud c = d.renderer->render(v);
 
   const double range = keyturn::drivers::nonAmbiguousRange(d.mf);
-  // Counts: a 50% target head-on at 1 m gives 10000 at the reference integration time.
-  const double counts_per_unit = 10000.0 / 0.5 * (t_ms / t_ref);
+  // Counts: a 50% target head-on at 1 m gives 5000 at the reference integration
+  // time, so the operator's 0.45 m placement stays below saturation (65535).
+  const double counts_per_unit = 5000.0 / 0.5 * (t_ms / t_ref);
   for (int i = 0; i < kPixels; ++i) {
     const double amp = c.amplitude[i] * counts_per_unit;
     const bool saturated = amp > 65535.0;

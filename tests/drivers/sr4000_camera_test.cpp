@@ -281,3 +281,27 @@ TEST_F(Sr4000SimTest, ShorterIntegrationTimeIsNoisier) {
   const double short_it = spread(3), long_it = spread(200);
   EXPECT_GT(short_it, 2.0 * long_it);  // σ ∝ 1/sqrt(0.3 ms + n·0.1 ms): 0.6 ms vs 20.3 ms
 }
+
+TEST_F(Sr4000SimTest, SaturatedPixelsHaveNoConfidence) {
+  sim::MesaSrSimConfig c;
+  c.distance = 0.25;  // very close, with the longest integration time
+  useConfig(c);
+  auto cam = open();
+  TofSettings s;
+  s.integration_time = 255;
+  s.auto_exposure.enabled = false;
+  cam->configure(s);
+  const TofFrame f = cam->acquire();
+  std::size_t saturated = 0;
+  for (std::size_t i = 0; i < f.amplitude.size(); ++i)
+    if (f.amplitude[i] == 65535 && f.distance[i] != 0) {
+      ++saturated;
+      EXPECT_EQ(f.confidence[i], 0) << i;
+    }
+  EXPECT_GT(saturated, 500u);
+  // At the default integration time and distance nothing saturates.
+  useConfig(sim::MesaSrSimConfig());
+  auto normal = open();
+  const TofFrame g = normal->acquire();
+  EXPECT_EQ(std::count(g.amplitude.begin(), g.amplitude.end(), 65535), 0);
+}
