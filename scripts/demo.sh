@@ -8,6 +8,8 @@ bash scripts/configure-build.sh
 KT=build/app/keyturn
 OUT=${OUT:-out/demo}
 mkdir -p "$OUT/views"
+# The simulated SR4000 through the real driver (libmesasr-sim), median of 5 frames.
+"$KT" grab --camera sim --frames 5 --out "$OUT/grab/mug.pcd"
 for obj in mug__ycb_025_mug can__ycb_005_tomato_soup_can bottle__ycb_006_mustard_bottle box__ycb_004_sugar_box; do
   "$KT" render "data/objects/$obj.ply" --angles 0,45,90,135 --out "$OUT/views/${obj}_{angle}.pcd"
 done
