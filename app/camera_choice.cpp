@@ -16,7 +16,8 @@ std::string simulatorLibraryPath() {
   return env && *env ? env : KEYTURN_MESASR_SIM_DEFAULT;
 }
 
-std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config) {
+std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
+                                               const std::string& library) {
   drivers::Sr4000Options options;
   options.log = [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
   if (spec == "sim") {
@@ -25,7 +26,7 @@ std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const st
                                                    drivers::Sr4000Connection::parse("usb"), options);
   }
   const auto connection = drivers::Sr4000Connection::parse(spec);  // validate before loading
-  return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(), connection, options);
+  return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(library), connection, options);
 }
 
 }  // namespace keyturn::app

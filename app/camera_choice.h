@@ -9,7 +9,9 @@
 
 namespace keyturn::app {
 
-std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config);
+// library: libMesaSR path for usb/eth (empty: $KEYTURN_MESASR_LIB or the usual sonames).
+std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
+                                               const std::string& library = "");
 std::string simulatorLibraryPath();
 
 }  // namespace keyturn::app

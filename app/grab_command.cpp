@@ -15,6 +15,7 @@ namespace {
 struct GrabArgs {
   std::string camera = "sim";
   std::string sim_config;
+  std::string library;
   std::string out;
   int frames = 1;
   int integration_time = -1;
@@ -33,7 +34,7 @@ int modulationIndex(double mhz) {
 }
 
 int runGrab(const GrabArgs& a) {
-  auto cam = openCamera(a.camera, a.sim_config);
+  auto cam = openCamera(a.camera, a.sim_config, a.library);
   drivers::TofSettings s = cam->settings();
   if (a.integration_time >= 0) s.integration_time = static_cast<std::uint8_t>(a.integration_time);
   s.auto_exposure.enabled = !a.no_auto_exposure && a.integration_time < 0;
@@ -72,6 +73,8 @@ Command addGrabCommand(CLI::App& app) {
   auto a = std::make_shared<GrabArgs>();
   auto* cmd = app.add_subcommand("grab", "Grab SR4000 frames to an organized PCD and 16-bit PNGs");
   cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
+  cmd->add_option("--mesasr-lib", a->library,
+                  "Path of MESA's libmesasr.so for usb/eth (default: $KEYTURN_MESASR_LIB, then the usual sonames)");
   cmd->add_option("--sim-config", a->sim_config, "Simulator configuration JSON (sets MESASR_SIM_CONFIG)");
   cmd->add_option("--out,-o", a->out, "PCD to write; PNGs are written beside it")->required();
   cmd->add_option("--frames,-n", a->frames, "Frames to take; more than one gives their per-pixel median")

@@ -72,6 +72,11 @@ KEYTURN_MESASR_LIB=/nonexistent/libmesasr.so "$KT" grab --camera usb --out "$wor
 check "missing libMesaSR exits non-zero" test $? -ne 0
 check "missing libMesaSR is one line" grep -q "^keyturn: libMesaSR not found (tried /nonexistent/libmesasr.so" "$work/nolib.err"
 
+"$KT" grab --camera eth:10.1.2.3 --mesasr-lib libm.so.6 --out "$work/grab/z.pcd" 2> "$work/wronglib.err"
+check "a library that is not libMesaSR exits non-zero" test $? -ne 0
+check "wrong library named in one line" grep -q "^keyturn: libm.so.6: not a usable libMesaSR (missing SR_OpenUSB" "$work/wronglib.err"
+check "wrong library error is one line" test "$(wc -l < "$work/wronglib.err")" -eq 1
+
 # USB discovery on umockdev-emulated devices.
 if command -v umockdev-run > /dev/null; then
   dev=$(dirname "$0")/../drivers/umockdev
