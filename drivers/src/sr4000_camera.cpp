@@ -62,7 +62,6 @@ void Sr4000Camera::open() {
   if (lib_->SR_GetDeviceString) lib_->SR_GetDeviceString(cam_, buf, sizeof buf);
   device_ = buf;
   serial_ = lib_->SR_ReadSerial ? lib_->SR_ReadSerial(cam_) : 0;
-  refreshImageList();
 }
 
 void Sr4000Camera::close() {

@@ -6,7 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
-#include <mutex>
+#include <atomic>
 #include <string>
 #include <vector>
 
@@ -46,13 +46,12 @@ namespace {
 
 constexpr int kCols = 176, kRows = 144;
 constexpr int kPixels = kCols * kRows;
-SR_FuncCB* g_callback = nullptr;
-std::mutex g_mutex;  // the library is called from one thread per camera; keep shared state safe anyway
+std::atomic<SR_FuncCB*> g_callback{nullptr};  // process-wide, as in libMesaSR
 
 int defaultCallback(SRCAM, unsigned int, unsigned int, void*) { return 0; }
 
 void notify(SRCAM cam, unsigned msg, unsigned param) {
-  if (g_callback) g_callback(cam, msg, param, nullptr);
+  if (SR_FuncCB* cb = g_callback.load()) cb(cam, msg, param, nullptr);
 }
 
 void allocateImages(CMesaDevice& d) {
@@ -314,10 +313,8 @@ SIM_EXPORT int SR_SetReg(SRCAM cam, unsigned char reg, unsigned char val) {
 }
 
 SIM_EXPORT SR_FuncCB* SR_SetCallback(SR_FuncCB* cb) {
-  std::lock_guard<std::mutex> lock(g_mutex);
-  SR_FuncCB* old = g_callback ? g_callback : &defaultCallback;
-  g_callback = cb;
-  return old;
+  SR_FuncCB* old = g_callback.exchange(cb);
+  return old ? old : &defaultCallback;
 }
 SIM_EXPORT SR_FuncCB* SR_GetDefaultCallback(void) { return &defaultCallback; }
 
