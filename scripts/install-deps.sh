@@ -13,6 +13,10 @@ packages=(
   libembree-dev
   # devices: USB discovery (libusb) and its emulation in tests (umockdev)
   libusb-1.0-0-dev umockdev libumockdev-dev
+  # turntable over Modbus RTU/TCP
+  libmodbus-dev
+  # a standard Modbus master, polls the simulated turntable in the tests
+  mbpoll
   # images: 16-bit PNGs of raw distance, amplitude and confidence
   libopencv-imgcodecs-dev
   # command line, configuration, JSON

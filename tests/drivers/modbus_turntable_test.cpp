@@ -1,0 +1,211 @@
+// The Modbus turntable driver against the simulated turntable over real
+// libmodbus TCP on loopback and RTU on a pseudo-terminal.
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <thread>
+
+#include "keyturn/core/error.h"
+#include "keyturn/drivers/modbus_turntable.h"
+#include "keyturn/sim/mesasr_sim_config.h"
+#include "keyturn/sim/turntable_sim.h"
+
+using namespace keyturn;
+using namespace keyturn::drivers;
+using Clock = std::chrono::steady_clock;
+
+namespace {
+
+sim::TurntableServerOptions fastTable() {
+  sim::TurntableServerOptions o;
+  o.motion.max_speed_deg_s = 360;
+  o.motion.max_accel_deg_s2 = 3600;
+  o.motion.settle_s = 0.02;
+  return o;
+}
+
+std::unique_ptr<ModbusTurntable> connectTo(const sim::TurntableServer& s, std::vector<std::string>* log = nullptr) {
+  ModbusOptions o;
+  o.timeout_ms = 100;
+  o.backoff_initial_ms = 5;
+  if (log) o.log = [log](const std::string& l) { log->push_back(l); };
+  return std::make_unique<ModbusTurntable>(ModbusEndpoint::parse(s.endpoint()),
+                                           ModbusTurntableProfile::load("keyturn-sim"), o);
+}
+
+Pose waitInPosition(ModbusTurntable& t, double timeout_s = 3.0) {
+  const auto end = Clock::now() + std::chrono::duration<double>(timeout_s);
+  Pose p = t.read();
+  while (!p.in_position && Clock::now() < end) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    p = t.read();
+  }
+  return p;
+}
+
+std::string errorOf(const std::function<void()>& f) {
+  try {
+    f();
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(ModbusProfile, BuiltInsAndTheirConversions) {
+  const auto enc = ModbusTurntableProfile::load("generic-encoder");
+  EXPECT_EQ(enc.position.address, 0);
+  EXPECT_EQ(enc.position.bits, 32);
+  EXPECT_FALSE(enc.motorised());
+  EXPECT_NEAR(enc.countsToDegrees(1024), 90.0, 1e-9);
+  EXPECT_NEAR(enc.countsToDegrees(4096 * 3 + 2048), 180.0, 1e-9);  // multi-turn count wraps
+  const auto simp = ModbusTurntableProfile::load("keyturn-sim");
+  EXPECT_TRUE(simp.motorised());
+  EXPECT_NEAR(simp.degreesToCounts(12.5), 1250.0, 1e-9);
+}
+
+TEST(ModbusProfile, BadFilesAreNamed) {
+  EXPECT_NE(errorOf([] { ModbusTurntableProfile::fromJson("{", "p.json"); }).find("p.json: not valid JSON"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              ModbusTurntableProfile::fromJson(R"({"position":{"address":0,"bits":24},"counts_per_revolution":1})", "p.json");
+            }).find("p.json: position: bits must be 16 or 32"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] {
+              ModbusTurntableProfile::fromJson(R"({"position":{"address":0},"counts_per_revolution":1,"direction":2})", "p.json");
+            }).find("direction must be 1 or -1"),
+            std::string::npos);
+  EXPECT_NE(errorOf([] { ModbusTurntableProfile::load("/nonexistent.json"); }).find("no such Modbus profile"),
+            std::string::npos);
+}
+
+TEST(ModbusEndpoint, ParsesTcpAndRtu) {
+  const auto t = ModbusEndpoint::parse("modbus-tcp:10.0.0.5:1502@7");
+  EXPECT_EQ(t.host, "10.0.0.5");
+  EXPECT_EQ(t.port, 1502);
+  EXPECT_EQ(t.unit_id, 7);
+  const auto r = ModbusEndpoint::parse("modbus-rtu:/dev/ttyUSB0:19200:8E1@3");
+  EXPECT_EQ(r.device, "/dev/ttyUSB0");
+  EXPECT_EQ(r.baud, 19200);
+  EXPECT_EQ(r.parity, 'E');
+  EXPECT_EQ(r.unit_id, 3);
+  EXPECT_THROW(ModbusEndpoint::parse("modbus-tcp:host"), Error);
+  EXPECT_THROW(ModbusEndpoint::parse("can:can0"), Error);
+}
+
+TEST(ModbusTurntable, MovesOverTcpWithARealisticProfile) {
+  sim::TurntableServer server(fastTable());
+  auto table = connectTo(server);
+  EXPECT_NEAR(table->read().turntable_deg, 0.0, 1e-9);
+  const auto t0 = Clock::now();
+  table->moveTo(90.0);
+  const Pose mid = table->read();
+  EXPECT_TRUE(mid.moving);
+  EXPECT_FALSE(mid.in_position);
+  const Pose end = waitInPosition(*table);
+  const double took = std::chrono::duration<double>(Clock::now() - t0).count();
+  EXPECT_TRUE(end.in_position);
+  EXPECT_NEAR(end.turntable_deg, 90.0, 0.011);
+  // 360°/s, 3600°/s²: 0.1 s ramps and 0.15 s at full speed, plus 0.02 s settling.
+  EXPECT_GT(took, 0.33);
+  EXPECT_LT(took, 0.8);
+}
+
+TEST(ModbusTurntable, ReversingShowsBacklash) {
+  sim::TurntableServer server(fastTable());
+  auto table = connectTo(server);
+  table->moveTo(30.0);
+  waitInPosition(*table);
+  table->moveTo(10.0);
+  EXPECT_NEAR(waitInPosition(*table).turntable_deg, 10.05, 0.011);  // short by the 0.05° backlash
+}
+
+TEST(ModbusTurntable, MovesOverRtuOnAPseudoTerminal) {
+  auto o = fastTable();
+  o.rtu = true;
+  o.unit_id = 5;
+  sim::TurntableServer server(o);
+  ASSERT_EQ(server.ptyPath().rfind("/dev/pts/", 0), 0u);
+  auto table = connectTo(server);
+  table->moveTo(200.0);
+  EXPECT_NEAR(waitInPosition(*table).turntable_deg, 200.0, 0.011);
+  EXPECT_GT(server.requests(), 3);
+}
+
+TEST(ModbusTurntable, LostRepliesAreRetried) {
+  auto o = fastTable();
+  o.faults.no_reply_every = 3;
+  sim::TurntableServer server(o);
+  std::vector<std::string> log;
+  auto table = connectTo(server, &log);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(table->read().turntable_deg, 0.0, 1e-9);
+  EXPECT_GT(server.faultsInjected(), 0);
+  ASSERT_FALSE(log.empty());
+  EXPECT_NE(log[0].find("read: reading register 0: no reply (timed out); retrying in 5 ms (attempt 1 of 3)"), std::string::npos) << log[0];
+}
+
+TEST(ModbusTurntable, DroppedConnectionsAreReconnected) {
+  auto o = fastTable();
+  o.faults.drop_every = 3;  // a read is two requests (position, status)
+  sim::TurntableServer server(o);
+  auto table = connectTo(server);
+  for (int i = 0; i < 6; ++i) EXPECT_NEAR(table->read().turntable_deg, 0.0, 1e-9);
+  EXPECT_GE(table->reconnects(), 2);
+}
+
+TEST(ModbusTurntable, ModbusExceptionsAreNamedAndNotRetried) {
+  auto o = fastTable();
+  o.faults.exception_every = 1;
+  sim::TurntableServer server(o);
+  std::vector<std::string> log;
+  auto table = connectTo(server, &log);
+  const std::string msg = errorOf([&] { table->read(); });
+  EXPECT_NE(msg.find("reading register 0: Modbus exception 4 (Slave device or server failure)"), std::string::npos)
+      << msg;
+  EXPECT_TRUE(log.empty());
+  EXPECT_EQ(server.requests(), 1);
+}
+
+TEST(ModbusTurntable, ATableThatNeverArrivesIsVisible) {
+  auto o = fastTable();
+  o.faults.never_reach = true;
+  sim::TurntableServer server(o);
+  auto table = connectTo(server);
+  table->moveTo(40.0);
+  const Pose p = waitInPosition(*table, 0.6);
+  EXPECT_FALSE(p.in_position);
+  EXPECT_FALSE(p.moving);
+  EXPECT_NEAR(p.turntable_deg, 39.5, 0.011);
+}
+
+TEST(ModbusTurntable, NoServerIsAClearError) {
+  ModbusOptions o;
+  o.timeout_ms = 100;
+  const std::string msg = errorOf([&] {
+    ModbusTurntable t(ModbusEndpoint::parse("modbus-tcp:127.0.0.1:1"), ModbusTurntableProfile::load("keyturn-sim"), o);
+  });
+  EXPECT_NE(msg.find("modbus-tcp 127.0.0.1:1 unit 1 (keyturn-sim): cannot connect: Connection refused"),
+            std::string::npos)
+      << msg;
+}
+
+TEST(ModbusTurntable, ReadOnlyEncoderRefusesToMove) {
+  sim::TurntableServer server(fastTable());
+  ModbusOptions o;
+  ModbusTurntable enc(ModbusEndpoint::parse(server.endpoint()), ModbusTurntableProfile::load("generic-encoder"), o);
+  EXPECT_NE(errorOf([&] { enc.moveTo(10); }).find("cannot move (a read-only pose source)"), std::string::npos);
+}
+
+TEST(ModbusTurntable, TheSimulatedTableWritesTheSharedWorld) {
+  auto o = fastTable();
+  o.world_file = (std::filesystem::temp_directory_path() / ("keyturn_world_" + std::to_string(::getpid()) + ".json")).string();
+  sim::TurntableServer server(o);
+  auto table = connectTo(server);
+  table->moveTo(135.0);
+  const Pose p = waitInPosition(*table);
+  EXPECT_NEAR(sim::readWorldTurntable(o.world_file, -1), p.turntable_deg, 0.011);
+}
