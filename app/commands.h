@@ -16,5 +16,7 @@ Command addBenchCommand(CLI::App& app);
 Command addRenderCommand(CLI::App& app);
 Command addGrabCommand(CLI::App& app);
 Command addDevicesCommand(CLI::App& app);
+Command addSimCommand(CLI::App& app);
+Command addTurntableCommand(CLI::App& app);
 
 }  // namespace keyturn::app

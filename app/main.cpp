@@ -16,7 +16,8 @@ int main(int argc, char** argv) {
   app.require_subcommand(1);
   using namespace keyturn::app;
   const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
-                             addGrabCommand(app), addDevicesCommand(app)};
+                             addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
+                             addTurntableCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

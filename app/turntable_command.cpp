@@ -1,0 +1,61 @@
+// keyturn turntable: read the pose of a Modbus turntable or encoder, and move,
+// home or stop a motorised one.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <thread>
+
+#include "commands.h"
+#include "keyturn/core/error.h"
+#include "keyturn/drivers/modbus_turntable.h"
+
+namespace keyturn::app {
+namespace {
+
+struct TurntableArgs {
+  std::string pose;
+  std::string profile = "keyturn-sim";
+  double move_to = std::nan("");
+  bool home = false, stop = false;
+  double wait = 10.0;
+};
+
+int runTurntable(const TurntableArgs& a) {
+  drivers::ModbusOptions o;
+  o.log = [](const std::string& l) { std::fprintf(stderr, "keyturn: turntable: %s\n", l.c_str()); };
+  drivers::ModbusTurntable t(drivers::ModbusEndpoint::parse(a.pose), drivers::ModbusTurntableProfile::load(a.profile), o);
+  const bool moving_cmd = !std::isnan(a.move_to) || a.home;
+  if (!std::isnan(a.move_to)) t.moveTo(a.move_to);
+  if (a.home) t.home();
+  if (a.stop) t.stop();
+  drivers::Pose p = t.read();
+  if (moving_cmd) {
+    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.wait);
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    for (p = t.read(); !p.in_position && std::chrono::steady_clock::now() < end; p = t.read())
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    if (!p.in_position)
+      throw Error(t.describe() + ": not in position after " + std::to_string(a.wait) + " s (at " +
+                  std::to_string(p.turntable_deg) + "°)");
+  }
+  std::printf("%.3f deg  moving=%s  in_position=%s\n", p.turntable_deg, p.moving ? "yes" : "no",
+              p.in_position ? "yes" : "no");
+  return 0;
+}
+
+}  // namespace
+
+Command addTurntableCommand(CLI::App& app) {
+  auto a = std::make_shared<TurntableArgs>();
+  auto* cmd = app.add_subcommand("turntable", "Read, move, home or stop a Modbus turntable");
+  cmd->add_option("--pose", a->pose, "modbus-tcp:HOST:PORT[@UNIT] or modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT]")->required();
+  cmd->add_option("--profile", a->profile, "Register map: a JSON file, generic-encoder or keyturn-sim")
+      ->capture_default_str();
+  cmd->add_option("--move-to", a->move_to, "Move to this angle (°) and wait until in position");
+  cmd->add_flag("--home", a->home, "Move to the home position and wait");
+  cmd->add_flag("--stop", a->stop, "Stop now");
+  cmd->add_option("--wait", a->wait, "Longest wait for a move (s)")->capture_default_str();
+  return {cmd, [a] { return runTurntable(*a); }};
+}
+
+}  // namespace keyturn::app
