@@ -18,5 +18,7 @@ Command addGrabCommand(CLI::App& app);
 Command addDevicesCommand(CLI::App& app);
 Command addSimCommand(CLI::App& app);
 Command addTurntableCommand(CLI::App& app);
+Command addCaptureCommand(CLI::App& app);
+Command addVerifyCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -5,7 +5,7 @@
 
 #include "camera_choice.h"
 #include "commands.h"
-#include "frame_files.h"
+#include "keyturn/rig/frame_files.h"
 #include "keyturn/core/error.h"
 #include "progress.h"
 
@@ -58,7 +58,7 @@ int runGrab(const GrabArgs& a) {
   }
   progress.finish();
   const drivers::TofFrame f = drivers::medianFrame(frames);
-  const auto written = writeFrameFiles(a.out, f);
+  const auto written = rig::writeFrameFiles(a.out, f);
   std::cerr << "keyturn grab: " << cam->deviceString() << ", serial " << cam->serial() << ": " << a.frames
             << (a.frames > 1 ? " frames (per-pixel median)" : " frame") << ", " << f.cloud.validCount() << " of "
             << f.cloud.size() << " pixels with a return, " << drivers::modulationMHz(f.settings.modulation_frequency)

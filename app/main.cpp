@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
   using namespace keyturn::app;
   const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
-                             addTurntableCommand(app)};
+                             addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -15,6 +15,8 @@ packages=(
   libusb-1.0-0-dev umockdev libumockdev-dev
   # turntable over Modbus RTU/TCP
   libmodbus-dev
+  # SHA-256 checksums of captured files (OpenSSL libcrypto)
+  libssl-dev
   # a standard Modbus master, polls the simulated turntable in the tests
   mbpoll
   # images: 16-bit PNGs of raw distance, amplitude and confidence

@@ -36,6 +36,36 @@ double operatorDistance(const Mesh& mesh, const Intrinsics& k) {
   return std::clamp(d, 0.45, 5.0);
 }
 
+namespace {
+struct CameraPlacement {
+  Eigen::Vector3f eye;
+  Eigen::Matrix3f cam_to_world;  // columns: right, down, forward
+};
+
+CameraPlacement placeCamera(const Mesh& mesh, const SceneView& view, const Intrinsics& k) {
+  // On the -y side, raised by the elevation, looking at the object centre.
+  const Eigen::Vector3f lo = mesh.boundsMin(), hi = mesh.boundsMax();
+  const Eigen::Vector3f target(0.f, 0.f, 0.5f * (lo.z() + hi.z()));
+  const double dist = view.distance > 0 ? view.distance : operatorDistance(mesh, k);
+  const float el = static_cast<float>(view.elevation_deg) * kPi / 180.f;
+  CameraPlacement c;
+  c.eye = target + static_cast<float>(dist) * Eigen::Vector3f(0.f, -std::cos(el), std::sin(el));
+  const Eigen::Vector3f fwd = (target - c.eye).normalized();
+  const Eigen::Vector3f right = fwd.cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f down = fwd.cross(right);
+  c.cam_to_world << right, down, fwd;
+  return c;
+}
+}  // namespace
+
+Eigen::Matrix4d cameraFromTurntable(const Mesh& mesh, const SceneView& view, const Intrinsics& k) {
+  const CameraPlacement c = placeCamera(mesh, view, k);
+  Eigen::Matrix4d world_from_cam = Eigen::Matrix4d::Identity();
+  world_from_cam.topLeftCorner<3, 3>() = c.cam_to_world.cast<double>();
+  world_from_cam.topRightCorner<3, 1>() = c.eye.cast<double>();
+  return world_from_cam.inverse();
+}
+
 TofViewRenderer::TofViewRenderer(const Mesh& object, Intrinsics k)
     : k_(k), object_(object), scene_(std::make_unique<Scene>()) {
   if (object_.triangles.empty()) throw Error("simulated scene: object mesh has no triangles");
@@ -93,17 +123,9 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
     scene_->built_table = view.table_half_size;
   }
 
-  // Camera on the -y side, raised by the elevation, looking at the object centre.
-  const Eigen::Vector3f lo = object_.boundsMin(), hi = object_.boundsMax();
-  const Eigen::Vector3f target(0.f, 0.f, 0.5f * (lo.z() + hi.z()));
-  const double dist = view.distance > 0 ? view.distance : operatorDistance(object_, k_);
-  const float el = static_cast<float>(view.elevation_deg) * kPi / 180.f;
-  const Eigen::Vector3f eye = target + static_cast<float>(dist) * Eigen::Vector3f(0.f, -std::cos(el), std::sin(el));
-  const Eigen::Vector3f fwd = (target - eye).normalized();
-  const Eigen::Vector3f right = fwd.cross(Eigen::Vector3f::UnitZ()).normalized();
-  const Eigen::Vector3f down = fwd.cross(right);
-  Eigen::Matrix3f cam_to_world;
-  cam_to_world << right, down, fwd;
+  const CameraPlacement placement = placeCamera(object_, view, k_);
+  const Eigen::Vector3f& eye = placement.eye;
+  const Eigen::Matrix3f& cam_to_world = placement.cam_to_world;
 
   std::mt19937_64 rng(view.seed);
   std::normal_distribution<float> gauss(0.f, 1.f);

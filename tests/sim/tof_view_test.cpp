@@ -107,3 +107,21 @@ TEST(TofView, RangeNoiseMatchesTheSr4000DatasheetAt2m) {
     }
   EXPECT_NEAR(std::sqrt(sum2 / n), 0.004, 0.0006);
 }
+
+TEST(TofView, CameraFromTurntableMapsTheObjectOntoItsPixels) {
+  const sim::Mesh mug = sim::makeMugMesh();
+  sim::TofViewRenderer r(mug);
+  sim::SceneView v;
+  v.noise = false;
+  v.turntable_deg = 0;
+  const Cloud c = r.render(v);
+  // The mug's outer wall facing the camera (−y side), halfway up.
+  const Eigen::Vector4d p_table(0.0, -0.04, 0.05, 1.0);
+  const Eigen::Vector4d p_cam = sim::cameraFromTurntable(mug, v) * p_table;
+  const auto& k = r.intrinsics();
+  const int u = static_cast<int>(std::lround(k.fx * p_cam.x() / p_cam.z() + k.cx - 0.5));
+  const int row = static_cast<int>(std::lround(k.fy * p_cam.y() / p_cam.z() + k.cy - 0.5));
+  const auto& seen = c.points[row * 176 + u];
+  ASSERT_TRUE(Cloud::isValid(seen));
+  EXPECT_LT((seen.cast<double>() - p_cam.head<3>()).norm(), 0.006);
+}

@@ -5,6 +5,7 @@
 // mixed pixels from sampling each pixel at its four corners, an amplitude
 // threshold, and in libmesasr-sim phase wrap, saturation and integration time); the camera
 // simulator grows it.
+#include <Eigen/Core>
 #include <cstdint>
 #include <memory>
 
@@ -37,6 +38,11 @@ struct SceneView {
 // Distance at which an operator would place the camera: the object's bounding
 // sphere spans about 60% of the vertical field, within 0.45–5 m.
 double operatorDistance(const Mesh& mesh, const Intrinsics& k = Intrinsics());
+
+// The camera's pose for a view: camera (optical frame) from turntable (z up,
+// origin at the table centre) with the table at 0°. Compose with Rz(angle) for
+// the object's frame at another angle.
+Eigen::Matrix4d cameraFromTurntable(const Mesh& mesh, const SceneView& view, const Intrinsics& k = Intrinsics());
 
 class TofViewRenderer {
  public:

@@ -1,4 +1,4 @@
-#include "frame_files.h"
+#include "keyturn/rig/frame_files.h"
 
 #include <filesystem>
 #include <opencv2/core.hpp>
@@ -6,10 +6,11 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/rig/durable_file.h"
 
 namespace fs = std::filesystem;
 
-namespace keyturn::app {
+namespace keyturn::rig {
 namespace {
 
 void writePng16(const std::string& path, const std::vector<std::uint16_t>& img, std::uint32_t w, std::uint32_t h) {
@@ -23,9 +24,7 @@ void writePng16(const std::string& path, const std::vector<std::uint16_t>& img, 
     throw Error(path + ": PNG encoder failed: " + e.what());
   }
   if (!ok) throw Error(path + ": could not write PNG");
-  std::error_code ec;
-  fs::rename(tmp, path, ec);
-  if (ec) throw Error(path + ": could not move the written file into place: " + ec.message());
+  commitFile(tmp, path);
 }
 
 }  // namespace
@@ -49,4 +48,4 @@ std::vector<std::string> writeFrameFiles(const std::string& pcd_path, const driv
   return written;
 }
 
-}  // namespace keyturn::app
+}  // namespace keyturn::rig

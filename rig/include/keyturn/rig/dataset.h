@@ -1,0 +1,69 @@
+#pragma once
+// An SR4K-D style dataset on disk (docs/dataset-format.md):
+//
+//   DATASET/dataset.json                      format, version, creator
+//   DATASET/manifest.csv                      one row per view, appended and synced last
+//   DATASET/CLASS/INSTANCE/eLABEL/aANGLE.pcd  + _distance.png _amplitude.png _confidence.png .json
+//
+// A view exists once its manifest row does; files without a row are orphans
+// of an interrupted capture and are overwritten when that view is taken again.
+#include <Eigen/Core>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyturn/drivers/tof_camera.h"
+
+namespace keyturn::rig {
+
+struct ViewKey {
+  std::string cls, instance, elevation;  // elevation label, e.g. "30"
+  double commanded_deg = 0;
+  bool operator==(const ViewKey& o) const;
+};
+
+struct ViewRecord {
+  ViewKey key;
+  double elevation_deg = 0;
+  double measured_deg = 0;
+  std::string captured_at;                  // ISO 8601 UTC
+  std::vector<std::string> files;           // relative to the dataset root: pcd, pngs, json
+  std::vector<std::string> sha256;          // one per file
+};
+
+struct ViewMetadata {
+  double elevation_deg = 0;
+  double measured_deg = 0;
+  std::optional<Eigen::Matrix4d> camera_from_turntable;  // none: the rig is not calibrated
+  std::string pose_source;
+  int frames_discarded = 0, frames_taken = 1, redos = 0;
+};
+
+struct VerifyReport {
+  std::size_t views = 0;
+  std::vector<std::string> missing, corrupt, orphans, duplicates, bad_rows;
+  bool ok() const { return missing.empty() && corrupt.empty() && orphans.empty() && duplicates.empty() && bad_rows.empty(); }
+};
+
+class Dataset {
+ public:
+  // Opens or creates the dataset folder; reads an existing manifest.
+  explicit Dataset(std::string root);
+  const std::string& root() const { return root_; }
+  const std::vector<ViewRecord>& views() const { return views_; }
+  bool has(const ViewKey& key) const;
+  // Writes the view's files durably, then appends its manifest row. Returns the record.
+  ViewRecord write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame);
+  std::string viewStem(const ViewKey& key) const;  // relative path without extension
+
+  static std::vector<ViewRecord> readManifest(const std::string& root, std::vector<std::string>* bad_rows = nullptr);
+  static VerifyReport verify(const std::string& root);
+
+ private:
+  std::string root_;
+  std::vector<ViewRecord> views_;
+};
+
+std::string manifestHeader();
+
+}  // namespace keyturn::rig

@@ -1,0 +1,243 @@
+#include "keyturn/rig/dataset.h"
+
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <set>
+#include <sstream>
+
+#include "keyturn/core/error.h"
+#include "keyturn/drivers/tof_camera.h"
+#include "keyturn/rig/durable_file.h"
+#include "keyturn/rig/frame_files.h"
+
+#ifndef KEYTURN_VERSION
+#define KEYTURN_VERSION "unknown"
+#endif
+
+namespace fs = std::filesystem;
+
+namespace keyturn::rig {
+namespace {
+
+constexpr const char* kManifest = "manifest.csv";
+constexpr int kColumns = 9;
+
+std::string isoNow() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  char buf[40];
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
+                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ms));
+  return buf;
+}
+
+std::string fmt(double v, int decimals) {
+  char buf[32];
+  std::snprintf(buf, sizeof buf, "%.*f", decimals, v);
+  return buf;
+}
+
+bool safeName(const std::string& s) {
+  if (s.empty() || s == "." || s == "..") return false;
+  for (char c : s)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '-' || c == '.')) return false;
+  return true;
+}
+
+std::vector<std::string> split(const std::string& s, char sep) {
+  std::vector<std::string> out;
+  std::string cur;
+  std::istringstream ss(s);
+  while (std::getline(ss, cur, sep)) out.push_back(cur);
+  if (!s.empty() && s.back() == sep) out.emplace_back();
+  return out;
+}
+
+std::string join(const std::vector<std::string>& v, char sep) {
+  std::string out;
+  for (std::size_t i = 0; i < v.size(); ++i) out += (i ? std::string(1, sep) : "") + v[i];
+  return out;
+}
+
+std::string rowOf(const ViewRecord& r) {
+  return r.key.cls + "," + r.key.instance + "," + r.key.elevation + "," + fmt(r.elevation_deg, 3) + "," +
+         fmt(r.key.commanded_deg, 3) + "," + fmt(r.measured_deg, 4) + "," + r.captured_at + "," + join(r.files, ';') +
+         "," + join(r.sha256, ';');
+}
+
+// A capture killed while appending leaves a last row without its newline: that
+// view was never complete. Cut the row off so the view is simply taken again.
+void repairInterruptedAppend(const std::string& manifest) {
+  std::ifstream in(manifest, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  if (text.empty() || text.back() == '\n') return;
+  const auto keep = text.rfind('\n');
+  writeFileDurably(manifest, keep == std::string::npos ? manifestHeader() + "\n" : text.substr(0, keep + 1));
+}
+
+}  // namespace
+
+bool ViewKey::operator==(const ViewKey& o) const {
+  return cls == o.cls && instance == o.instance && elevation == o.elevation &&
+         std::abs(commanded_deg - o.commanded_deg) < 5e-4;
+}
+
+std::string manifestHeader() {
+  return "class,instance,elevation,elevation_deg,commanded_deg,measured_deg,captured_at,files,sha256";
+}
+
+Dataset::Dataset(std::string root) : root_(std::move(root)) {
+  std::error_code ec;
+  fs::create_directories(root_, ec);
+  if (ec) throw Error(root_ + ": cannot create dataset folder: " + ec.message());
+  const std::string info = root_ + "/dataset.json";
+  if (!fs::exists(info)) {
+    const nlohmann::json j = {{"format", "keyturn-dataset"}, {"version", 1}, {"created", isoNow()},
+                              {"keyturn_version", KEYTURN_VERSION}};
+    writeFileDurably(info, j.dump(2) + "\n");
+  }
+  const std::string manifest = root_ + "/" + kManifest;
+  if (!fs::exists(manifest)) writeFileDurably(manifest, manifestHeader() + "\n");
+  repairInterruptedAppend(manifest);
+  std::vector<std::string> bad;
+  views_ = readManifest(root_, &bad);
+  if (!bad.empty()) throw Error(manifest + ": " + bad.front() + " (run keyturn verify)");
+}
+
+bool Dataset::has(const ViewKey& key) const {
+  for (const auto& v : views_)
+    if (v.key == key) return true;
+  return false;
+}
+
+std::string Dataset::viewStem(const ViewKey& k) const {
+  for (const auto* s : {&k.cls, &k.instance, &k.elevation})
+    if (!safeName(*s)) throw Error("'" + *s + "': class, instance and elevation may use letters, digits, _ - . only");
+  return k.cls + "/" + k.instance + "/e" + k.elevation + "/a" + fmt(k.commanded_deg, 1);
+}
+
+ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
+  if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
+  const std::string stem = viewStem(key);
+  const std::string abs_stem = root_ + "/" + stem;
+  fs::create_directories(fs::path(abs_stem).parent_path());
+
+  ViewRecord r;
+  r.key = key;
+  r.elevation_deg = meta.elevation_deg;
+  r.measured_deg = meta.measured_deg;
+  r.captured_at = isoNow();
+  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
+
+  nlohmann::json j;
+  j["class"] = key.cls;
+  j["instance"] = key.instance;
+  j["elevation"] = {{"label", key.elevation}, {"degrees", meta.elevation_deg}};
+  j["commanded_deg"] = key.commanded_deg;
+  j["measured_deg"] = meta.measured_deg;
+  if (meta.camera_from_turntable) {
+    nlohmann::json m = nlohmann::json::array();
+    for (int row = 0; row < 4; ++row) {
+      nlohmann::json rj = nlohmann::json::array();
+      for (int c = 0; c < 4; ++c) rj.push_back((*meta.camera_from_turntable)(row, c));
+      m.push_back(rj);
+    }
+    j["camera_from_turntable"] = m;
+  } else {
+    j["camera_from_turntable"] = nullptr;  // not calibrated
+  }
+  j["pose_source"] = meta.pose_source;
+  j["camera"] = {{"device", frame.device},
+                 {"serial", frame.serial},
+                 {"modulation_mhz", drivers::modulationMHz(frame.settings.modulation_frequency)},
+                 {"integration_time", frame.settings.integration_time},
+                 {"auto_exposure", frame.settings.auto_exposure.enabled},
+                 {"amplitude_threshold", frame.settings.amplitude_threshold},
+                 {"acquire_mode", frame.settings.acquire_mode}};
+  j["frames"] = {{"discarded", meta.frames_discarded}, {"taken", meta.frames_taken}, {"redos", meta.redos}};
+  j["captured_at"] = r.captured_at;
+  j["keyturn_version"] = KEYTURN_VERSION;
+  writeFileDurably(abs_stem + ".json", j.dump(2) + "\n");
+  r.files.push_back(stem + ".json");
+  syncDirectory(fs::path(abs_stem).parent_path().string());
+
+  for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
+  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
+  views_.push_back(r);
+  return r;
+}
+
+std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vector<std::string>* bad_rows) {
+  std::vector<ViewRecord> out;
+  const std::string path = root + "/" + kManifest;
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": no manifest (not a keyturn dataset?)");
+  std::string line;
+  std::getline(in, line);
+  if (line != manifestHeader()) {
+    if (bad_rows) bad_rows->push_back("line 1: unexpected header");
+    return out;
+  }
+  int n = 1;
+  while (std::getline(in, line)) {
+    ++n;
+    if (in.eof() && !line.empty()) {
+      // A row without its newline was cut off mid-append: not a view.
+      if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": unterminated row (interrupted append)");
+      break;
+    }
+    if (line.empty()) continue;
+    const auto c = split(line, ',');
+    try {
+      if (c.size() != kColumns) throw std::invalid_argument("columns");
+      ViewRecord r;
+      r.key = {c[0], c[1], c[2], std::stod(c[4])};
+      r.elevation_deg = std::stod(c[3]);
+      r.measured_deg = std::stod(c[5]);
+      r.captured_at = c[6];
+      r.files = split(c[7], ';');
+      r.sha256 = split(c[8], ';');
+      if (r.files.size() != r.sha256.size() || r.files.empty()) throw std::invalid_argument("files");
+      out.push_back(r);
+    } catch (const std::exception&) {
+      if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": malformed row");
+    }
+  }
+  return out;
+}
+
+VerifyReport Dataset::verify(const std::string& root) {
+  VerifyReport rep;
+  const auto views = readManifest(root, &rep.bad_rows);
+  rep.views = views.size();
+  std::set<std::string> referenced;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j)
+      if (views[j].key == views[i].key) rep.duplicates.push_back(views[i].files.front());
+    for (std::size_t f = 0; f < views[i].files.size(); ++f) {
+      const std::string& rel = views[i].files[f];
+      referenced.insert(rel);
+      const std::string abs = root + "/" + rel;
+      if (!fs::exists(abs)) rep.missing.push_back(rel);
+      else if (sha256File(abs) != views[i].sha256[f]) rep.corrupt.push_back(rel);
+    }
+  }
+  std::error_code ec;
+  for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const std::string rel = fs::relative(it->path(), root).string();
+    if (rel == "dataset.json" || rel == kManifest || rel.rfind(".sim/", 0) == 0) continue;
+    if (!referenced.count(rel)) rep.orphans.push_back(rel);
+  }
+  return rep;
+}
+
+}  // namespace keyturn::rig

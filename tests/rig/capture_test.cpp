@@ -1,0 +1,190 @@
+// Capture sequences end to end: the real SR4000 driver on libmesasr-sim and the
+// real Modbus driver on the simulated turntable over loopback TCP, one world.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "keyturn/core/error.h"
+#include "keyturn/drivers/modbus_turntable.h"
+#include "keyturn/drivers/sr4000_camera.h"
+#include "keyturn/rig/capture.h"
+#include "keyturn/rig/dataset.h"
+#include "keyturn/sim/mesasr_sim_config.h"
+#include "keyturn/sim/turntable_sim.h"
+
+namespace fs = std::filesystem;
+using namespace keyturn;
+
+namespace {
+
+class SimulatedRig : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           ("keyturn_rig_" + std::to_string(::getpid()) + "_" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    world_ = (dir_ / "world.json").string();
+  }
+  void TearDown() override { ::unsetenv("MESASR_SIM_CONFIG"); }
+
+  void start(sim::TurntableFaults faults = {}) {
+    sim::TurntableServerOptions so;
+    so.world_file = world_;
+    so.motion.max_speed_deg_s = 720;
+    so.motion.max_accel_deg_s2 = 14400;
+    so.motion.settle_s = 0.005;
+    so.faults = faults;
+    server_ = std::make_unique<sim::TurntableServer>(so);
+    drivers::ModbusOptions mo;
+    mo.timeout_ms = 100;
+    mo.backoff_initial_ms = 2;
+    table_ = std::make_unique<drivers::ModbusTurntable>(drivers::ModbusEndpoint::parse(server_->endpoint()),
+                                                        drivers::ModbusTurntableProfile::load("keyturn-sim"), mo);
+    sim::MesaSrSimConfig c;
+    c.world = world_;
+    const std::string cfg = (dir_ / "camera.json").string();
+    c.save(cfg);
+    ::setenv("MESASR_SIM_CONFIG", cfg.c_str(), 1);
+    drivers::Sr4000Options co;
+    co.backoff_initial_ms = 1;
+    camera_ = std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(KEYTURN_MESASR_SIM_PATH),
+                                                      drivers::Sr4000Connection::parse("usb"), co);
+  }
+
+  rig::CaptureOptions options() const {
+    rig::CaptureOptions o;
+    o.cls = "mug";
+    o.instance = "builtin";
+    o.elevation_label = "30";
+    o.step_deg = 10;
+    o.range_deg = 40;
+    o.settle_s = 0.01;
+    return o;
+  }
+
+  fs::path dir_;
+  std::string world_;
+  std::unique_ptr<sim::TurntableServer> server_;
+  std::unique_ptr<drivers::ModbusTurntable> table_;
+  std::unique_ptr<drivers::Sr4000Camera> camera_;
+};
+
+}  // namespace
+
+TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
+  start();
+  rig::Dataset ds((dir_ / "ds").string());
+  auto o = options();
+  o.camera_from_turntable_zero = Eigen::Matrix4d::Identity();
+  const auto rep = rig::runCapture(*camera_, *table_, ds, o);
+  EXPECT_EQ(rep.written, 4u);
+  const auto views = rig::Dataset::readManifest(ds.root());
+  ASSERT_EQ(views.size(), 4u);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    EXPECT_DOUBLE_EQ(views[i].key.commanded_deg, 10.0 * i);
+    EXPECT_NEAR(views[i].measured_deg, 10.0 * i, 0.011);
+    EXPECT_EQ(views[i].files.size(), 5u);  // pcd, 3 pngs, json
+  }
+  std::ifstream in(ds.root() + "/mug/builtin/e30/a20.0.json");
+  const auto j = nlohmann::json::parse(in);
+  EXPECT_EQ(j["class"], "mug");
+  EXPECT_EQ(j["camera"]["serial"], 4000123);
+  EXPECT_NEAR(j["camera_from_turntable"][0][0].get<double>(), std::cos(20 * M_PI / 180), 2e-3);
+  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+}
+
+TEST_F(SimulatedRig, AStoppedCaptureResumesWithoutDuplicates) {
+  start();
+  std::atomic<bool> stop{false};
+  {
+    rig::Dataset ds((dir_ / "ds").string());
+    auto o = options();
+    o.stop = &stop;
+    const auto rep = rig::runCapture(*camera_, *table_, ds, o, [&](const rig::CaptureProgress& p) {
+      if (p.done == 2) stop = true;
+    });
+    EXPECT_TRUE(rep.stopped);
+    EXPECT_EQ(rep.written, 2u);
+  }
+  rig::Dataset again((dir_ / "ds").string());
+  const auto rep = rig::runCapture(*camera_, *table_, again, options());
+  EXPECT_EQ(rep.skipped, 2u);
+  EXPECT_EQ(rep.written, 2u);
+  EXPECT_EQ(rig::Dataset::readManifest(again.root()).size(), 4u);
+  EXPECT_TRUE(rig::Dataset::verify(again.root()).ok());
+}
+
+TEST_F(SimulatedRig, TurntableFaultsAreRetriedDuringCapture) {
+  sim::TurntableFaults f;
+  f.no_reply_every = 7;
+  f.drop_every = 11;
+  start(f);
+  rig::Dataset ds((dir_ / "ds").string());
+  const auto rep = rig::runCapture(*camera_, *table_, ds, options());
+  EXPECT_EQ(rep.written, 4u);
+  EXPECT_GT(server_->faultsInjected(), 2);
+  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+}
+
+TEST_F(SimulatedRig, ATableThatNeverSettlesIsAClearError) {
+  sim::TurntableFaults f;
+  f.never_reach = true;
+  start(f);
+  rig::Dataset ds((dir_ / "ds").string());
+  auto o = options();
+  o.move_timeout_s = 0.5;
+  try {
+    rig::runCapture(*camera_, *table_, ds, o);
+    FAIL() << "no error";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("not stable within 0.100000° of 0.000000°"), std::string::npos) << e.what();
+  }
+  // Even 0° is missed by 0.5°: no view was written, and nothing was left behind.
+  EXPECT_TRUE(rig::Dataset::readManifest(ds.root()).empty());
+  EXPECT_TRUE(rig::Dataset::verify(ds.root()).orphans.empty());
+}
+
+TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
+  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  rig::Dataset ds(root.string());
+  drivers::TofFrame f;
+  f.width = 4;
+  f.height = 2;
+  f.distance.assign(8, 1000);
+  f.amplitude.assign(8, 500);
+  f.confidence.assign(8, 65535);
+  f.cloud.width = 4;
+  f.cloud.height = 2;
+  f.cloud.points.assign(8, Eigen::Vector3f(0.f, 0.f, 1.f));
+  f.cloud.amplitude.assign(8, 500.f);
+  for (double a : {0.0, 5.0, 10.0}) ds.write({"box", "b1", "45", a}, rig::ViewMetadata(), f);
+  EXPECT_TRUE(rig::Dataset::verify(root.string()).ok());
+  EXPECT_THROW(ds.write({"box", "b1", "45", 5.0}, rig::ViewMetadata(), f), Error);  // never twice
+
+  fs::remove(root / "box/b1/e45/a5.0_amplitude.png");
+  std::ofstream(root / "box/b1/e45/a10.0.json", std::ios::app) << " ";
+  std::ofstream(root / "box/b1/e45/stray.pcd") << "x";
+  const auto r = rig::Dataset::verify(root.string());
+  EXPECT_EQ(r.views, 3u);
+  EXPECT_EQ(r.missing, std::vector<std::string>{"box/b1/e45/a5.0_amplitude.png"});
+  EXPECT_EQ(r.corrupt, std::vector<std::string>{"box/b1/e45/a10.0.json"});
+  EXPECT_EQ(r.orphans, std::vector<std::string>{"box/b1/e45/stray.pcd"});
+  EXPECT_FALSE(r.ok());
+}
+
+TEST(Dataset, AnAppendCutOffByACrashIsDroppedOnReopen) {
+  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_cut_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  { rig::Dataset ds(root.string()); }
+  std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,45,45.000,0.000,0.0";  // no newline
+  EXPECT_EQ(rig::Dataset::verify(root.string()).bad_rows.size(), 1u);
+  rig::Dataset reopened(root.string());
+  EXPECT_TRUE(reopened.views().empty());
+  EXPECT_TRUE(rig::Dataset::verify(root.string()).ok());
+}
