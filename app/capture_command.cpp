@@ -3,16 +3,14 @@
 // capture; Ctrl-C stops cleanly after the current view.
 #include <atomic>
 #include <csignal>
-#include <filesystem>
 #include <iostream>
 
 #include "camera_choice.h"
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/capture.h"
-#include "keyturn/sim/mesasr_sim_config.h"
-#include "keyturn/sim/tof_view.h"
 #include "pose_choice.h"
+#include "sim_rig.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -35,31 +33,35 @@ struct CaptureArgs {
 };
 
 int runCapture(const CaptureArgs& a) {
-  namespace fs = std::filesystem;
   rig::Dataset dataset(a.out);
-  const std::string sim_dir = a.out + "/.sim";
-  const std::string world = sim_dir + "/world.json";
-  std::string sim_config;
   rig::CaptureOptions o;
+  SimRig simrig;                                 // owns the simulated devices, when used
+  std::unique_ptr<drivers::TofCamera> real_camera;  // or the real ones
+  PoseChoice real_pose;
+  drivers::TofCamera* camera = nullptr;
+  drivers::PoseSource* pose = nullptr;
   if (a.camera == "sim") {
-    fs::create_directories(sim_dir);
-    sim::MesaSrSimConfig c;
-    c.mesh = a.mesh.rfind("builtin:", 0) == 0 ? a.mesh : fs::absolute(a.mesh).string();
-    c.elevation = a.elevation;
-    c.distance = a.distance;
-    c.seed = a.seed;
-    if (a.pose == "sim") c.world = fs::absolute(world).string();
-    sim_config = sim_dir + "/camera.json";
-    c.save(sim_config);
-    // The simulated geometry is known exactly: the dataset carries the true transform.
-    const sim::Mesh mesh = c.mesh == "builtin:mug" ? sim::makeMugMesh() : sim::loadMesh(c.mesh);
-    sim::SceneView view;
-    view.distance = a.distance;
-    view.elevation_deg = a.elevation;
-    o.camera_from_turntable_zero = sim::cameraFromTurntable(mesh, view);
+    SimRigOptions so;
+    so.dataset_root = a.out;
+    so.mesh = a.mesh;
+    so.elevation_deg = a.elevation;
+    so.distance = a.distance;
+    so.seed = a.seed;
+    so.simulated_pose = a.pose == "sim";
+    simrig = openSimRig(so);
+    camera = simrig.camera.get();
+    o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
+  } else {
+    real_camera = openCamera(a.camera, "");
+    camera = real_camera.get();
   }
-  PoseChoice pose = openPoseSource(a.pose, a.profile, a.pose == "sim" ? world : "");
-  auto camera = openCamera(a.camera, sim_config);
+  if (a.pose == "sim") {
+    if (!simrig.pose.source) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
+    pose = simrig.pose.source.get();
+  } else {
+    real_pose = openPoseSource(a.pose, a.profile);
+    pose = real_pose.source.get();
+  }
 
   o.cls = a.cls;
   o.instance = a.instance;
@@ -79,7 +81,7 @@ int runCapture(const CaptureArgs& a) {
 
   const std::size_t total = rig::sequenceAngles(o).size();
   Progress progress("capture " + a.cls + "/" + a.instance + " e" + o.elevation_label, total, !a.quiet);
-  const rig::CaptureReport rep = rig::runCapture(*camera, *pose.source, dataset, o,
+  const rig::CaptureReport rep = rig::runCapture(*camera, *pose, dataset, o,
                                                  [&](const rig::CaptureProgress&) { progress.advance(); });
   progress.finish();
   std::cerr << "keyturn capture: " << rep.written << " views written, " << rep.skipped << " already there"

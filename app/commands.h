@@ -20,5 +20,6 @@ Command addSimCommand(CLI::App& app);
 Command addTurntableCommand(CLI::App& app);
 Command addCaptureCommand(CLI::App& app);
 Command addVerifyCommand(CLI::App& app);
+Command addSimulateCommand(CLI::App& app);
 
 }  // namespace keyturn::app

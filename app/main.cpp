@@ -17,7 +17,8 @@ int main(int argc, char** argv) {
   using namespace keyturn::app;
   const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
-                             addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app)};
+                             addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
+                             addSimulateCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

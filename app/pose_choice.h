@@ -1,8 +1,6 @@
 #pragma once
-// --pose sim|modbus-tcp:HOST:PORT|modbus-rtu:DEV → an open PoseSource. "sim"
-// starts the simulated turntable in this process on loopback Modbus TCP (fast
-// motion, so simulated captures run faster than real time) and the driver
-// talks to it over the real protocol.
+// --pose modbus-tcp:HOST:PORT|modbus-rtu:DEV → an open PoseSource. The
+// simulated turntable ("sim") is opened with the simulated camera (sim_rig.h).
 #include <memory>
 #include <string>
 
@@ -16,6 +14,6 @@ struct PoseChoice {
   std::unique_ptr<drivers::PoseSource> source;
 };
 
-PoseChoice openPoseSource(const std::string& spec, const std::string& profile, const std::string& world_file);
+PoseChoice openPoseSource(const std::string& spec, const std::string& profile);
 
 }  // namespace keyturn::app

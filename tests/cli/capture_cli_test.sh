@@ -49,5 +49,28 @@ check "verify names it" grep -q "^corrupt: mug/builtin/e30/a45.0.pcd" "$work/ver
 "$KT" describe "$ds" -q > "$work/features.csv"
 check "describe reads the dataset" test "$(wc -l < "$work/features.csv")" -eq 37
 
+# simulate over an object list (quoted CSV fields, mesh paths relative to the CSV).
+objs="$work/objects"
+mkdir -p "$objs"
+data=$(cd "$(dirname "$0")/../../data/objects" && pwd)
+cp "$data/can__ycb_005_tomato_soup_can.ply" "$data/teapot__utah_teapot.ply" "$objs/"
+cat > "$objs/objects.csv" <<CSV
+class,instance,mesh,source
+can,ycb_005,can__ycb_005_tomato_soup_can.ply,"YCB, via a mirror"
+teapot,utah,teapot__utah_teapot.ply,"Newell, 1975"
+CSV
+"$KT" simulate --objects "$objs/objects.csv" --elevations 30,60 --step 45 --out "$work/sim" -q 2> "$work/sim.err"
+check "simulate exits 0" test $? -eq 0
+check "simulate: 2 objects x 2 elevations x 8 views" test "$(( $(wc -l < "$work/sim/manifest.csv") - 1 ))" -eq 32
+check "simulate reports its rate" grep -q "views/s" "$work/sim.err"
+"$KT" verify "$work/sim" > /dev/null
+check "simulated dataset verifies" test $? -eq 0
+check "teapot at elevation 60 exists" test -s "$work/sim/teapot/utah/e60/a315.0.pcd"
+"$KT" simulate --objects "$objs/objects.csv" --elevations 30,60 --step 45 --out "$work/sim" -q 2> "$work/sim2.err"
+check "simulate resumes: nothing new" grep -q "0 views written, 32 already there" "$work/sim2.err"
+echo 'class,instance' > "$work/bad.csv"
+"$KT" simulate --objects "$work/bad.csv" --out "$work/bad" 2> "$work/bad.err"
+check "a list without a mesh column is named" grep -q "bad.csv: needs class, instance and mesh columns" "$work/bad.err"
+
 echo "$pass passed, $fail failed"
 test "$fail" -eq 0
