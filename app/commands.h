@@ -21,5 +21,6 @@ Command addTurntableCommand(CLI::App& app);
 Command addCaptureCommand(CLI::App& app);
 Command addVerifyCommand(CLI::App& app);
 Command addSimulateCommand(CLI::App& app);
+Command addDemoCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -18,7 +18,7 @@ int main(int argc, char** argv) {
   const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
-                             addSimulateCommand(app)};
+                             addSimulateCommand(app), addDemoCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
