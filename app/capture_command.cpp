@@ -115,9 +115,9 @@ Command addCaptureCommand(CLI::App& app) {
   auto a = std::make_shared<CaptureArgs>();
   auto* cmd = app.add_subcommand("capture", "Capture a turntable sequence into a dataset (resumable)");
   cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
-  cmd->add_option("--pose", a->pose, "sim, modbus-tcp:HOST:PORT[@UNIT] or modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT]")
+  cmd->add_option("--pose", a->pose, "sim, modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
       ->capture_default_str();
-  cmd->add_option("--profile", a->profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim)")
+  cmd->add_option("--profile", a->profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
       ->capture_default_str();
   cmd->add_option("--class", a->cls, "Object class")->required();
   cmd->add_option("--instance", a->instance, "Object instance")->required();

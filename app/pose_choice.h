@@ -1,5 +1,6 @@
 #pragma once
-// --pose modbus-tcp:HOST:PORT|modbus-rtu:DEV → an open PoseSource. The
+// --pose modbus-tcp:HOST:PORT|modbus-rtu:DEV|can:IFACE → an open PoseSource
+// (for can: the profile argument names the CANopen axes file). The
 // simulated turntable ("sim") is opened with the simulated camera (sim_rig.h).
 #include <memory>
 #include <string>
