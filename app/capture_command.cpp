@@ -130,7 +130,7 @@ Command addCaptureCommand(CLI::App& app) {
   cmd->add_option("--discard", a->discard, "Frames discarded after the table settles")->capture_default_str();
   cmd->add_option("--settle", a->settle, "Time the pose must stay within tolerance (s)")->capture_default_str();
   cmd->add_option("--tolerance", a->tolerance, "Pose tolerance (°)")->capture_default_str();
-  cmd->add_option("--mesh", a->mesh, "Simulated camera: the object's mesh (PLY/OBJ/STL/OFF) or builtin:mug")
+  cmd->add_option("--mesh", a->mesh, "Simulated camera: the object's mesh (PLY/OBJ/STL/OFF), builtin:mug or builtin:sphere-target")
       ->capture_default_str();
   cmd->add_option("--distance", a->distance, "Simulated camera: distance to the object (m); 0 = operator placement");
   cmd->add_option("--seed", a->seed, "Simulated camera: noise seed")->capture_default_str();

@@ -51,7 +51,7 @@ std::string outputName(const std::string& pattern, double angle, bool several) {
 }
 
 int runRender(const RenderArgs& a) {
-  const sim::Mesh mesh = a.mesh == "builtin:mug" ? sim::makeMugMesh() : sim::loadMesh(a.mesh);
+  const sim::Mesh mesh = sim::loadMeshOrBuiltin(a.mesh);
   sim::TofViewRenderer renderer(mesh);
   const auto angles = parseAngles(a.angles);
   const double distance = a.distance > 0 ? a.distance : sim::operatorDistance(mesh);
@@ -77,7 +77,7 @@ int runRender(const RenderArgs& a) {
 Command addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render a simulated SR4000 view of a mesh on a turntable (organized PCD)");
-  cmd->add_option("mesh", args->mesh, "PLY mesh (metres, z up, base on z = 0) or builtin:mug")->required();
+  cmd->add_option("mesh", args->mesh, "Mesh (PLY/OBJ/STL/OFF; metres, z up, base on z = 0), builtin:mug or builtin:sphere-target")->required();
   cmd->add_option("--out,-o", args->out, "PCD to write; {angle} is replaced by the turntable angle")->required();
   cmd->add_option("--angles", args->angles, "Comma-separated turntable angles in degrees")->capture_default_str();
   cmd->add_option("--elevation", args->elevation, "Camera elevation above the turntable (degrees)")->capture_default_str();

@@ -25,7 +25,7 @@ SimRig openSimRig(const SimRigOptions& o) {
   const std::string config = dir + "/camera.json";
   c.save(config);
 
-  const sim::Mesh mesh = c.mesh == "builtin:mug" ? sim::makeMugMesh() : sim::loadMesh(c.mesh);
+  const sim::Mesh mesh = sim::loadMeshOrBuiltin(c.mesh);
   sim::SceneView view;
   view.distance = o.distance;
   view.elevation_deg = o.elevation_deg;

@@ -71,8 +71,7 @@ int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned s
     d->config = MesaSrSimConfig::fromEnvironment();
     if (d->config.faults.open_fail) return -1;
     if (!ethernet && serial != 0 && serial != d->config.serial) return 0;  // no such camera
-    const auto mesh = d->config.mesh == "builtin:mug" ? keyturn::sim::makeMugMesh()
-                                                       : keyturn::sim::loadMesh(d->config.mesh);
+    const auto mesh = keyturn::sim::loadMeshOrBuiltin(d->config.mesh);
     d->renderer = std::make_unique<keyturn::sim::TofViewRenderer>(mesh);
     d->distance = d->config.distance > 0 ? d->config.distance : keyturn::sim::operatorDistance(mesh);
     d->ethernet = ethernet;

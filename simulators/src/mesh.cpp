@@ -129,6 +129,35 @@ Mesh loadMesh(const std::string& path) {
   return mesh;
 }
 
+Mesh makeSphereTargetMesh(double radius, double offset) {
+  Mesh m;
+  const int rings = 24, segs = 48;
+  const Eigen::Vector3f c(static_cast<float>(offset), 0.f, static_cast<float>(radius));
+  for (int i = 0; i <= rings; ++i) {
+    const double th = M_PI * i / rings;
+    for (int j = 0; j < segs; ++j) {
+      const double ph = 2 * M_PI * j / segs;
+      m.vertices.push_back(c + static_cast<float>(radius) * Eigen::Vector3f(static_cast<float>(std::sin(th) * std::cos(ph)),
+                                                                          static_cast<float>(std::sin(th) * std::sin(ph)),
+                                                                          static_cast<float>(std::cos(th))));
+    }
+  }
+  for (int i = 0; i < rings; ++i)
+    for (int j = 0; j < segs; ++j) {
+      const int a = i * segs + j, b = i * segs + (j + 1) % segs, cidx = a + segs, d = b + segs;
+      m.triangles.emplace_back(a, cidx, d);
+      m.triangles.emplace_back(a, d, b);
+    }
+  return m;
+}
+
+Mesh loadMeshOrBuiltin(const std::string& name) {
+  if (name == "builtin:mug") return makeMugMesh();
+  if (name == "builtin:sphere-target") return makeSphereTargetMesh();
+  if (name.rfind("builtin:", 0) == 0) throw Error(name + ": unknown built-in mesh (builtin:mug, builtin:sphere-target)");
+  return loadMesh(name);
+}
+
 Mesh makeMugMesh() {
   Mesh m;
   const int seg = 48;

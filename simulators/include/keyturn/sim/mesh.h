@@ -24,4 +24,11 @@ Mesh loadMesh(const std::string& path);
 // 8 cm wide and 10 cm tall, so a view can be rendered with no file at all.
 Mesh makeMugMesh();
 
+// The axis-calibration target: a sphere of `radius` resting on the table at
+// `offset` from the turntable axis (+x at 0°).
+Mesh makeSphereTargetMesh(double radius = 0.03, double offset = 0.07);
+
+// "builtin:mug", "builtin:sphere-target", or a mesh file.
+Mesh loadMeshOrBuiltin(const std::string& name);
+
 }  // namespace keyturn::sim
