@@ -3,12 +3,15 @@
 // capture; Ctrl-C stops cleanly after the current view.
 #include <atomic>
 #include <csignal>
+#include <fstream>
 #include <iostream>
+#include <nlohmann/json.hpp>
 
 #include "camera_choice.h"
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/capture.h"
+#include "keyturn/rig/durable_file.h"
 #include "pose_choice.h"
 #include "sim_rig.h"
 #include "progress.h"
@@ -30,7 +33,26 @@ struct CaptureArgs {
   double distance = 0;
   unsigned long long seed = 1;
   bool quiet = false;
+  std::string calibration;
 };
+
+// A calibration file from keyturn calibrate-axis: its camera-from-turntable at 0°.
+Eigen::Matrix4d readCalibration(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": no such calibration file");
+  try {
+    const auto j = nlohmann::json::parse(in);
+    if (j.value("format", "") != "keyturn-axis-calibration") throw Error(path + ": not a keyturn axis calibration");
+    Eigen::Matrix4d m;
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) m(r, c) = j.at("camera_from_turntable").at(r).at(c).get<double>();
+    return m;
+  } catch (const Error&) {
+    throw;
+  } catch (const std::exception& e) {
+    throw Error(path + ": bad calibration file: " + e.what());
+  }
+}
 
 int runCapture(const CaptureArgs& a) {
   rig::Dataset dataset(a.out);
@@ -54,6 +76,13 @@ int runCapture(const CaptureArgs& a) {
   } else {
     real_camera = openCamera(a.camera, "");
     camera = real_camera.get();
+  }
+  if (!a.calibration.empty()) {
+    // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
+    o.camera_from_turntable_zero = readCalibration(a.calibration);
+    std::ifstream in(a.calibration);
+    rig::writeFileDurably(a.out + "/calibration.json",
+                          std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   }
   if (a.pose == "sim") {
     if (!simrig.pose.source) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
@@ -136,6 +165,9 @@ Command addCaptureCommand(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Simulated camera: noise seed")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Dataset folder")->required();
   cmd->add_flag("--quiet,-q", a->quiet, "No progress bar");
+  cmd->add_option("--calibration", a->calibration,
+                  "Axis calibration from keyturn calibrate-axis: gives every view its camera-from-turntable "
+                  "transform (copied into the dataset as calibration.json)");
   return {cmd, [a] { return runCapture(*a); }};
 }
 

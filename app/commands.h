@@ -22,5 +22,6 @@ Command addCaptureCommand(CLI::App& app);
 Command addVerifyCommand(CLI::App& app);
 Command addSimulateCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
+Command addCalibrateCommand(CLI::App& app);
 
 }  // namespace keyturn::app

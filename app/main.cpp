@@ -18,7 +18,8 @@ int main(int argc, char** argv) {
   const Command commands[] = {addDescribeCommand(app), addBenchCommand(app), addRenderCommand(app),
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
-                             addSimulateCommand(app), addDemoCommand(app)};
+                             addSimulateCommand(app), addDemoCommand(app),
+                             addCalibrateCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

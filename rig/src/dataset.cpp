@@ -234,7 +234,7 @@ VerifyReport Dataset::verify(const std::string& root) {
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string rel = fs::relative(it->path(), root).string();
-    if (rel == "dataset.json" || rel == kManifest || rel.rfind(".sim/", 0) == 0) continue;
+    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0) continue;
     if (!referenced.count(rel)) rep.orphans.push_back(rel);
   }
   return rep;

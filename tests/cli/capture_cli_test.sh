@@ -49,6 +49,23 @@ check "verify names it" grep -q "^corrupt: mug/builtin/e30/a45.0.pcd" "$work/ver
 "$KT" describe "$ds" -q > "$work/features.csv"
 check "describe reads the dataset" test "$(wc -l < "$work/features.csv")" -eq 37
 
+# Axis calibration from a sphere-target sequence, then a capture that uses it.
+"$KT" capture --mesh builtin:sphere-target --class calib --instance sphere --elevation 45 --step 30 --settle 0.01 -q \
+    --out "$work/cal" 2> /dev/null
+"$KT" calibrate-axis "$work/cal" --out "$work/axis.json" > "$work/cal.txt" 2> /dev/null
+check "calibrate-axis exits 0" test $? -eq 0
+check "calibrate-axis reports 12 views and a 70 mm circle" grep -qE "target circle r = (69\.[5-9]|70\.[0-4]) mm.*over 12 views" "$work/cal.txt"
+check "calibration angles agree (rms < 0.5°)" grep -qE "angle rms 0\.[0-4][0-9]°" "$work/cal.txt"
+"$KT" capture --class mug --instance calibrated --step 90 --settle 0.01 -q --calibration "$work/axis.json" --out "$work/calds" 2> /dev/null
+check "capture with --calibration exits 0" test $? -eq 0
+check "the calibration is kept with the dataset" cmp -s "$work/axis.json" "$work/calds/calibration.json"
+check "sidecars carry the calibrated transform" grep -q '"camera_from_turntable": \[' "$work/calds/mug/calibrated/e30/a90.0.json"
+"$KT" verify "$work/calds" > /dev/null
+check "a calibrated dataset verifies" test $? -eq 0
+echo '{"format": "something-else"}' > "$work/notcal.json"
+"$KT" capture --class mug --instance x --calibration "$work/notcal.json" --out "$work/bad2" 2> "$work/notcal.err"
+check "a wrong calibration file is named" grep -q "notcal.json: not a keyturn axis calibration" "$work/notcal.err"
+
 # simulate over an object list (quoted CSV fields, mesh paths relative to the CSV).
 objs="$work/objects"
 mkdir -p "$objs"
