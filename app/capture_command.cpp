@@ -34,6 +34,7 @@ struct CaptureArgs {
   unsigned long long seed = 1;
   bool quiet = false;
   std::string calibration;
+  std::string world;
 };
 
 // A calibration file from keyturn calibrate-axis: its camera-from-turntable at 0°.
@@ -70,6 +71,7 @@ int runCapture(const CaptureArgs& a) {
     so.distance = a.distance;
     so.seed = a.seed;
     so.simulated_pose = a.pose == "sim";
+    so.world = a.world;
     simrig = openSimRig(so);
     camera = simrig.camera.get();
     o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
@@ -165,6 +167,8 @@ Command addCaptureCommand(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Simulated camera: noise seed")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Dataset folder")->required();
   cmd->add_flag("--quiet,-q", a->quiet, "No progress bar");
+  cmd->add_option("--world", a->world,
+                  "Simulated camera with a separately running `keyturn sim turntable --world FILE`: the shared world file");
   cmd->add_option("--calibration", a->calibration,
                   "Axis calibration from keyturn calibrate-axis: gives every view its camera-from-turntable "
                   "transform (copied into the dataset as calibration.json)");

@@ -22,6 +22,7 @@ SimRig openSimRig(const SimRigOptions& o) {
   c.distance = o.distance;
   c.seed = o.seed;
   if (o.simulated_pose) c.world = world;
+  else if (!o.world.empty()) c.world = fs::absolute(o.world).string();
   const std::string config = dir + "/camera.json";
   c.save(config);
 

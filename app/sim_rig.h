@@ -20,6 +20,7 @@ struct SimRigOptions {
   double distance = 0;
   std::uint64_t seed = 1;
   bool simulated_pose = true;   // false: the camera is simulated, the pose source real
+  std::string world;            // with a separately running simulated turntable: its --world file
   bool fast = false;            // shrink motion and settling far below real time
 };
 

@@ -42,6 +42,18 @@ check "mbpoll reads over RTU" grep -qE '^\[3\]:[[:space:]]+2$' "$work/rtu.txt"
 "$KT" turntable --pose "$ep" --move-to 33 > "$work/rtumove.txt"
 check "keyturn turntable moves over RTU" grep -q '^33.000 deg' "$work/rtumove.txt"
 
+# A capture end to end over RTU: the simulated camera sees what the separate simulated table reports.
+ep=$(start_sim "$work/rtu2.out" --modbus-rtu --world "$work/rtu_world.json")
+"$KT" capture --camera sim --pose "$ep" --world "$work/rtu_world.json" --class mug --instance rtu --step 60 \
+    --settle 0.01 -q --out "$work/rtu_ds" 2> "$work/rtu_capture.err"
+check "capture over RTU exits 0" test $? -eq 0
+check "capture over RTU wrote 6 views" test "$(( $(wc -l < "$work/rtu_ds/manifest.csv") - 1 ))" -eq 6
+check "its measured angles follow the table" grep -q "^mug,rtu,30,30.000,240.000,240.0" "$work/rtu_ds/manifest.csv"
+"$KT" verify "$work/rtu_ds" > /dev/null
+check "the RTU capture verifies" test $? -eq 0
+a0=$(cmp -s "$work/rtu_ds/mug/rtu/e30/a0.0_distance.png" "$work/rtu_ds/mug/rtu/e30/a180.0_distance.png"; echo $?)
+check "the camera saw the object turn (0° and 180° differ)" test "$a0" -ne 0
+
 "$KT" turntable --pose modbus-tcp:127.0.0.1:1 2> "$work/refused.err"
 check "no server: non-zero exit" test $? -ne 0
 check "no server: one clear line" grep -q "cannot connect: Connection refused" "$work/refused.err"

@@ -32,7 +32,7 @@ class SimulatedRig : public ::testing::Test {
   }
   void TearDown() override { ::unsetenv("MESASR_SIM_CONFIG"); }
 
-  void start(sim::TurntableFaults faults = {}) {
+  void start(sim::TurntableFaults faults = {}, sim::MesaSrSimFaults camera_faults = {}) {
     sim::TurntableServerOptions so;
     so.world_file = world_;
     so.motion.max_speed_deg_s = 720;
@@ -47,6 +47,7 @@ class SimulatedRig : public ::testing::Test {
                                                         drivers::ModbusTurntableProfile::load("keyturn-sim"), mo);
     sim::MesaSrSimConfig c;
     c.world = world_;
+    c.faults = camera_faults;
     const std::string cfg = (dir_ / "camera.json").string();
     c.save(cfg);
     ::setenv("MESASR_SIM_CONFIG", cfg.c_str(), 1);
@@ -129,6 +130,31 @@ TEST_F(SimulatedRig, TurntableFaultsAreRetriedDuringCapture) {
   EXPECT_EQ(rep.written, 4u);
   EXPECT_GT(server_->faultsInjected(), 2);
   EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+}
+
+TEST_F(SimulatedRig, CameraTimeoutsAndDisconnectsAreRecoveredDuringCapture) {
+  sim::MesaSrSimFaults cf;
+  cf.timeout_every = 3;
+  cf.disconnect_after = 5;
+  start({}, cf);
+  rig::Dataset ds((dir_ / "ds").string());
+  auto o = options();
+  o.discard_frames = 1;
+  const auto rep = rig::runCapture(*camera_, *table_, ds, o);
+  EXPECT_EQ(rep.written, 4u);
+  EXPECT_GE(camera_->reconnects(), 2);
+  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+}
+
+TEST_F(SimulatedRig, ACameraThatKeepsFailingStopsTheCaptureWithNothingHalfWritten) {
+  sim::MesaSrSimFaults cf;
+  cf.corrupt_every = 1;
+  start({}, cf);
+  rig::Dataset ds((dir_ / "ds").string());
+  EXPECT_THROW(rig::runCapture(*camera_, *table_, ds, options()), Error);
+  const auto v = rig::Dataset::verify(ds.root());
+  EXPECT_EQ(v.views, 0u);
+  EXPECT_TRUE(v.ok());  // no orphan files either
 }
 
 TEST_F(SimulatedRig, ATableThatNeverSettlesIsAClearError) {
