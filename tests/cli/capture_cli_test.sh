@@ -3,11 +3,7 @@
 # twice mid-sequence, stopped with Ctrl-C once, resumed each time; at the end
 # the dataset verifies and holds every view exactly once.
 set -u
-KT=${KEYTURN:?set KEYTURN to the keyturn binary}
-work=${1:-$(mktemp -d)}
-rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi; }
+source "$(dirname "$0")/lib.sh"
 ds="$work/ds"
 cmd=("$KT" capture --class mug --instance builtin --step 5 --range 180 --settle 0.02 -q --out "$ds")
 rows() { [ -f "$ds/manifest.csv" ] && echo $(( $(wc -l < "$ds/manifest.csv") - 1 )) || echo 0; }
@@ -89,5 +85,4 @@ echo 'class,instance' > "$work/bad.csv"
 "$KT" simulate --objects "$work/bad.csv" --out "$work/bad" 2> "$work/bad.err"
 check "a list without a mesh column is named" grep -q "bad.csv: needs class, instance and mesh columns" "$work/bad.err"
 
-echo "$pass passed, $fail failed"
-test "$fail" -eq 0
+finish

@@ -2,14 +2,7 @@
 # The keyturn command line as a user runs it: render views, describe a folder
 # holding a bad file, bench as JSON. Prints "N passed, N failed".
 set -u
-KT=${KEYTURN:?set KEYTURN to the keyturn binary}
-work=${1:-$(mktemp -d)}
-rm -rf "$work"; mkdir -p "$work/views"
-pass=0; fail=0
-check() {  # check NAME CONDITION...
-  local name=$1; shift
-  if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
-}
+source "$(dirname "$0")/lib.sh"
 
 "$KT" render builtin:mug --angles 0,90,180 --out "$work/views/mug_{angle}.pcd" 2>"$work/render.err"
 check "render exits 0" test $? -eq 0
@@ -89,5 +82,4 @@ else
   echo "SKIPPED: keyturn devices under umockdev (umockdev-run not installed)"
 fi
 
-echo "$pass passed, $fail failed"
-test "$fail" -eq 0
+finish

@@ -2,11 +2,7 @@
 # The simulated turntable as a standard Modbus master sees it (mbpoll), over
 # TCP on loopback and RTU on a pseudo-terminal, and keyturn turntable against it.
 set -u
-KT=${KEYTURN:?set KEYTURN to the keyturn binary}
-work=${1:-$(mktemp -d)}
-rm -rf "$work"; mkdir -p "$work"
-pass=0; fail=0
-check() { local name=$1; shift; if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi; }
+source "$(dirname "$0")/lib.sh"
 if ! command -v mbpoll > /dev/null; then echo "SKIPPED: mbpoll not installed"; echo "0 passed, 0 failed"; exit 0; fi
 
 start_sim() {  # start_sim OUTFILE ARGS… → prints the endpoint
@@ -58,5 +54,4 @@ check "the camera saw the object turn (0° and 180° differ)" test "$a0" -ne 0
 check "no server: non-zero exit" test $? -ne 0
 check "no server: one clear line" grep -q "cannot connect: Connection refused" "$work/refused.err"
 
-echo "$pass passed, $fail failed"
-test "$fail" -eq 0
+finish

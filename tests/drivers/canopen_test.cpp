@@ -9,10 +9,12 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "support/error_of.h"
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/sim/canopen_node_sim.h"
 
 using namespace keyturn;
+using keyturn::test::errorOf;
 using namespace keyturn::drivers;
 
 namespace {
@@ -24,14 +26,6 @@ std::vector<CanOpenAxis> robotAxes() {
   return {x, y, z};
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 }  // namespace
 
 TEST(CanOpen, ReadsACartesianRobotBySdo) {

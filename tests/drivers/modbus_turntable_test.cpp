@@ -8,11 +8,13 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "support/error_of.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/turntable_sim.h"
 
 using namespace keyturn;
+using keyturn::test::errorOf;
 using namespace keyturn::drivers;
 using Clock = std::chrono::steady_clock;
 
@@ -45,14 +47,6 @@ Pose waitInPosition(ModbusTurntable& t, double timeout_s = 3.0) {
   return p;
 }
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 

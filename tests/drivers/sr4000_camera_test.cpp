@@ -7,12 +7,14 @@
 #include <filesystem>
 
 #include "keyturn/core/error.h"
+#include "support/error_of.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/tof_view.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
+using keyturn::test::errorOf;
 using namespace keyturn::drivers;
 
 namespace {
@@ -46,14 +48,6 @@ class Sr4000SimTest : public ::testing::Test {
   std::vector<std::string> log_;
 };
 
-std::string errorOf(const std::function<void()>& f) {
-  try {
-    f();
-  } catch (const Error& e) {
-    return e.what();
-  }
-  return "";
-}
 
 }  // namespace
 
