@@ -17,6 +17,8 @@ packages=(
   libmodbus-dev
   # SHA-256 checksums of captured files (OpenSSL libcrypto)
   libssl-dev
+  # plots (Qt Charts, rendered to PNG headless) and the GUI
+  qtbase5-dev libqt5charts5-dev
   # a standard Modbus master, polls the simulated turntable in the tests
   mbpoll
   # images: 16-bit PNGs of raw distance, amplitude and confidence

@@ -1,0 +1,33 @@
+#pragma once
+// 3-D keypoint detectors compared in repeatability tests, each with its scale
+// in multiples of the cloud resolution: keyturn's ISS3D, PCL's HarrisKeypoint3D,
+// SIFTKeypoint on surface curvature, and uniform sampling as the floor.
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/core/iss.h"
+
+namespace keyturn {
+
+enum class Detector { Iss, Harris3d, Sift3d, Uniform };
+
+Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform; throws keyturn::Error
+std::string detectorName(Detector d);
+
+struct DetectorOptions {
+  IssOptions iss;             // radii in multiples of the resolution
+  double harris_radius = 6.0;  // × resolution
+  double sift_min_scale = 2.0; // × resolution
+  int sift_octaves = 4;
+  int sift_scales_per_octave = 4;
+  double sift_min_contrast = 0.0;  // curvature differences are small; any extremum counts
+  double uniform_radius = 6.0; // × resolution
+};
+
+// Keypoint positions on the (filtered) point set, in its frame.
+std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, double resolution,
+                                             const DetectorOptions& options = DetectorOptions());
+
+}  // namespace keyturn
