@@ -23,5 +23,6 @@ Command addVerifyCommand(CLI::App& app);
 Command addSimulateCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
 Command addCalibrateCommand(CLI::App& app);
+Command addRepeatabilityCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -19,7 +19,7 @@ int main(int argc, char** argv) {
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
                              addSimulateCommand(app), addDemoCommand(app),
-                             addCalibrateCommand(app)};
+                             addCalibrateCommand(app), addRepeatabilityCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

@@ -18,7 +18,7 @@ packages=(
   # SHA-256 checksums of captured files (OpenSSL libcrypto)
   libssl-dev
   # plots (Qt Charts, rendered to PNG headless) and the GUI
-  qtbase5-dev libqt5charts5-dev
+  qtbase5-dev libqt5charts5-dev fonts-dejavu-core
   # a standard Modbus master, polls the simulated turntable in the tests
   mbpoll
   # images: 16-bit PNGs of raw distance, amplitude and confidence
