@@ -5,13 +5,13 @@
 #include <csignal>
 #include <fstream>
 #include <iostream>
-#include <nlohmann/json.hpp>
 
 #include "camera_choice.h"
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/capture.h"
 #include "keyturn/rig/durable_file.h"
+#include "keyturn/rig/sidecars.h"
 #include "pose_choice.h"
 #include "sim_rig.h"
 #include "progress.h"
@@ -36,24 +36,6 @@ struct CaptureArgs {
   std::string calibration;
   std::string world;
 };
-
-// A calibration file from keyturn calibrate-axis: its camera-from-turntable at 0°.
-Eigen::Matrix4d readCalibration(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": no such calibration file");
-  try {
-    const auto j = nlohmann::json::parse(in);
-    if (j.value("format", "") != "keyturn-axis-calibration") throw Error(path + ": not a keyturn axis calibration");
-    Eigen::Matrix4d m;
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) m(r, c) = j.at("camera_from_turntable").at(r).at(c).get<double>();
-    return m;
-  } catch (const Error&) {
-    throw;
-  } catch (const std::exception& e) {
-    throw Error(path + ": bad calibration file: " + e.what());
-  }
-}
 
 int runCapture(const CaptureArgs& a) {
   rig::Dataset dataset(a.out);
@@ -81,7 +63,7 @@ int runCapture(const CaptureArgs& a) {
   }
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
-    o.camera_from_turntable_zero = readCalibration(a.calibration);
+    o.camera_from_turntable_zero = rig::readAxisCalibration(a.calibration);
     std::ifstream in(a.calibration);
     rig::writeFileDurably(a.out + "/calibration.json",
                           std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));

@@ -22,6 +22,7 @@
 #include "keyturn/core/repeatability.h"
 #include "keyturn/rig/dataset.h"
 #include "keyturn/rig/durable_file.h"
+#include "keyturn/rig/sidecars.h"
 #include "keyturn/ui/line_chart.h"
 #include "progress.h"
 
@@ -68,13 +69,6 @@ std::vector<double> parseEps(const std::string& s) {
   return out;
 }
 
-Eigen::Matrix4d matrixFrom(const nlohmann::json& j) {
-  Eigen::Matrix4d m;
-  for (int r = 0; r < 4; ++r)
-    for (int c = 0; c < 4; ++c) m(r, c) = j.at(r).at(c).get<double>();
-  return m;
-}
-
 std::vector<View> viewsFromDataset(const std::string& root) {
   std::vector<View> out;
   for (const auto& r : rig::Dataset::readManifest(root)) {
@@ -82,14 +76,13 @@ std::vector<View> viewsFromDataset(const std::string& root) {
     v.file = root + "/" + r.files.front();
     v.group = r.key.cls + "/" + r.key.instance + "/e" + r.key.elevation;
     v.angle_deg = r.measured_deg;
-    std::ifstream in(root + "/" + r.files.back());
-    const auto j = nlohmann::json::parse(in);
-    if (j.at("camera_from_turntable").is_null())
+    const auto T = rig::readViewTransform(root + "/" + r.files.back());
+    if (!T)
       throw Error(root + ": " + r.files.back() +
                   " has no camera_from_turntable: capture with --calibration (keyturn calibrate-axis), or give a pose list");
     // The sidecar's camera ← turntable at this view's angle maps the object's own
     // (table-fixed) coordinates into this camera: the object frame is the common frame.
-    v.view_from_common = matrixFrom(j.at("camera_from_turntable"));
+    v.view_from_common = *T;
     out.push_back(std::move(v));
   }
   return out;

@@ -7,6 +7,8 @@ set -euo pipefail
 packages=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config
+  # the hardening build: clang with AddressSanitizer, UBSan and libFuzzer
+  clang-14 libclang-rt-14-dev
   # point clouds (PCL pulls in Eigen, FLANN, Boost and VTK)
   libpcl-dev libeigen3-dev
   # ray casting for the simulated SR4000 views

@@ -5,6 +5,11 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <unistd.h>
+
 #include <thread>
 
 #include "keyturn/core/error.h"
@@ -202,4 +207,67 @@ TEST(ModbusTurntable, TheSimulatedTableWritesTheSharedWorld) {
   table->moveTo(135.0);
   const Pose p = waitInPosition(*table);
   EXPECT_NEAR(sim::readWorldTurntable(o.world_file, -1), p.turntable_deg, 0.011);
+}
+
+namespace {
+// A loopback "device" that answers every request with the given bytes.
+class GarbagePeer {
+ public:
+  explicit GarbagePeer(std::vector<std::uint8_t> reply) : reply_(std::move(reply)) {
+    fd_ = ::socket(AF_INET, SOCK_STREAM, 0);
+    sockaddr_in a{};
+    a.sin_family = AF_INET;
+    a.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    ::bind(fd_, reinterpret_cast<sockaddr*>(&a), sizeof a);
+    ::listen(fd_, 1);
+    socklen_t len = sizeof a;
+    ::getsockname(fd_, reinterpret_cast<sockaddr*>(&a), &len);
+    port_ = ntohs(a.sin_port);
+    thread_ = std::thread([this] {
+      const int c = ::accept(fd_, nullptr, nullptr);
+      std::uint8_t buf[512];
+      while (c >= 0 && ::recv(c, buf, sizeof buf, 0) > 0)
+        if (::send(c, reply_.data(), reply_.size(), MSG_NOSIGNAL) < 0) break;
+      if (c >= 0) ::close(c);
+    });
+  }
+  ~GarbagePeer() {
+    ::shutdown(fd_, SHUT_RDWR);
+    ::close(fd_);
+    thread_.detach();  // it ends when the client disconnects
+  }
+  std::string endpoint() const { return "modbus-tcp:127.0.0.1:" + std::to_string(port_); }
+
+ private:
+  std::vector<std::uint8_t> reply_;
+  int fd_ = -1, port_ = 0;
+  std::thread thread_;
+};
+
+std::string readFrom(const GarbagePeer& peer) {
+  ModbusOptions o;
+  o.timeout_ms = 100;
+  o.retries = 1;
+  o.backoff_initial_ms = 1;
+  return errorOf([&] {
+    ModbusTurntable t(ModbusEndpoint::parse(peer.endpoint()), ModbusTurntableProfile::load("keyturn-sim"), o);
+    t.read();
+  });
+}
+}  // namespace
+
+TEST(ModbusTurntable, APeerSendingGarbageIsAClearError) {
+  std::vector<std::uint8_t> junk(300);
+  for (std::size_t i = 0; i < junk.size(); ++i) junk[i] = static_cast<std::uint8_t>(i * 37 + 11);
+  GarbagePeer peer(junk);
+  const std::string msg = readFrom(peer);
+  EXPECT_NE(msg.find("modbus-tcp 127.0.0.1:"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("read failed after 1 retries: reading register 0:"), std::string::npos) << msg;
+}
+
+TEST(ModbusTurntable, APeerAnnouncingAnOversizeFrameIsAClearError) {
+  // MBAP header claiming 65535 bytes follow, then a few.
+  GarbagePeer peer({0x00, 0x01, 0x00, 0x00, 0xFF, 0xFF, 0x01, 0x03, 0xFA, 0x00, 0x01});
+  const std::string msg = readFrom(peer);
+  EXPECT_NE(msg.find("reading register 0:"), std::string::npos) << msg;
 }

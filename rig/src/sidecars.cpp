@@ -1,0 +1,54 @@
+#include "keyturn/rig/sidecars.h"
+
+#include <cmath>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::rig {
+namespace {
+
+nlohmann::json parse(const std::string& path, const char* what) {
+  std::ifstream in(path);
+  if (!in) throw Error(path + ": no such " + what);
+  try {
+    return nlohmann::json::parse(in);
+  } catch (const std::exception& e) {
+    throw Error(path + ": not valid JSON: " + e.what());
+  }
+}
+
+Eigen::Matrix4d matrix(const std::string& path, const nlohmann::json& j) {
+  if (!j.is_array() || j.size() != 4) throw Error(path + ": camera_from_turntable must be a 4 × 4 array");
+  Eigen::Matrix4d m;
+  for (int r = 0; r < 4; ++r) {
+    if (!j[r].is_array() || j[r].size() != 4) throw Error(path + ": camera_from_turntable must be a 4 × 4 array");
+    for (int c = 0; c < 4; ++c) {
+      if (!j[r][c].is_number()) throw Error(path + ": camera_from_turntable holds a non-number");
+      m(r, c) = j[r][c].get<double>();
+    }
+  }
+  if (!m.allFinite()) throw Error(path + ": camera_from_turntable holds a non-finite number");
+  return m;
+}
+
+}  // namespace
+
+std::optional<Eigen::Matrix4d> readViewTransform(const std::string& path) {
+  const auto j = parse(path, "view sidecar");
+  if (!j.is_object() || !j.contains("camera_from_turntable")) throw Error(path + ": not a keyturn view sidecar");
+  if (j["camera_from_turntable"].is_null()) return std::nullopt;
+  return matrix(path, j["camera_from_turntable"]);
+}
+
+Eigen::Matrix4d readAxisCalibration(const std::string& path) {
+  const auto j = parse(path, "calibration file");
+  if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
+      j["format"].get<std::string>() != "keyturn-axis-calibration")
+    throw Error(path + ": not a keyturn axis calibration");
+  if (!j.contains("camera_from_turntable")) throw Error(path + ": no camera_from_turntable");
+  return matrix(path, j["camera_from_turntable"]);
+}
+
+}  // namespace keyturn::rig
