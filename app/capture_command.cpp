@@ -9,6 +9,7 @@
 #include "camera_choice.h"
 #include "commands.h"
 #include "keyturn/core/error.h"
+#include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
 #include "keyturn/rig/durable_file.h"
 #include "keyturn/rig/sidecars.h"
@@ -35,6 +36,7 @@ struct CaptureArgs {
   bool quiet = false;
   std::string calibration;
   std::string world;
+  double sim_faults = 0;
 };
 
 int runCapture(const CaptureArgs& a) {
@@ -54,6 +56,7 @@ int runCapture(const CaptureArgs& a) {
     so.seed = a.seed;
     so.simulated_pose = a.pose == "sim";
     so.world = a.world;
+    so.fault_rate = a.sim_faults;
     simrig = openSimRig(so);
     camera = simrig.camera.get();
     o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
@@ -99,6 +102,11 @@ int runCapture(const CaptureArgs& a) {
   progress.finish();
   std::cerr << "keyturn capture: " << rep.written << " views written, " << rep.skipped << " already there"
             << (rep.redos ? ", " + std::to_string(rep.redos) + " redone (table moved)" : "") << " → " << a.out << "\n";
+  if (simrig.pose.simulator)
+    std::cerr << "keyturn capture: simulated turntable: " << simrig.pose.simulator->requests() << " requests, "
+              << simrig.pose.simulator->faultsInjected() << " faults injected\n";
+  if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(camera))
+    std::cerr << "keyturn capture: camera reopened " << sr->reconnects() << " times\n";
   if (rep.stopped) {
     std::cerr << "keyturn capture: stopped; run the same command again to resume\n";
     return 130;
@@ -149,6 +157,9 @@ Command addCaptureCommand(CLI::App& app) {
   cmd->add_option("--seed", a->seed, "Simulated camera: noise seed")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Dataset folder")->required();
   cmd->add_flag("--quiet,-q", a->quiet, "No progress bar");
+  cmd->add_option("--sim-faults", a->sim_faults,
+                  "Simulated devices: probability of a random fault per camera acquisition and per turntable request")
+      ->check(CLI::Range(0.0, 1.0));
   cmd->add_option("--world", a->world,
                   "Simulated camera with a separately running `keyturn sim turntable --world FILE`: the shared world file");
   cmd->add_option("--calibration", a->calibration,

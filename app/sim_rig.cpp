@@ -21,6 +21,7 @@ SimRig openSimRig(const SimRigOptions& o) {
   c.elevation = o.elevation_deg;
   c.distance = o.distance;
   c.seed = o.seed;
+  c.faults.random_rate = o.fault_rate;
   if (o.simulated_pose) c.world = world;
   else if (!o.world.empty()) c.world = fs::absolute(o.world).string();
   const std::string config = dir + "/camera.json";
@@ -40,6 +41,7 @@ SimRig openSimRig(const SimRigOptions& o) {
     so.motion.settle_s = o.fast ? 0.0 : 0.005;
     so.motion.jitter_deg = o.fast ? 0.0 : 0.01;
     so.seed = o.seed;
+    so.faults.random_rate = o.fault_rate;
     rig.pose.simulator = std::make_unique<sim::TurntableServer>(so);
     drivers::ModbusOptions mo;
     mo.log = [](const std::string& l) { std::fprintf(stderr, "keyturn: turntable: %s\n", l.c_str()); };

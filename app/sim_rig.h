@@ -22,6 +22,7 @@ struct SimRigOptions {
   bool simulated_pose = true;   // false: the camera is simulated, the pose source real
   std::string world;            // with a separately running simulated turntable: its --world file
   bool fast = false;            // shrink motion and settling far below real time
+  double fault_rate = 0;        // random faults per camera acquisition and per turntable request
 };
 
 struct SimRig {

@@ -123,13 +123,22 @@ PcdPromise readPcdPromise(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   PcdPromise p;
   std::vector<std::uint64_t> sizes, counts;
+  std::vector<std::string> fields, types;
   std::uint64_t width = 0, height = 0;
   std::string line;
   for (int n = 0; n < 64 && std::getline(in, line); ++n) {
     std::istringstream ls(line);
     std::string key;
     ls >> key;
-    if (key == "SIZE") for (std::uint64_t v; ls >> v;) sizes.push_back(v);
+    // Only the keywords of the PCD format (PCL miscounts header lines otherwise).
+    static const char* known[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE", "TYPE", "COUNT",
+                                  "WIDTH", "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+    if (!key.empty() && key[0] != '#' &&
+        std::none_of(std::begin(known), std::end(known), [&](const char* k) { return key == k; }))
+      fail(path, "not a valid PCD file (unknown header line " + std::to_string(n + 1) + ": '" + key.substr(0, 20) + "')");
+    if (key == "FIELDS" || key == "COLUMNS") for (std::string f; ls >> f;) fields.push_back(f);
+    else if (key == "TYPE") for (std::string t; ls >> t;) types.push_back(t);
+    else if (key == "SIZE") for (std::uint64_t v; ls >> v;) sizes.push_back(v);
     else if (key == "COUNT") for (std::uint64_t v; ls >> v;) counts.push_back(v);
     else if (key == "WIDTH") ls >> width;
     else if (key == "HEIGHT") ls >> height;
@@ -140,7 +149,19 @@ PcdPromise readPcdPromise(const std::string& path) {
       break;
     }
   }
-  if (p.data.empty() || sizes.empty()) fail(path, "not a valid PCD file (no FIELDS/SIZE/DATA header)");
+  if (p.data.empty() || sizes.empty() || fields.empty())
+    fail(path, "not a valid PCD file (no FIELDS/SIZE/DATA header)");
+  // PCL indexes these lines by field without checking: they must agree.
+  if (sizes.size() != fields.size() || types.size() != fields.size() || (!counts.empty() && counts.size() != fields.size()))
+    fail(path, "corrupt PCD header: FIELDS, SIZE, TYPE and COUNT list different numbers of fields");
+  for (std::size_t i = 0; i < fields.size(); ++i) {
+    const std::uint64_t sz = sizes[i];
+    const std::string& t = types[i];
+    if ((sz != 1 && sz != 2 && sz != 4 && sz != 8) || (t != "F" && t != "I" && t != "U") || (t == "F" && sz < 4))
+      fail(path, "corrupt PCD header: field '" + fields[i] + "' has TYPE " + t + " and SIZE " + std::to_string(sz));
+    if (!counts.empty() && (counts[i] == 0 || counts[i] > 4096))
+      fail(path, "corrupt PCD header: field '" + fields[i] + "' has COUNT " + std::to_string(counts[i]));
+  }
   if (width * height != p.points && width != 0)
     fail(path, "corrupt PCD header: WIDTH × HEIGHT = " + std::to_string(width * height) +
                    " but POINTS = " + std::to_string(p.points));

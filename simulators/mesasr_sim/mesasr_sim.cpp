@@ -6,6 +6,7 @@
 #include <cmath>
 #include <cstring>
 #include <memory>
+#include <random>
 #include <atomic>
 #include <string>
 #include <vector>
@@ -40,6 +41,7 @@ struct CMesaDevice {
   unsigned char regs[256] = {};
   std::uint64_t frames = 0, acquires = 0;
   bool unplugged = false;
+  std::mt19937_64 fault_rng{0};
 };
 
 namespace {
@@ -77,6 +79,7 @@ int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned s
     d->ethernet = ethernet;
     d->address = address;
     d->regs[SR4000_REG_FIRMWARE] = 0x57;
+    d->fault_rng.seed(d->config.seed * 7919 + static_cast<std::uint64_t>(std::random_device{}()));
     allocateImages(*d);
     *out = d.release();
     for (unsigned p = 0; p <= 100; p += 50) notify(*out, CM_PROGRESS, p);
@@ -206,6 +209,14 @@ SIM_EXPORT int SR_Acquire(SRCAM cam) {
     return -1;
   }
   if (f.timeout_every > 0 && cam->acquires % f.timeout_every == 0) return -1;
+  int random_fault = -1;  // 0 timeout, 1 short frame, 2 disconnect
+  if (f.random_rate > 0 && std::uniform_real_distribution<double>(0, 1)(cam->fault_rng) < f.random_rate)
+    random_fault = static_cast<int>(cam->fault_rng() % 3);
+  if (random_fault == 0) return -1;
+  if (random_fault == 2) {
+    cam->unplugged = true;
+    return -1;
+  }
   try {
     renderFrame(*cam);
   } catch (const std::exception&) {
@@ -213,7 +224,7 @@ SIM_EXPORT int SR_Acquire(SRCAM cam) {
   }
   ++cam->frames;
   const int full = 2 * kPixels * static_cast<int>(sizeof(std::uint16_t));
-  if (f.corrupt_every > 0 && cam->acquires % f.corrupt_every == 0) return full / 3;  // short transfer
+  if ((f.corrupt_every > 0 && cam->acquires % f.corrupt_every == 0) || random_fault == 1) return full / 3;  // short transfer
   return full;
 }
 

@@ -40,7 +40,11 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
       c.faults.timeout_every = f.value("timeout_every", 0);
       c.faults.corrupt_every = f.value("corrupt_every", 0);
       c.faults.disconnect_after = f.value("disconnect_after", 0);
+      c.faults.random_rate = f.value("random_rate", 0.0);
+      if (!(c.faults.random_rate >= 0 && c.faults.random_rate <= 1)) throw Error(path + ": random_rate must be in [0, 1]");
     }
+  } catch (const Error&) {
+    throw;
   } catch (const std::exception& e) {
     throw Error(path + ": bad simulator configuration: " + e.what());
   }
@@ -58,7 +62,8 @@ void MesaSrSimConfig::save(const std::string& path) const {
                       {"turntable_deg", turntable_deg}, {"serial", serial}, {"seed", seed},
                       {"faults", {{"open_fail", faults.open_fail}, {"timeout_every", faults.timeout_every},
                                   {"corrupt_every", faults.corrupt_every},
-                                  {"disconnect_after", faults.disconnect_after}}}};
+                                  {"disconnect_after", faults.disconnect_after},
+                                  {"random_rate", faults.random_rate}}}};
   if (!world.empty()) j["world"] = world;
   std::ofstream(path) << j.dump(2) << "\n";
 }

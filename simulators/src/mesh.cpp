@@ -2,11 +2,11 @@
 
 #include <pcl/PolygonMesh.h>
 #include <pcl/console/print.h>
-#include <pcl/io/obj_io.h>
 #include <pcl/io/ply_io.h>
-#include <pcl/io/vtk_lib_io.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
@@ -91,6 +91,93 @@ Mesh loadOff(const std::string& path) {
   return mesh;
 }
 
+// STL, binary (80-byte header, triangle count, 50-byte records) or ASCII
+// ("vertex x y z" lines, three per facet). keyturn's own reader: VTK's guessed
+// "binary" from any stray byte and allocated for the header's count unchecked,
+// and grew without bound on fuzzed ASCII.
+Mesh loadStl(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  Mesh mesh;
+  auto addTriangle = [&](const Eigen::Vector3f& a, const Eigen::Vector3f& b, const Eigen::Vector3f& c) {
+    const int base = static_cast<int>(mesh.vertices.size());
+    mesh.vertices.push_back(a);
+    mesh.vertices.push_back(b);
+    mesh.vertices.push_back(c);
+    mesh.triangles.emplace_back(base, base + 1, base + 2);
+  };
+  std::uint32_t count = 0;
+  if (text.size() >= 84) std::memcpy(&count, text.data() + 80, 4);
+  if (text.size() >= 84 && 84ull + 50ull * count == text.size()) {
+    for (std::uint32_t t = 0; t < count; ++t) {
+      float f[9];
+      std::memcpy(f, text.data() + 84 + 50ull * t + 12, sizeof f);  // skip the normal
+      addTriangle({f[0], f[1], f[2]}, {f[3], f[4], f[5]}, {f[6], f[7], f[8]});
+    }
+    return mesh;
+  }
+  if (text.compare(0, 5, "solid") != 0)
+    throw Error(path + ": not a valid STL (neither ASCII 'solid …' text nor a binary STL whose size matches its "
+                       "triangle count)");
+  std::istringstream ss(text);
+  std::vector<Eigen::Vector3f> corner;
+  std::string line;
+  for (int n = 1; std::getline(ss, line); ++n) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    if (key != "vertex") continue;
+    float x, y, z;
+    if (!(ls >> x >> y >> z)) throw Error(path + ": line " + std::to_string(n) + ": a vertex needs x y z");
+    corner.emplace_back(x, y, z);
+    if (corner.size() == 3) {
+      addTriangle(corner[0], corner[1], corner[2]);
+      corner.clear();
+    }
+  }
+  if (!corner.empty()) throw Error(path + ": a facet ends with " + std::to_string(corner.size()) + " vertices");
+  return mesh;
+}
+
+// OBJ: "v x y z [w]" and "f a b c …" with a, a/t, a/t/n or a//n (1-based, or
+// negative from the end). keyturn's own parser: PCL's OBJReader reads vertex
+// coordinates without checking they are there (a fuzzed "v 0 0" crashed it).
+Mesh loadObj(const std::string& path) {
+  std::ifstream in(path);
+  Mesh mesh;
+  std::string line;
+  for (int n = 1; std::getline(in, line); ++n) {
+    std::istringstream ls(line);
+    std::string key;
+    ls >> key;
+    const std::string where = path + ": line " + std::to_string(n) + ": ";
+    if (key == "v") {
+      float x, y, z;
+      if (!(ls >> x >> y >> z)) throw Error(where + "a vertex needs x y z");
+      mesh.vertices.emplace_back(x, y, z);
+    } else if (key == "f") {
+      std::vector<int> idx;
+      for (std::string tok; ls >> tok;) {
+        int i = 0;
+        try {
+          std::size_t used = 0;
+          i = std::stoi(tok, &used);
+          if (used != tok.size() && tok[used] != '/') throw std::invalid_argument(tok);
+        } catch (const std::exception&) {
+          throw Error(where + "bad face index '" + tok.substr(0, 20) + "'");
+        }
+        const int nv = static_cast<int>(mesh.vertices.size());
+        const int v = i > 0 ? i - 1 : nv + i;
+        if (i == 0 || v < 0 || v >= nv) throw Error(where + "face refers to a missing vertex " + std::to_string(i));
+        idx.push_back(v);
+      }
+      if (idx.size() < 3) throw Error(where + "a face needs at least 3 vertices");
+      for (std::size_t k = 2; k < idx.size(); ++k) mesh.triangles.emplace_back(idx[0], idx[k - 1], idx[k]);
+    }
+  }
+  return mesh;
+}
+
 std::string lowerExtension(const std::string& path) {
   std::string ext = std::filesystem::path(path).extension().string();
   for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -112,12 +199,9 @@ Mesh loadMesh(const std::string& path) {
     if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
     mesh = fromPolygonMesh(path, pm);
   } else if (ext == ".obj") {
-    if (pcl::io::loadOBJFile(path, pm) < 0) throw Error(path + ": not a readable OBJ mesh");
-    mesh = fromPolygonMesh(path, pm);
+    mesh = loadObj(path);
   } else if (ext == ".stl") {
-    if (pcl::io::loadPolygonFileSTL(path, pm) == 0 || pm.polygons.empty())
-      throw Error(path + ": not a readable STL mesh");
-    mesh = fromPolygonMesh(path, pm);
+    mesh = loadStl(path);
   } else if (ext == ".off") {
     mesh = loadOff(path);
   } else {

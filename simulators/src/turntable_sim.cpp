@@ -87,7 +87,7 @@ TurntableModel::State TurntableModel::state(Clock::time_point now) {
 }
 
 TurntableServer::TurntableServer(TurntableServerOptions options)
-    : o_(std::move(options)), model_(o_.motion, o_.seed) {
+    : o_(std::move(options)), model_(o_.motion, o_.seed), fault_rng_(o_.seed * 104729 + std::random_device{}()) {
   model_.setNeverReach(o_.faults.never_reach);
   auto* map = modbus_mapping_new(0, 0, kRegisters, 0);
   if (!map) throw Error("simulated turntable: cannot allocate the register map");
@@ -174,6 +174,10 @@ bool TurntableServer::handle(void* ctxp, const std::uint8_t* query, int length, 
   if (f.no_reply_every > 0 && n % f.no_reply_every == 0) {
     ++faults_;
     return true;
+  }
+  if (f.random_rate > 0 && std::uniform_real_distribution<double>(0, 1)(fault_rng_) < f.random_rate) {
+    ++faults_;
+    return fault_rng_() % 2 == 0;  // no reply (keep the connection) or drop it
   }
   if (f.exception_every > 0 && n % f.exception_every == 0) {
     ++faults_;

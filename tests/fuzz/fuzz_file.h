@@ -1,6 +1,7 @@
 #pragma once
 // libFuzzer harness helper: the loaders under test read files, so each input
 // is written to a per-process temporary file with the right name first.
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <cstdint>

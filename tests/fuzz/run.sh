@@ -4,7 +4,7 @@
 # $OUT/crash-* and fails the run: turn it into a regression test.
 # usage: tests/fuzz/run.sh BUILD_DIR [RUNS]
 set -u
-build=${1:?hardening build folder}
+build=$(cd "${1:?hardening build folder}" && pwd)
 runs=${2:-4000}
 here=$(cd "$(dirname "$0")" && pwd)
 out=$(mktemp -d)

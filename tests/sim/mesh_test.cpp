@@ -60,6 +60,27 @@ TEST(Mesh, AsciiStl) {
   expectBox(sim::loadMesh(p));
 }
 
+TEST(Mesh, BinaryStl) {
+  const auto p = (dir() / "box_bin.stl").string();
+  std::string bytes(80, ' ');
+  const std::uint32_t n = 12;
+  bytes.append(reinterpret_cast<const char*>(&n), 4);
+  for (auto& q : kQuads)
+    for (int t = 0; t < 2; ++t) {
+      float rec[12] = {0, 0, 0};
+      const int idx[3] = {q[0], q[t + 1], q[t + 2]};
+      for (int k = 0; k < 3; ++k)
+        for (int c = 0; c < 3; ++c) rec[3 + 3 * k + c] = kV[idx[k]][c];
+      bytes.append(reinterpret_cast<const char*>(rec), sizeof rec);
+      bytes.append(2, '\0');  // attribute byte count
+    }
+  std::ofstream(p, std::ios::binary) << bytes;
+  expectBox(sim::loadMesh(p));
+  // One byte short: the size no longer matches the count, and it is not "solid" text.
+  std::ofstream(p, std::ios::binary) << bytes.substr(0, bytes.size() - 1);
+  EXPECT_NE(errorOf(p).find("not a valid STL"), std::string::npos);
+}
+
 TEST(Mesh, OffWithComments) {
   const auto p = (dir() / "box.off").string();
   std::ofstream f(p);

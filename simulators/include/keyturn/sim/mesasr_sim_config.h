@@ -12,7 +12,8 @@
 //   "faults": { "open_fail": false,      every open returns -1
 //               "timeout_every": 0,      every Nth acquire times out (returns -1)
 //               "corrupt_every": 0,      every Nth acquire transfers a short frame
-//               "disconnect_after": 0 }  after N frames the camera stops answering until reopened
+//               "disconnect_after": 0,   after N frames the camera stops answering until reopened
+//               "random_rate": 0 }       each acquire: a random one of those faults with this probability (seeded)
 // }
 #include <cstdint>
 #include <string>
@@ -24,6 +25,7 @@ struct MesaSrSimFaults {
   int timeout_every = 0;
   int corrupt_every = 0;
   int disconnect_after = 0;
+  double random_rate = 0;  // each acquire fails with this probability: timeout, short frame or disconnect
 };
 
 struct MesaSrSimConfig {

@@ -14,8 +14,9 @@ struct Mesh {
   Eigen::Vector3f boundsMax() const;
 };
 
-// PLY (ascii or binary, float or double vertices) and OBJ through PCL, STL
-// through PCL's VTK reader, OFF by keyturn's own small parser. Polygons are
+// PLY (ascii or binary, float or double vertices) through PCL, STL through
+// PCL's VTK reader (after keyturn checks its size), OBJ and OFF by keyturn's own
+// small parsers (PCL's OBJ reader crashed on fuzzed input). Polygons are
 // fan-triangulated. Throws keyturn::Error naming the file for a missing,
 // unreadable, truncated or face-less mesh.
 Mesh loadMesh(const std::string& path);

@@ -27,6 +27,7 @@ struct TurntableFaults {
   int exception_every = 0;   // every Nth request gets exception 4 (server device failure)
   int drop_every = 0;        // every Nth request closes the connection
   bool never_reach = false;  // moves stop 0.5° short and never report in position
+  double random_rate = 0;    // each request: no reply or a dropped connection with this probability
 };
 
 class TurntableModel {
@@ -91,6 +92,7 @@ class TurntableServer {
   std::atomic<bool> stop_{false};
   std::atomic<long> requests_{0}, faults_{0};
   double last_world_ = -1;
+  std::mt19937_64 fault_rng_;
   std::thread thread_;
   void* ctx_ = nullptr;
 };
