@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/ply_reader.h"
 
 namespace fs = std::filesystem;
 
@@ -216,64 +217,53 @@ Cloud loadPcd(const std::string& path, std::uintmax_t file_size) {
   return cloudFromPclBlob(path, blob);
 }
 
-}  // namespace
-
-void checkPlyHeader(const std::string& path) {
-  std::error_code ec;
-  const auto file_size = fs::file_size(path, ec);
-  if (ec) fail(path, "cannot read file size: " + ec.message());
-  std::ifstream in(path, std::ios::binary);
-  std::string line, format;
-  std::uint64_t min_bytes = 0, current = 0, per_item = 0;
-  bool ascii = false, ended = false;
-  auto close_element = [&] { min_bytes += current * per_item; };
-  for (int n = 0; n < 256 && std::getline(in, line); ++n) {
-    std::istringstream ls(line);
+// Organized clouds keep their grid: PCL's writer records it as obj_info num_cols/num_rows.
+void applyGrid(const PlyData& ply, Cloud& cloud) {
+  std::size_t cols = 0, rows = 0;
+  for (const auto& info : ply.obj_info) {
+    std::istringstream ls(info);
     std::string key;
-    ls >> key;
-    if (key == "format") {
-      ls >> format;
-      ascii = format == "ascii";
-    } else if (key == "element") {
-      close_element();
-      std::string name;
-      ls >> name >> current;
-      per_item = 0;
-    } else if (key == "property") {
-      std::string type;
-      ls >> type;
-      // Scalars: their size (ascii: a digit and a separator); a list holds at least its count.
-      const bool wide = type == "double" || type == "float64" || type == "int64" || type == "uint64";
-      const bool mid = type == "float" || type == "float32" || type == "int" || type == "uint" ||
-                       type == "int32" || type == "uint32";
-      const bool small = type == "short" || type == "ushort" || type == "int16" || type == "uint16";
-      per_item += ascii ? 2 : type == "list" ? 1 : wide ? 8 : mid ? 4 : small ? 2 : 1;
-    } else if (key == "end_header") {
-      ended = true;
-      break;
-    }
+    long long v = 0;
+    if (!(ls >> key >> v) || v <= 0) continue;
+    if (key == "num_cols") cols = static_cast<std::size_t>(v);
+    if (key == "num_rows") rows = static_cast<std::size_t>(v);
   }
-  if (!ended) fail(path, "not a valid PLY file (no end_header)");
-  close_element();
-  const std::uint64_t room = file_size - std::min<std::uint64_t>(file_size, in.tellg());
-  if (min_bytes > room + 1)
-    fail(path, "truncated PLY: its header needs at least " + std::to_string(min_bytes) +
-                   " bytes of data but the file has " + std::to_string(room));
+  if (cols != 0 && rows != 0 && cols * rows == cloud.points.size()) {
+    cloud.width = static_cast<std::uint32_t>(cols);
+    cloud.height = static_cast<std::uint32_t>(rows);
+  }
 }
 
-namespace {
-
 Cloud loadPly(const std::string& path) {
-  checkPlyHeader(path);
-  pcl::PLYReader reader;
-  pcl::PCLPointCloud2 blob;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  int version = 0;
-  if (reader.read(path, blob, origin, orientation, version) < 0)
-    fail(path, "not a readable PLY file");
-  if (blob.width * blob.height == 0) fail(path, "empty point cloud (0 vertices)");
-  return cloudFromPclBlob(path, blob);
+  const PlyData ply = readPly(path);
+  const PlyElement* vertex = ply.find("vertex");
+  if (!vertex) fail(path, "PLY file has no vertex element");
+  if (vertex->count == 0) fail(path, "empty point cloud (0 vertices)");
+  const PlyProperty* x = vertex->find("x");
+  const PlyProperty* y = vertex->find("y");
+  const PlyProperty* z = vertex->find("z");
+  if (!x || !y || !z || x->is_list || y->is_list || z->is_list) fail(path, "no x/y/z fields");
+  const PlyProperty* amp = vertex->find("amplitude");
+  if (!amp) amp = vertex->find("intensity");
+  const PlyProperty* conf = vertex->find("confidence");
+  if (amp && amp->is_list) amp = nullptr;
+  if (conf && conf->is_list) conf = nullptr;
+
+  const std::size_t n = vertex->count;
+  Cloud cloud;
+  cloud.width = static_cast<std::uint32_t>(n);
+  cloud.height = 1;
+  cloud.points.resize(n);
+  if (amp) cloud.amplitude.resize(n);
+  if (conf) cloud.confidence.resize(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    cloud.points[i] = Eigen::Vector3d(x->values[i], y->values[i], z->values[i]).cast<float>();
+    if (!cloud.points[i].allFinite()) cloud.points[i].setConstant(std::nanf(""));
+    if (amp) cloud.amplitude[i] = static_cast<float>(amp->values[i]);
+    if (conf) cloud.confidence[i] = static_cast<float>(conf->values[i]);
+  }
+  applyGrid(ply, cloud);
+  return cloud;
 }
 
 void syncFile(const std::string& path) {

@@ -25,7 +25,9 @@ std::shared_ptr<MesaSrLibrary> MesaSrLibrary::load(const std::string& explicit_p
   auto lib = std::make_shared<MesaSrLibrary>();
   std::string tried, last_error;
   for (const auto& name : candidates) {
-    lib->handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL);
+    // NODELETE: a camera library may leave worker threads behind (the simulator's
+    // Embree pool does); unmapping its code under them would crash at exit.
+    lib->handle = ::dlopen(name.c_str(), RTLD_NOW | RTLD_LOCAL | RTLD_NODELETE);
     if (lib->handle) {
       lib->path = name;
       break;

@@ -1,8 +1,5 @@
 #include "keyturn/sim/mesh.h"
 
-#include <pcl/PolygonMesh.h>
-#include <pcl/console/print.h>
-#include <pcl/io/ply_io.h>
 
 #include <algorithm>
 #include <cmath>
@@ -11,8 +8,8 @@
 #include <fstream>
 #include <sstream>
 
-#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/ply_reader.h"
 
 namespace keyturn::sim {
 
@@ -30,19 +27,34 @@ Eigen::Vector3f Mesh::boundsMax() const {
 
 namespace {
 
-Mesh fromPolygonMesh(const std::string& path, const pcl::PolygonMesh& pm) {
+// PLY through keyturn's bounds-checked reader: vertex x/y/z and a face list
+// ("vertex_indices" or "vertex_index"); polygons are fan-triangulated.
+Mesh loadPly(const std::string& path) {
+  const PlyData ply = readPly(path);
+  const PlyElement* vertex = ply.find("vertex");
+  if (!vertex) throw Error(path + ": PLY mesh has no vertex element");
+  const PlyProperty* x = vertex->find("x");
+  const PlyProperty* y = vertex->find("y");
+  const PlyProperty* z = vertex->find("z");
+  if (!x || !y || !z || x->is_list || y->is_list || z->is_list) throw Error(path + ": PLY mesh has no x/y/z");
   Mesh mesh;
-  mesh.vertices = cloudFromPclBlob(path, pm.cloud).points;
-  const int n = static_cast<int>(mesh.vertices.size());
-  for (const auto& poly : pm.polygons) {
-    // Fan-triangulate polygons; reject indices that point outside the vertex list.
-    for (std::size_t k = 2; k < poly.vertices.size(); ++k) {
-      const Eigen::Vector3i t(static_cast<int>(poly.vertices[0]), static_cast<int>(poly.vertices[k - 1]),
-                              static_cast<int>(poly.vertices[k]));
-      if ((t.array() < 0).any() || (t.array() >= n).any())
-        throw Error(path + ": face refers to vertex outside 0.." + std::to_string(n - 1));
-      mesh.triangles.push_back(t);
-    }
+  for (std::size_t i = 0; i < vertex->count; ++i)
+    mesh.vertices.emplace_back(Eigen::Vector3d(x->values[i], y->values[i], z->values[i]).cast<float>());
+  const PlyElement* face = ply.find("face");
+  if (!face) return mesh;
+  const PlyProperty* idx = face->find("vertex_indices");
+  if (!idx) idx = face->find("vertex_index");
+  if (!idx || !idx->is_list) throw Error(path + ": PLY face element has no vertex_indices list");
+  const double n = static_cast<double>(mesh.vertices.size());
+  for (std::size_t f = 0; f < face->count; ++f) {
+    const double* v = idx->values.data() + idx->offsets[f];
+    const std::size_t len = idx->offsets[f + 1] - idx->offsets[f];
+    for (std::size_t k = 0; k < len; ++k)
+      if (v[k] < 0 || v[k] >= n)
+        throw Error(path + ": face " + std::to_string(f) + " refers to vertex outside 0.." +
+                    std::to_string(mesh.vertices.size() - 1));
+    for (std::size_t k = 2; k < len; ++k)
+      mesh.triangles.emplace_back(static_cast<int>(v[0]), static_cast<int>(v[k - 1]), static_cast<int>(v[k]));
   }
   return mesh;
 }
@@ -187,17 +199,13 @@ std::string lowerExtension(const std::string& path) {
 }  // namespace
 
 Mesh loadMesh(const std::string& path) {
-  pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
   std::error_code ec;
   if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no such mesh file");
   if (std::filesystem::file_size(path, ec) == 0) throw Error(path + ": empty file (0 bytes)");
   const std::string ext = lowerExtension(path);
   Mesh mesh;
-  pcl::PolygonMesh pm;
   if (ext == ".ply") {
-    checkPlyHeader(path);
-    if (pcl::io::loadPLYFile(path, pm) < 0) throw Error(path + ": not a readable PLY mesh");
-    mesh = fromPolygonMesh(path, pm);
+    mesh = loadPly(path);
   } else if (ext == ".obj") {
     mesh = loadObj(path);
   } else if (ext == ".stl") {

@@ -5,7 +5,6 @@
 #include <unistd.h>
 
 #include <cstdint>
-#include <cstdlib>
 #include <fstream>
 #include <string>
 
@@ -18,13 +17,6 @@ inline std::string writeInput(const std::uint8_t* data, std::size_t size, const 
   std::ofstream(path, std::ios::binary | std::ios::trunc).write(reinterpret_cast<const char*>(data),
                                                                 static_cast<std::streamsize>(size));
   return path;
-}
-
-// PCL's PLY reader still crashes on some inputs (tests/fuzz/open/): PLY is
-// fuzzed only when asked, until keyturn's own PLY reader replaces it.
-inline bool fuzzPly() {
-  static const bool on = std::getenv("KEYTURN_FUZZ_PLY") != nullptr;
-  return on;
 }
 
 }  // namespace keyturn::fuzz

@@ -6,7 +6,6 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
-  if ((data[0] & 1) && !keyturn::fuzz::fuzzPly()) return 0;
   const std::string path = keyturn::fuzz::writeInput(data + 1, size - 1, data[0] & 1 ? "in.ply" : "in.pcd");
   try {
     const keyturn::Cloud c = keyturn::loadCloud(path);

@@ -33,3 +33,21 @@ TEST(FuzzRegression, ObjVertexWithAMissingCoordinateIsNamed) {
   const std::string msg = errorOf([] { keyturn::sim::loadMesh(KEYTURN_REGRESSIONS "/obj_vertex_missing_coordinate.obj"); });
   EXPECT_NE(msg.find("obj_vertex_missing_coordinate.obj: line 1: a vertex needs x y z"), std::string::npos) << msg;
 }
+
+TEST(FuzzRegression, PlyCloudThatCrashedPclsVertexCallbackIsReadWithinItsBytes) {
+  // Crashed PCL's PLYReader::vertexScalarPropertyCallback<float> (SEGV): an organized-cloud
+  // header (2 × 3 grid) over 11 vertices plus a range_grid list. keyturn's own reader reads
+  // the 11 vertices and, as the grid does not match, leaves the cloud unorganized.
+  const auto cloud = keyturn::loadCloud(KEYTURN_REGRESSIONS "/ply_cloud_crash_in_pcl_vertex_callback.ply");
+  EXPECT_EQ(cloud.points.size(), 11u);
+  EXPECT_EQ(cloud.height, 1u);
+  EXPECT_EQ(cloud.amplitude.size(), 11u);
+}
+
+TEST(FuzzRegression, PlyMeshWithAGarbledPropertyLineIsNamed) {
+  // Crashed PCL's PLYReader::vertexListPropertyContentCallback<int> (SEGV).
+  const std::string msg = errorOf([] { keyturn::sim::loadMesh(KEYTURN_REGRESSIONS "/ply_mesh_crash_in_pcl_list_callback.ply"); });
+  EXPECT_NE(msg.find("ply_mesh_crash_in_pcl_list_callback.ply: header line 5: unknown keyword 'prorfte'"),
+            std::string::npos)
+      << msg;
+}

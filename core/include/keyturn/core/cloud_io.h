@@ -22,10 +22,6 @@ Cloud loadCloud(const std::string& path);
 void saveCloud(const std::string& path, const Cloud& cloud,
                PcdEncoding encoding = PcdEncoding::BinaryCompressed);
 
-// Throws when a PLY header promises more elements than the file can hold, so
-// no reader allocates for them (PCL's does, before reading any data).
-void checkPlyHeader(const std::string& path);
-
 // x, y, z (any numeric type: PLY meshes often store doubles) plus amplitude or
 // intensity and confidence from a PCL blob. `source` names it in errors.
 Cloud cloudFromPclBlob(const std::string& source, const pcl::PCLPointCloud2& blob);

@@ -1,0 +1,125 @@
+// keyturn's own PLY reader: formats, types, lists, organized clouds and the
+// errors a malformed file must produce.
+#include "keyturn/core/ply_reader.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+
+#include "keyturn/core/cloud_io.h"
+#include "support/error_of.h"
+#include "support/synthetic_clouds.h"
+
+using namespace keyturn;
+namespace fs = std::filesystem;
+
+namespace {
+
+std::string write(const std::string& name, const std::string& bytes) {
+  const fs::path dir = fs::temp_directory_path() / "keyturn_ply_reader_test";
+  fs::create_directories(dir);
+  const std::string path = (dir / name).string();
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+template <typename T>
+std::string bytesOf(T v, bool big_endian) {
+  std::string s(sizeof v, '\0');
+  std::memcpy(s.data(), &v, sizeof v);
+  if (big_endian) std::reverse(s.begin(), s.end());
+  return s;
+}
+
+const char* kMeshHeader =
+    "element vertex 3\nproperty double x\nproperty double y\nproperty double z\n"
+    "element face 1\nproperty list uchar int vertex_indices\nend_header\n";
+
+std::string binaryTriangle(bool big) {
+  std::string s = std::string("ply\nformat ") + (big ? "binary_big_endian" : "binary_little_endian") +
+                  " 1.0\ncomment made by a test\n" + kMeshHeader;
+  const double xyz[9] = {0, 0, 0, 1.5, 0, 0, 0, -2.25, 0.125};
+  for (double v : xyz) s += bytesOf(v, big);
+  s += bytesOf(std::uint8_t{3}, big);
+  for (std::int32_t i : {0, 1, 2}) s += bytesOf(i, big);
+  return s;
+}
+
+}  // namespace
+
+class PlyByteOrder : public ::testing::TestWithParam<bool> {};
+
+TEST_P(PlyByteOrder, ReadsDoublesAndAFaceList) {
+  const PlyData ply = readPly(write("tri.ply", binaryTriangle(GetParam())));
+  const PlyElement* v = ply.find("vertex");
+  ASSERT_NE(v, nullptr);
+  ASSERT_EQ(v->count, 3u);
+  EXPECT_DOUBLE_EQ(v->find("x")->values[1], 1.5);
+  EXPECT_DOUBLE_EQ(v->find("y")->values[2], -2.25);
+  EXPECT_DOUBLE_EQ(v->find("z")->values[2], 0.125);
+  const PlyProperty* idx = ply.find("face")->find("vertex_indices");
+  ASSERT_TRUE(idx->is_list);
+  EXPECT_EQ(idx->offsets, (std::vector<std::size_t>{0, 3}));
+  EXPECT_EQ(idx->values, (std::vector<double>{0, 1, 2}));
+}
+
+INSTANTIATE_TEST_SUITE_P(LittleAndBig, PlyByteOrder, ::testing::Values(false, true));
+
+TEST(PlyReader, AsciiWithCrLfAndNegativeIntegers) {
+  const PlyData ply = readPly(write("a.ply",
+                                    "ply\r\nformat ascii 1.0\r\nelement vertex 2\r\nproperty float x\r\n"
+                                    "property short y\r\nproperty uchar z\r\nend_header\r\n0.5 -7 255\r\n1e-3 3 0\r\n"));
+  const PlyElement* v = ply.find("vertex");
+  EXPECT_FLOAT_EQ(static_cast<float>(v->find("x")->values[1]), 1e-3f);
+  EXPECT_EQ(v->find("y")->values[0], -7);
+  EXPECT_EQ(v->find("z")->values[0], 255);
+}
+
+TEST(PlyReader, OrganizedCloudWrittenByKeyturnKeepsItsGrid) {
+  Cloud c = test::organizedPlanes(16, 12, 50.f, 1.0f, 0.8f, 4, 9, 3, 7);
+  c.amplitude.assign(c.size(), 0.25f);
+  ASSERT_TRUE(c.organized());
+  const std::string path = write("org.ply", "");
+  saveCloud(path, c);
+  const Cloud r = loadCloud(path);
+  EXPECT_EQ(r.width, c.width);
+  EXPECT_EQ(r.height, c.height);
+  ASSERT_EQ(r.size(), c.size());
+  for (std::size_t i = 0; i < c.size(); ++i)
+    if (c.points[i].allFinite()) EXPECT_NEAR((r.points[i] - c.points[i]).norm(), 0.f, 1e-6f);
+}
+
+TEST(PlyReader, MalformedFilesAreOneClearLine) {
+  struct Case {
+    const char* name;
+    std::string bytes;
+    const char* expected;
+  };
+  const std::string tri = binaryTriangle(false);
+  const Case cases[] = {
+      {"nomagic.ply", "format ascii 1.0\n", "must start with 'ply'"},
+      {"noend.ply", "ply\nformat ascii 1.0\nelement vertex 1\n", "no end_header"},
+      {"fmt.ply", "ply\nformat binary_middle_endian 1.0\nend_header\n", "unknown format"},
+      {"type.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty quad x\nend_header\n1\n",
+       "unknown property type 'quad'"},
+      {"orphan.ply", "ply\nformat ascii 1.0\nproperty float x\nend_header\n", "a property before any element"},
+      {"cut.ply", tri.substr(0, tri.size() - 5), "the data ends inside element 'face' item 0"},
+      {"word.ply", "ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\nabc\n",
+       "bad number 'abc'"},
+      {"frac.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nend_header\n1 2.5\n",
+       "non-integer '2.5'"},
+      {"neglist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list int int v\nend_header\n-4 1\n",
+       "bad list length -4"},
+      {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
+       "promises 99999999999 items"},
+  };
+  for (const auto& c : cases) {
+    const std::string path = write(c.name, c.bytes);
+    const std::string msg = test::errorOf([&] { readPly(path); });
+    EXPECT_NE(msg.find(path + ": "), std::string::npos) << c.name << ": " << msg;
+    EXPECT_NE(msg.find(c.expected), std::string::npos) << c.name << ": " << msg;
+  }
+}
