@@ -1,0 +1,59 @@
+#pragma once
+// The two classifiers of the paper (§5.2): gradient boosting (XGBoost, softmax
+// over classes) and a small fully connected network (libtorch). Both are
+// seeded, so the same data and parameters give the same model.
+#include <Eigen/Core>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+namespace keyturn::learning {
+
+// One row per view (features), row-major so rows hand straight to the libraries.
+using Matrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+struct XgboostParams {
+  double eta = 0.3;          // XGBoost's default learning rate
+  int max_depth = 6;         // XGBoost's default
+  int rounds = 40;
+  double subsample = 1.0;
+  double colsample_bytree = 1.0;
+  int threads = 0;           // 0: all cores
+};
+
+struct MlpParams {
+  int hidden = 200;          // §7.2.2: one hidden layer of 200 ReLU units
+  int layers = 1;
+  double dropout = 0.1;
+  double learning_rate = 1e-3;  // Adam
+  int epochs = 60;
+  int batch = 64;
+  bool sigmoid_output = false;  // the paper's Keras output layer; softmax + cross-entropy otherwise
+};
+
+struct ClassifierParams {
+  std::string kind = "xgboost";  // xgboost | mlp
+  std::uint64_t seed = 7;
+  XgboostParams xgboost;
+  MlpParams mlp;
+};
+
+class Classifier {
+ public:
+  virtual ~Classifier() = default;
+  // y holds class indices 0 .. classes - 1.
+  virtual void fit(const Matrix& x, const std::vector<int>& y, int classes) = 0;
+  // One row of class probabilities per input row.
+  virtual Matrix predictProba(const Matrix& x) const = 0;
+  // Writes the model's own file(s) at `path` (XGBoost JSON, or a libtorch archive).
+  virtual void save(const std::string& path) const = 0;
+  virtual void load(const std::string& path, int inputs, int classes) = 0;
+};
+
+// Throws keyturn::Error for an unknown kind.
+std::unique_ptr<Classifier> makeClassifier(const ClassifierParams& params);
+
+std::vector<int> argmaxRows(const Matrix& probabilities);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,42 @@
+#pragma once
+// The per-view feature cache of a dataset: one row per view with its labels,
+// keypoint count and every feature block (PDFs, peer descriptors), stored as
+// CSV so shards computed on different machines merge by concatenation and
+// any tool can read it. docs/results.md describes the columns.
+#include <map>
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/classifier.h"
+
+namespace keyturn::learning {
+
+struct FeatureRow {
+  std::string id;                       // view stem relative to the dataset root
+  std::string cls, instance, elevation;
+  int keypoints = 0;                    // K (ISS); -1 when the view could not be described
+  std::string problem;                  // why a block is missing ("" when none is)
+  std::vector<float> values;            // all blocks back to back; NaN = missing
+};
+
+struct FeatureTable {
+  std::vector<std::string> blocks;      // "kpd2", "u_kpd2", "d2", "esf", …
+  std::vector<int> sizes;               // bins per block
+  std::map<std::string, std::string> spec;  // parameters that produced it
+  std::vector<FeatureRow> rows;
+
+  int width() const;
+  // Columns of the named blocks ("kpd2+gkpd2" concatenates) for the given rows.
+  // Throws keyturn::Error naming a block the table lacks.
+  Matrix select(const std::vector<std::string>& blocks, const std::vector<std::size_t>& rows) const;
+  int offset(const std::string& block) const;  // -1 when absent
+};
+
+// Writes atomically (temporary name, fsync, rename).
+void saveFeatureTable(const std::string& path, const FeatureTable& table);
+// Throws keyturn::Error "<path>: line N: …" on any malformed content.
+FeatureTable loadFeatureTable(const std::string& path);
+// Rows of shards with identical blocks and spec, in order; duplicate ids are an error.
+FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const std::vector<std::string>& names);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,39 @@
+#pragma once
+// A trained model on disk: a folder MODEL/ with model.json (the sidecar: which
+// classifier, its parameters, the class names and the feature specification)
+// and the classifier's own file (model.xgb.json for XGBoost, model.pt for the
+// libtorch network). Features computed another way are refused.
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/classifier.h"
+
+namespace keyturn::learning {
+
+struct ModelInfo {
+  ClassifierParams params;
+  std::vector<std::string> classes;
+  std::vector<std::string> blocks;            // feature blocks, concatenated in this order
+  int inputs = 0;
+  std::map<std::string, std::string> spec;    // every parameter that shapes the features
+};
+
+struct Model {
+  ModelInfo info;
+  std::unique_ptr<Classifier> classifier;
+};
+
+// Writes MODEL/ atomically (a temporary folder renamed into place).
+void saveModel(const std::string& dir, const Model& model);
+// Throws keyturn::Error naming the file for a missing, corrupt or inconsistent model.
+Model loadModel(const std::string& dir);
+// Parses a sidecar's text (exposed for the fuzzer); `source` names it in errors.
+ModelInfo parseModelSidecar(const std::string& text, const std::string& source);
+
+// "bins: model 32, features 64" for each key that differs; empty when they agree.
+std::vector<std::string> specDifferences(const std::map<std::string, std::string>& model,
+                                         const std::map<std::string, std::string>& features);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,32 @@
+#pragma once
+// Train/test splits for the evaluation protocols (docs/results.md). Each fold
+// lists row indices into the same feature table. Neighbouring turntable views
+// are near-duplicates, so only the group-wise protocols are leakage-free.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace keyturn::learning {
+
+struct Fold {
+  std::string name;  // "fold 3", "elevation 45", "instance ycb_004_sugar_box"
+  std::vector<std::size_t> train, test;
+};
+
+// k folds over n rows, shuffled with `seed` (the paper's protocol: k = 10, seed 7).
+std::vector<Fold> kFold(std::size_t n, int k, std::uint64_t seed);
+
+// One fold per distinct group value: test on that group, train on the rest.
+std::vector<Fold> leaveOneGroupOut(const std::vector<std::string>& groups, const std::string& label);
+
+// Category recognition: one fold per instance of every category that has two or
+// more instances; that instance is tested, never trained on. Single-instance
+// categories stay in training (as distractors) and get no fold.
+std::vector<Fold> leaveOneInstanceOut(const std::vector<std::string>& categories,
+                                      const std::vector<std::string>& instances);
+
+// A fixed split: rows whose id is listed in `test_ids` are tested, the rest trained on.
+// Throws keyturn::Error naming an id that matches no row.
+Fold fixedSplit(const std::vector<std::string>& ids, const std::vector<std::string>& test_ids);
+
+}  // namespace keyturn::learning

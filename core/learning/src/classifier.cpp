@@ -1,0 +1,21 @@
+#include "keyturn/learning/classifier.h"
+
+#include "keyturn/core/error.h"
+#include "mlp_classifier.h"
+#include "xgboost_classifier.h"
+
+namespace keyturn::learning {
+
+std::unique_ptr<Classifier> makeClassifier(const ClassifierParams& params) {
+  if (params.kind == "xgboost") return makeXgboostClassifier(params);
+  if (params.kind == "mlp") return makeMlpClassifier(params);
+  throw Error("unknown classifier '" + params.kind + "' (expected xgboost or mlp)");
+}
+
+std::vector<int> argmaxRows(const Matrix& p) {
+  std::vector<int> out(static_cast<std::size_t>(p.rows()));
+  for (Eigen::Index r = 0; r < p.rows(); ++r) p.row(r).maxCoeff(&out[static_cast<std::size_t>(r)]);
+  return out;
+}
+
+}  // namespace keyturn::learning

@@ -1,0 +1,125 @@
+#include "mlp_classifier.h"
+
+#include <torch/torch.h>
+
+#include <algorithm>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+
+namespace {
+
+struct MlpNetImpl : torch::nn::Module {
+  MlpNetImpl(int inputs, int classes, const MlpParams& p) {
+    mean = register_buffer("mean", torch::zeros({inputs}));
+    scale = register_buffer("scale", torch::ones({inputs}));
+    int width = inputs;
+    for (int l = 0; l < p.layers; ++l) {
+      layers->push_back(torch::nn::Linear(width, p.hidden));
+      layers->push_back(torch::nn::ReLU());
+      layers->push_back(torch::nn::Dropout(p.dropout));
+      width = p.hidden;
+    }
+    layers->push_back(torch::nn::Linear(width, classes));
+    register_module("layers", layers);
+  }
+  torch::Tensor forward(const torch::Tensor& x) { return layers->forward((x - mean) * scale); }
+
+  torch::Tensor mean, scale;
+  torch::nn::Sequential layers;
+};
+TORCH_MODULE(MlpNet);
+
+torch::Tensor toTensor(const Matrix& x) {
+  return torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32).clone();
+}
+
+class MlpClassifier : public Classifier {
+ public:
+  explicit MlpClassifier(const ClassifierParams& p) : params_(p) {
+    // The nets are small: one thread is fastest and keeps results repeatable.
+    torch::set_num_threads(1);
+  }
+
+  void fit(const Matrix& x, const std::vector<int>& y, int classes) override {
+    if (x.rows() != static_cast<Eigen::Index>(y.size()) || x.rows() == 0)
+      throw Error("MLP: " + std::to_string(x.rows()) + " feature rows for " + std::to_string(y.size()) + " labels");
+    const MlpParams& p = params_.mlp;
+    torch::manual_seed(params_.seed);
+    build(static_cast<int>(x.cols()), classes);
+    const torch::Tensor inputs = toTensor(x);
+    const torch::Tensor labels = torch::tensor(std::vector<std::int64_t>(y.begin(), y.end()), torch::kInt64);
+    net_->mean.copy_(inputs.mean(0));
+    net_->scale.copy_(1.0 / (inputs.std(0, /*unbiased=*/false) + 1e-6));
+    torch::optim::Adam adam(net_->parameters(), torch::optim::AdamOptions(p.learning_rate));
+    const std::int64_t n = inputs.size(0);
+    const torch::Tensor one_hot = torch::one_hot(labels, classes).to(torch::kFloat32);
+    net_->train();
+    for (int epoch = 0; epoch < p.epochs; ++epoch) {
+      const torch::Tensor order = torch::randperm(n, torch::kInt64);
+      for (std::int64_t start = 0; start < n; start += p.batch) {
+        const torch::Tensor idx = order.slice(0, start, std::min<std::int64_t>(n, start + p.batch));
+        const torch::Tensor out = net_->forward(inputs.index_select(0, idx));
+        const torch::Tensor loss =
+            p.sigmoid_output
+                ? torch::binary_cross_entropy_with_logits(out, one_hot.index_select(0, idx))
+                : torch::nn::functional::cross_entropy(out, labels.index_select(0, idx));
+        adam.zero_grad();
+        loss.backward();
+        adam.step();
+      }
+    }
+    net_->eval();
+  }
+
+  Matrix predictProba(const Matrix& x) const override {
+    if (!net_) throw Error("MLP: the model is not trained or loaded");
+    torch::NoGradGuard no_grad;
+    const torch::Tensor logits = net_->forward(toTensor(x));
+    torch::Tensor prob = params_.mlp.sigmoid_output ? torch::sigmoid(logits) : torch::softmax(logits, 1);
+    if (params_.mlp.sigmoid_output) prob = prob / prob.sum(1, true);
+    prob = prob.contiguous();
+    return Eigen::Map<const Matrix>(prob.data_ptr<float>(), prob.size(0), prob.size(1));
+  }
+
+  void save(const std::string& path) const override {
+    try {
+      torch::save(net_, path);
+    } catch (const c10::Error& e) {
+      throw Error(path + ": cannot write the network: " + e.what_without_backtrace());
+    }
+  }
+
+  void load(const std::string& path, int inputs, int classes) override {
+    build(inputs, classes);
+    try {
+      torch::load(net_, path);
+    } catch (const c10::Error& e) {
+      throw Error(path + ": not a network of " + std::to_string(inputs) + " inputs and " + std::to_string(classes) +
+                  " classes as its sidecar says (" + std::string(e.what_without_backtrace()).substr(0, 160) + ")");
+    }
+    // libtorch replaces each tensor wholesale on load: check the shapes it brought.
+    const auto params = net_->parameters();
+    const std::int64_t got_in = net_->mean.numel(), got_out = params.back().size(0);
+    if (got_in != inputs || got_out != classes || params.front().size(1) != inputs)
+      throw Error(path + ": the network takes " + std::to_string(params.front().size(1)) + " inputs and gives " +
+                  std::to_string(got_out) + " classes; its sidecar says " + std::to_string(inputs) + " and " +
+                  std::to_string(classes));
+    net_->eval();
+  }
+
+ private:
+  void build(int inputs, int classes) { net_ = MlpNet(inputs, classes, params_.mlp); }
+
+  ClassifierParams params_;
+  mutable MlpNet net_{nullptr};  // forward() is not const in libtorch
+};
+
+}  // namespace
+
+std::unique_ptr<Classifier> makeMlpClassifier(const ClassifierParams& params) {
+  return std::make_unique<MlpClassifier>(params);
+}
+
+}  // namespace keyturn::learning

@@ -1,0 +1,141 @@
+#include "keyturn/learning/model_file.h"
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "atomic_write.h"
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr const char* kFormat = "keyturn-model";
+constexpr int kVersion = 1;
+
+std::string weightsName(const std::string& kind) { return kind == "mlp" ? "model.pt" : "model.xgb.json"; }
+
+json toJson(const ModelInfo& m) {
+  const auto& p = m.params;
+  return json{{"format", kFormat},
+              {"version", kVersion},
+              {"classifier", p.kind},
+              {"seed", p.seed},
+              {"xgboost",
+               {{"eta", p.xgboost.eta},
+                {"max_depth", p.xgboost.max_depth},
+                {"rounds", p.xgboost.rounds},
+                {"subsample", p.xgboost.subsample},
+                {"colsample_bytree", p.xgboost.colsample_bytree}}},
+              {"mlp",
+               {{"hidden", p.mlp.hidden},
+                {"layers", p.mlp.layers},
+                {"dropout", p.mlp.dropout},
+                {"learning_rate", p.mlp.learning_rate},
+                {"epochs", p.mlp.epochs},
+                {"batch", p.mlp.batch},
+                {"sigmoid_output", p.mlp.sigmoid_output}}},
+              {"classes", m.classes},
+              {"blocks", m.blocks},
+              {"inputs", m.inputs},
+              {"feature_spec", m.spec},
+              {"weights", weightsName(p.kind)}};
+}
+
+}  // namespace
+
+ModelInfo parseModelSidecar(const std::string& text, const std::string& source) {
+  json j;
+  try {
+    j = json::parse(text);
+  } catch (const json::exception& e) {
+    throw Error(source + ": not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
+  }
+  ModelInfo m;
+  try {
+    if (!j.is_object() || j.value("format", "") != kFormat) throw Error(source + ": not a keyturn model sidecar");
+    if (j.at("version").get<int>() != kVersion)
+      throw Error(source + ": model format version " + j.at("version").dump() + " is not supported (expected 1)");
+    auto& p = m.params;
+    p.kind = j.at("classifier").get<std::string>();
+    if (p.kind != "xgboost" && p.kind != "mlp") throw Error(source + ": unknown classifier '" + p.kind + "'");
+    p.seed = j.at("seed").get<std::uint64_t>();
+    const auto& x = j.at("xgboost");
+    p.xgboost.eta = x.at("eta").get<double>();
+    p.xgboost.max_depth = x.at("max_depth").get<int>();
+    p.xgboost.rounds = x.at("rounds").get<int>();
+    p.xgboost.subsample = x.at("subsample").get<double>();
+    p.xgboost.colsample_bytree = x.at("colsample_bytree").get<double>();
+    const auto& n = j.at("mlp");
+    p.mlp.hidden = n.at("hidden").get<int>();
+    p.mlp.layers = n.at("layers").get<int>();
+    p.mlp.dropout = n.at("dropout").get<double>();
+    p.mlp.learning_rate = n.at("learning_rate").get<double>();
+    p.mlp.epochs = n.at("epochs").get<int>();
+    p.mlp.batch = n.at("batch").get<int>();
+    p.mlp.sigmoid_output = n.at("sigmoid_output").get<bool>();
+    m.classes = j.at("classes").get<std::vector<std::string>>();
+    m.blocks = j.at("blocks").get<std::vector<std::string>>();
+    m.inputs = j.at("inputs").get<int>();
+    m.spec = j.at("feature_spec").get<std::map<std::string, std::string>>();
+  } catch (const json::exception& e) {
+    throw Error(source + ": " + std::string(e.what()).substr(0, 160));
+  }
+  if (m.classes.size() < 2) throw Error(source + ": a model needs at least two classes");
+  if (m.inputs <= 0 || m.inputs > 1 << 20) throw Error(source + ": bad input count " + std::to_string(m.inputs));
+  if (m.blocks.empty()) throw Error(source + ": the model names no feature blocks");
+  const auto& mp = m.params.mlp;
+  if (mp.hidden <= 0 || mp.hidden > 1 << 16 || mp.layers <= 0 || mp.layers > 16 || mp.dropout < 0 || mp.dropout >= 1)
+    throw Error(source + ": bad network shape (hidden " + std::to_string(mp.hidden) + ", layers " +
+                std::to_string(mp.layers) + ")");
+  return m;
+}
+
+void saveModel(const std::string& dir, const Model& model) {
+  if (!model.classifier) throw Error(dir + ": no trained classifier to save");
+  const fs::path target(dir);
+  const fs::path tmp = target.string() + ".tmp";
+  std::error_code ec;
+  fs::remove_all(tmp, ec);
+  fs::create_directories(tmp, ec);
+  if (ec) throw Error(tmp.string() + ": cannot create (" + ec.message() + ")");
+  model.classifier->save((tmp / weightsName(model.info.params.kind)).string());
+  writeFileAtomically((tmp / "model.json").string(), toJson(model.info).dump(2) + "\n");
+  fs::remove_all(target, ec);
+  fs::rename(tmp, target, ec);
+  if (ec) throw Error(dir + ": cannot move the model into place (" + ec.message() + ")");
+}
+
+Model loadModel(const std::string& dir) {
+  const fs::path sidecar = fs::path(dir) / "model.json";
+  std::ifstream in(sidecar, std::ios::binary);
+  if (!in) throw Error(dir + ": not a keyturn model (no model.json)");
+  const std::string text(std::istreambuf_iterator<char>(in), {});
+  Model m;
+  m.info = parseModelSidecar(text, sidecar.string());
+  const fs::path weights = fs::path(dir) / weightsName(m.info.params.kind);
+  if (!fs::is_regular_file(weights)) throw Error(weights.string() + ": missing (the sidecar needs it)");
+  m.classifier = makeClassifier(m.info.params);
+  m.classifier->load(weights.string(), m.info.inputs, static_cast<int>(m.info.classes.size()));
+  return m;
+}
+
+std::vector<std::string> specDifferences(const std::map<std::string, std::string>& model,
+                                         const std::map<std::string, std::string>& features) {
+  std::vector<std::string> out;
+  for (const auto& [k, v] : model) {
+    const auto it = features.find(k);
+    const std::string have = it == features.end() ? "(not set)" : it->second;
+    if (have != v) out.push_back(k + ": model " + v + ", features " + have);
+  }
+  for (const auto& [k, v] : features)
+    if (!model.count(k)) out.push_back(k + ": model (not set), features " + v);
+  return out;
+}
+
+}  // namespace keyturn::learning

@@ -1,0 +1,89 @@
+#include "keyturn/learning/splits.h"
+
+#include <algorithm>
+#include <map>
+#include <numeric>
+#include <random>
+#include <set>
+#include <unordered_set>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+
+std::vector<Fold> kFold(std::size_t n, int k, std::uint64_t seed) {
+  if (k < 2) throw Error("k-fold needs k >= 2 (got " + std::to_string(k) + ")");
+  if (n < static_cast<std::size_t>(k))
+    throw Error("k-fold with k = " + std::to_string(k) + " needs at least k rows (got " + std::to_string(n) + ")");
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  std::vector<Fold> folds(static_cast<std::size_t>(k));
+  for (int f = 0; f < k; ++f) {
+    folds[f].name = "fold " + std::to_string(f + 1);
+    // Fold f takes positions [f n / k, (f + 1) n / k): sizes differ by at most one.
+    const std::size_t lo = f * n / k, hi = (f + 1) * n / k;
+    for (std::size_t p = 0; p < n; ++p) (p >= lo && p < hi ? folds[f].test : folds[f].train).push_back(order[p]);
+    std::sort(folds[f].test.begin(), folds[f].test.end());
+    std::sort(folds[f].train.begin(), folds[f].train.end());
+  }
+  return folds;
+}
+
+std::vector<Fold> leaveOneGroupOut(const std::vector<std::string>& groups, const std::string& label) {
+  const std::set<std::string> distinct(groups.begin(), groups.end());
+  if (distinct.size() < 2)
+    throw Error("leave-one-" + label + "-out needs at least two " + label + "s (the data has " +
+                std::to_string(distinct.size()) + ")");
+  std::vector<Fold> folds;
+  for (const auto& g : distinct) {
+    Fold f;
+    f.name = label + " " + g;
+    for (std::size_t i = 0; i < groups.size(); ++i) (groups[i] == g ? f.test : f.train).push_back(i);
+    folds.push_back(std::move(f));
+  }
+  return folds;
+}
+
+std::vector<Fold> leaveOneInstanceOut(const std::vector<std::string>& categories,
+                                      const std::vector<std::string>& instances) {
+  if (categories.size() != instances.size()) throw Error("leave-one-instance-out: one category per row is needed");
+  std::map<std::string, std::set<std::string>> per_category;
+  for (std::size_t i = 0; i < categories.size(); ++i) per_category[categories[i]].insert(instances[i]);
+  std::vector<Fold> folds;
+  for (const auto& [category, members] : per_category) {
+    if (members.size() < 2) continue;
+    for (const auto& inst : members) {
+      Fold f;
+      f.name = "instance " + inst;
+      for (std::size_t i = 0; i < instances.size(); ++i)
+        (instances[i] == inst && categories[i] == category ? f.test : f.train).push_back(i);
+      folds.push_back(std::move(f));
+    }
+  }
+  if (folds.empty())
+    throw Error("leave-one-instance-out needs a category with at least two instances (none has)");
+  return folds;
+}
+
+Fold fixedSplit(const std::vector<std::string>& ids, const std::vector<std::string>& test_ids) {
+  const std::unordered_set<std::string> wanted(test_ids.begin(), test_ids.end());
+  std::unordered_set<std::string> seen;
+  Fold f;
+  f.name = "fixed split";
+  for (std::size_t i = 0; i < ids.size(); ++i) {
+    if (wanted.count(ids[i])) {
+      f.test.push_back(i);
+      seen.insert(ids[i]);
+    } else {
+      f.train.push_back(i);
+    }
+  }
+  for (const auto& id : test_ids)
+    if (!seen.count(id)) throw Error("fixed split: test view '" + id + "' is not in the dataset");
+  if (f.train.empty()) throw Error("fixed split: every view is a test view, nothing is left to train on");
+  return f;
+}
+
+}  // namespace keyturn::learning

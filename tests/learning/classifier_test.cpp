@@ -1,0 +1,161 @@
+// Both classifiers learn a separable problem, are repeatable by seed, and a
+// saved model predicts exactly what the trained one did; a model refuses
+// features computed another way.
+#include "keyturn/learning/classifier.h"
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "keyturn/learning/model_file.h"
+#include "support/error_of.h"
+
+using namespace keyturn::learning;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Three classes: Gaussian blobs in 12 dimensions whose centres differ in a few features.
+void blobs(int per_class, std::uint64_t seed, Matrix& x, std::vector<int>& y) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> noise(0.f, 0.35f);
+  x.resize(3 * per_class, 12);
+  y.clear();
+  for (int c = 0; c < 3; ++c)
+    for (int i = 0; i < per_class; ++i) {
+      const int r = c * per_class + i;
+      for (int k = 0; k < 12; ++k) x(r, k) = noise(rng) + (k % 3 == c ? 1.f : 0.f);
+      y.push_back(c);
+    }
+}
+
+double accuracy(const std::vector<int>& predicted, const std::vector<int>& truth) {
+  int ok = 0;
+  for (std::size_t i = 0; i < truth.size(); ++i) ok += predicted[i] == truth[i];
+  return static_cast<double>(ok) / static_cast<double>(truth.size());
+}
+
+ClassifierParams paramsFor(const std::string& kind) {
+  ClassifierParams p;
+  p.kind = kind;
+  p.xgboost.rounds = 20;
+  p.xgboost.threads = 1;
+  p.mlp.epochs = 30;
+  return p;
+}
+
+fs::path tempDir() {
+  const fs::path d = fs::temp_directory_path() / "keyturn_learning_test";
+  fs::create_directories(d);
+  return d;
+}
+
+}  // namespace
+
+class ClassifierKind : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ClassifierKind, LearnsSeparableClassesAndGivesProbabilities) {
+  Matrix train, test;
+  std::vector<int> y_train, y_test;
+  blobs(60, 1, train, y_train);
+  blobs(40, 2, test, y_test);
+  auto clf = makeClassifier(paramsFor(GetParam()));
+  clf->fit(train, y_train, 3);
+  const Matrix p = clf->predictProba(test);
+  ASSERT_EQ(p.rows(), test.rows());
+  ASSERT_EQ(p.cols(), 3);
+  for (Eigen::Index r = 0; r < p.rows(); ++r) EXPECT_NEAR(p.row(r).sum(), 1.f, 1e-4f);
+  EXPECT_GT(accuracy(argmaxRows(p), y_test), 0.9);
+  // Labels shuffled against the features: nothing to learn, near chance (1/3).
+  std::vector<int> shuffled = y_train;
+  std::shuffle(shuffled.begin(), shuffled.end(), std::mt19937(3));
+  auto chance = makeClassifier(paramsFor(GetParam()));
+  chance->fit(train, shuffled, 3);
+  EXPECT_LT(accuracy(argmaxRows(chance->predictProba(test)), y_test), 0.6);
+}
+
+TEST_P(ClassifierKind, SameSeedSameModel) {
+  Matrix x;
+  std::vector<int> y;
+  blobs(30, 4, x, y);
+  auto a = makeClassifier(paramsFor(GetParam()));
+  auto b = makeClassifier(paramsFor(GetParam()));
+  a->fit(x, y, 3);
+  b->fit(x, y, 3);
+  EXPECT_TRUE(a->predictProba(x).isApprox(b->predictProba(x), 1e-6f));
+}
+
+TEST_P(ClassifierKind, SavedModelPredictsIdentically) {
+  Matrix x, test;
+  std::vector<int> y, y_test;
+  blobs(30, 5, x, y);
+  blobs(20, 6, test, y_test);
+  Model m;
+  m.info.params = paramsFor(GetParam());
+  m.info.classes = {"bottle", "can", "mug"};
+  m.info.blocks = {"kpd2"};
+  m.info.inputs = 12;
+  m.info.spec = {{"bins", "12"}, {"keypoints", "iss"}};
+  m.classifier = makeClassifier(m.info.params);
+  m.classifier->fit(x, y, 3);
+  const std::string dir = (tempDir() / ("model_" + GetParam())).string();
+  saveModel(dir, m);
+  EXPECT_FALSE(fs::exists(dir + ".tmp"));
+  const Model back = loadModel(dir);
+  EXPECT_EQ(back.info.classes, m.info.classes);
+  EXPECT_EQ(back.info.spec, m.info.spec);
+  EXPECT_EQ(back.info.params.kind, GetParam());
+  const Matrix p0 = m.classifier->predictProba(test), p1 = back.classifier->predictProba(test);
+  EXPECT_EQ(p0, p1);  // bit for bit
+}
+
+INSTANTIATE_TEST_SUITE_P(XgboostAndMlp, ClassifierKind, ::testing::Values("xgboost", "mlp"));
+
+TEST(ModelFile, FeaturesComputedAnotherWayAreNamed) {
+  const auto diff = specDifferences({{"bins", "32"}, {"keypoints", "iss"}, {"extent_m", "0.35"}},
+                                    {{"bins", "64"}, {"keypoints", "iss"}, {"filter", "on"}});
+  ASSERT_EQ(diff.size(), 3u);
+  EXPECT_EQ(diff[0], "bins: model 32, features 64");
+  EXPECT_EQ(diff[1], "extent_m: model 0.35, features (not set)");
+  EXPECT_EQ(diff[2], "filter: model (not set), features on");
+  EXPECT_TRUE(specDifferences({{"bins", "32"}}, {{"bins", "32"}}).empty());
+}
+
+TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
+  for (const std::string kind : {"xgboost", "mlp"}) {
+    Matrix x;
+    std::vector<int> y;
+    blobs(20, 8, x, y);
+    Model m;
+    m.info.params = paramsFor(kind);
+    m.info.classes = {"a", "b", "c"};
+    m.info.blocks = {"kpd2"};
+    m.info.inputs = 12;
+    m.classifier = makeClassifier(m.info.params);
+    m.classifier->fit(x, y, 3);
+    const fs::path dir = tempDir() / ("bad_" + kind);
+    saveModel(dir.string(), m);
+    // Claim 16 inputs in the sidecar: the weights were trained on 12.
+    std::ifstream in(dir / "model.json");
+    std::string text((std::istreambuf_iterator<char>(in)), {});
+    text.replace(text.find("\"inputs\": 12"), 12, "\"inputs\": 16");
+    std::ofstream(dir / "model.json") << text;
+    const std::string msg = keyturn::test::errorOf([&] { loadModel(dir.string()); });
+    EXPECT_NE(msg.find(kind == "mlp" ? "model.pt" : "model.xgb.json"), std::string::npos) << kind << ": " << msg;
+    EXPECT_NE(msg.find("16"), std::string::npos) << msg;
+  }
+}
+
+TEST(ModelFile, CorruptSidecarsAreOneClearLine) {
+  EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{", "m.json"); }).find("m.json: not valid JSON"),
+            std::string::npos);
+  EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{\"format\":\"x\"}", "m.json"); })
+                .find("not a keyturn model sidecar"),
+            std::string::npos);
+  EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{\"format\":\"keyturn-model\",\"version\":1}", "m.json"); })
+                .find("m.json: "),
+            std::string::npos);
+  EXPECT_NE(keyturn::test::errorOf([] { loadModel("/nonexistent/model"); }).find("no model.json"), std::string::npos);
+}

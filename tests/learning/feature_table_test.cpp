@@ -1,0 +1,111 @@
+// The feature cache: CSV round trip, block selection, shard merging and the
+// errors a damaged cache produces.
+#include "keyturn/learning/feature_table.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+
+#include "support/error_of.h"
+
+using namespace keyturn::learning;
+namespace fs = std::filesystem;
+
+namespace {
+
+FeatureTable sample(int first_view, int views) {
+  FeatureTable t;
+  t.blocks = {"kpd2", "esf"};
+  t.sizes = {3, 2};
+  t.spec = {{"bins", "3"}, {"keypoints", "iss"}};
+  for (int v = first_view; v < first_view + views; ++v) {
+    FeatureRow r;
+    r.id = "mug/m1/e30/a" + std::to_string(v * 5);
+    r.cls = "mug";
+    r.instance = "m1";
+    r.elevation = "30";
+    r.keypoints = 10 + v;
+    r.values = {0.25f * v, 0.5f, 0.125f, 1e-7f, v == 1 ? std::nanf("") : 3.f};
+    if (v == 1) r.problem = "too few keypoints, 2";
+    t.rows.push_back(r);
+  }
+  return t;
+}
+
+std::string path(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / "keyturn_feature_table_test";
+  fs::create_directories(d);
+  return (d / name).string();
+}
+
+}  // namespace
+
+TEST(FeatureTable, RoundTripKeepsLabelsValuesAndMissingValues) {
+  const FeatureTable t = sample(0, 3);
+  saveFeatureTable(path("t.csv"), t);
+  const FeatureTable r = loadFeatureTable(path("t.csv"));
+  EXPECT_EQ(r.blocks, t.blocks);
+  EXPECT_EQ(r.sizes, t.sizes);
+  EXPECT_EQ(r.spec, t.spec);
+  ASSERT_EQ(r.rows.size(), 3u);
+  EXPECT_EQ(r.rows[2].id, "mug/m1/e30/a10");
+  EXPECT_EQ(r.rows[2].keypoints, 12);
+  EXPECT_EQ(r.rows[1].problem, "too few keypoints; 2");
+  EXPECT_FLOAT_EQ(r.rows[2].values[0], 0.5f);
+  EXPECT_FLOAT_EQ(r.rows[0].values[3], 1e-7f);
+  EXPECT_TRUE(std::isnan(r.rows[1].values[4]));
+}
+
+TEST(FeatureTable, SelectConcatenatesBlocksInTheAskedOrder) {
+  const FeatureTable t = sample(0, 3);
+  const Matrix m = t.select({"esf", "kpd2"}, {2, 0});
+  ASSERT_EQ(m.rows(), 2);
+  ASSERT_EQ(m.cols(), 5);
+  EXPECT_FLOAT_EQ(m(0, 1), 3.f);   // esf_1 of view 2
+  EXPECT_FLOAT_EQ(m(0, 2), 0.5f);  // kpd2_0 of view 2
+  EXPECT_FLOAT_EQ(m(1, 2), 0.f);   // kpd2_0 of view 0
+  EXPECT_NE(keyturn::test::errorOf([&] { t.select({"vfh"}, {0}); }).find("no 'vfh' block"), std::string::npos);
+}
+
+TEST(FeatureTable, ShardsMergeAndMismatchedShardsAreRefused) {
+  const FeatureTable merged = mergeFeatureTables({sample(0, 2), sample(2, 3)}, {"s1", "s2"});
+  EXPECT_EQ(merged.rows.size(), 5u);
+  EXPECT_EQ(merged.rows[4].id, "mug/m1/e30/a20");
+  FeatureTable other = sample(2, 1);
+  other.spec["bins"] = "64";
+  EXPECT_NE(keyturn::test::errorOf([&] { mergeFeatureTables({sample(0, 2), other}, {"s1", "s2"}); })
+                .find("s2: computed with other features"),
+            std::string::npos);
+  EXPECT_NE(keyturn::test::errorOf([&] { mergeFeatureTables({sample(0, 2), sample(1, 2)}, {"s1", "s2"}); })
+                .find("also in another shard"),
+            std::string::npos);
+}
+
+TEST(FeatureTable, DamagedCachesNameTheLine) {
+  saveFeatureTable(path("ok.csv"), sample(0, 2));
+  std::ifstream in(path("ok.csv"));
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  struct Case {
+    std::string from, to, expected;
+  };
+  const Case cases[] = {
+      {"# keyturn-features 1", "id,class", "not a keyturn feature cache"},
+      {",0.5,", ",0.5x,", "line 5: bad value '0.5x' in column kpd2_1"},
+      {"mug,m1,30,11,", "mug,m1,30,eleven,", "line 6: bad keypoint count 'eleven'"},
+      {"kpd2_2", "kpd2_7", "line 4: column 'kpd2_7' is out of order"},
+  };
+  for (const auto& c : cases) {
+    std::string broken = text;
+    const auto at = broken.find(c.from);
+    ASSERT_NE(at, std::string::npos) << c.from;
+    broken.replace(at, c.from.size(), c.to);
+    std::ofstream(path("bad.csv")) << broken;
+    const std::string msg = keyturn::test::errorOf([&] { loadFeatureTable(path("bad.csv")); });
+    EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
+  }
+  std::ofstream(path("short.csv")) << text.substr(0, text.size() - 9);
+  EXPECT_NE(keyturn::test::errorOf([&] { loadFeatureTable(path("short.csv")); }).find("cells, the header has"),
+            std::string::npos);
+}
