@@ -24,5 +24,9 @@ Command addSimulateCommand(CLI::App& app);
 Command addDemoCommand(CLI::App& app);
 Command addCalibrateCommand(CLI::App& app);
 Command addRepeatabilityCommand(CLI::App& app);
+Command addEvaluateCommand(CLI::App& app);
+Command addTrainCommand(CLI::App& app);
+Command addClassifyCommand(CLI::App& app);
+Command addConsistencyCommand(CLI::App& app);
 
 }  // namespace keyturn::app

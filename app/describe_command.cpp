@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "commands.h"
+#include "dataset_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
@@ -26,8 +27,34 @@ struct DescribeArgs {
   std::string out;
   int jobs = 0;
   bool quiet = false;
+  std::string shard;  // "I/N": dataset mode, this process's share of the views
   DescriptorFlags flags;
 };
+
+bool isDataset(const std::string& path) {
+  return std::filesystem::is_regular_file(std::filesystem::path(path) / "manifest.csv");
+}
+
+// A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
+int runDescribeDataset(const DescribeArgs& a) {
+  CacheRequest r;
+  r.dataset = a.inputs.front();
+  r.flags = a.flags;
+  r.jobs = a.jobs;
+  r.quiet = a.quiet;
+  if (!a.shard.empty()) {
+    int i = 0, n = 0;
+    char slash = 0;
+    std::istringstream in(a.shard);
+    if (!(in >> i >> slash >> n) || slash != '/' || !in.eof())
+      throw Error("--shard " + a.shard + ": expected I/N, e.g. 3/16");
+    r.shard = i - 1;
+    r.shards = n;
+  }
+  const std::string path = r.shards > 1 ? describeDatasetShard(r) : (loadOrDescribeDataset(r), cachePath(r.dataset, r.flags));
+  if (!a.quiet) std::cerr << "keyturn describe: feature cache → " << path << "\n";
+  return 0;
+}
 
 std::string csvHeader(const std::vector<Feature>& features, int bins) {
   std::ostringstream h;
@@ -69,6 +96,8 @@ void writeAtomically(const std::string& path, const std::string& text) {
 }
 
 int runDescribe(const DescribeArgs& a) {
+  if (a.inputs.size() == 1 && isDataset(a.inputs.front())) return runDescribeDataset(a);
+  if (!a.shard.empty()) throw Error("--shard needs a dataset folder (one with manifest.csv)");
   const DescriptorOptions options = a.flags.toOptions();
   ViewFileList list = collectViewFiles(a.inputs);
   for (const auto& e : list.errors) std::cerr << "keyturn describe: " << e << "\n";
@@ -138,6 +167,9 @@ Command addDescribeCommand(CLI::App& app) {
   cmd->add_option("--out,-o", args->out, "CSV file to write (default: standard output)");
   cmd->add_option("--jobs,-j", args->jobs, "Parallel files (default: all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress or summary");
+  cmd->add_option("--shard", args->shard,
+                  "With a dataset folder: describe only views i ≡ I-1 (mod N) into a shard of the feature "
+                  "cache (I/N, for array jobs; the shards merge when all are present)");
   args->flags.add(*cmd);
   return {cmd, [args] { return runDescribe(*args); }};
 }

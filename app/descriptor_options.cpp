@@ -4,8 +4,9 @@
 
 namespace keyturn::app {
 
-void DescriptorFlags::add(CLI::App& cmd) {
-  cmd.add_option("--features", features,
+void DescriptorFlags::add(CLI::App& cmd, bool with_features) {
+  if (with_features)
+    cmd.add_option("--features", features,
                  "Comma-separated keypoint/shape functions: kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2,"
                  "d1,d2,d3,d4,a3 ('+' joins a hybrid, same effect)")
       ->capture_default_str();

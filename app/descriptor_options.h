@@ -22,7 +22,8 @@ struct DescriptorFlags {
   unsigned long long seed = 7;
   int low_keypoints = 10;
 
-  void add(CLI::App& cmd);
+  // with_features = false: the dataset tools, whose feature cache holds every block.
+  void add(CLI::App& cmd, bool with_features = true);
   DescriptorOptions toOptions() const;  // throws keyturn::Error on bad values
 };
 

@@ -19,7 +19,9 @@ int main(int argc, char** argv) {
                              addGrabCommand(app), addDevicesCommand(app), addSimCommand(app),
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
                              addSimulateCommand(app), addDemoCommand(app),
-                             addCalibrateCommand(app), addRepeatabilityCommand(app)};
+                             addCalibrateCommand(app), addRepeatabilityCommand(app),
+                             addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app),
+                             addConsistencyCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

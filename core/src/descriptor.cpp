@@ -2,6 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
+#include <numeric>
+#include <random>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/histogram.h"
@@ -81,53 +84,77 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
     out.low_keypoints = out.keypointCount() < o.low_keypoints;
   }
 
-  std::vector<std::vector<float>> values(o.features.size());
-  for (std::size_t f = 0; f < o.features.size(); ++f) {
-    switch (o.features[f]) {
-      case Feature::KPD2: values[f] = keypointDistances(out.keypoints); break;
-      case Feature::KPD3: values[f] = keypointSqrtAreas(out.keypoints); break;
-      case Feature::KPA3: values[f] = keypointAngles(out.keypoints); break;
-      default: break;
-    }
-  }
-  out.times.kpd = clock.lap();
+  LocalCompleteGraph graph;
+  const bool need_graph = wants(o.features, isGeodesicFeature);
+  if (need_graph) graph = buildLocalCompleteGraph(set, search, out.resolution, o.graph);
+  out.times.graph = clock.lap();
 
-  if (wants(o.features, isGeodesicFeature)) {
-    LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, out.resolution, o.graph);
-    out.times.graph = clock.lap();
-    int which = 0;
-    for (Feature f : o.features) {
-      if (f == Feature::GKPD1) which |= kGkpd1;
-      if (f == Feature::GKPD2) which |= kGkpd2;
-      if (f == Feature::GKPCD2) which |= kGkpcd2;
-    }
-    GeodesicResult geo = geodesicKeypointDistances(graph, set, keypoints, which);
-    out.unreachable_keypoints = geo.unreachable_from_centroid;
-    out.unreachable_pairs = geo.unreachable_pairs;
+  // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.
+  auto pdfsFor = [&](const std::vector<int>& kp_index, bool with_shape_functions, GeodesicResult* geo_out) {
+    std::vector<Eigen::Vector3f> kp;
+    for (int i : kp_index) kp.push_back(set.points[i]);
+    std::vector<std::vector<float>> values(o.features.size());
     for (std::size_t f = 0; f < o.features.size(); ++f) {
-      if (o.features[f] == Feature::GKPD1) values[f] = std::move(geo.gkpd1);
-      if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2);
-      if (o.features[f] == Feature::GKPCD2) values[f] = std::move(geo.gkpcd2);
+      switch (o.features[f]) {
+        case Feature::KPD2: values[f] = keypointDistances(kp); break;
+        case Feature::KPD3: values[f] = keypointSqrtAreas(kp); break;
+        case Feature::KPA3: values[f] = keypointAngles(kp); break;
+        default: break;
+      }
     }
-    graph = LocalCompleteGraph();  // free it inside the timed geodesic stage
-    out.times.geodesic = clock.lap();
-  }
-
-  for (std::size_t f = 0; f < o.features.size(); ++f)
-    if (!isKeypointFeature(o.features[f]))
-      values[f] = osadaShapeFunction(set.points, osadaOf(o.features[f]), o.osada);
-  out.times.osada = clock.lap();
-
-  for (std::size_t f = 0; f < o.features.size(); ++f) {
-    HistogramRange range = featureRange(o.features[f], o.histogram);
-    if (o.histogram.mode == RangeMode::PerView && !isAngleFeature(o.features[f])) {
-      float hi = 0.f;
-      for (float v : values[f]) hi = std::max(hi, v);
-      range.hi = hi > 0.f ? hi : 1.0;
+    out.times.kpd += clock.lap();
+    if (need_graph) {
+      int which = 0;
+      for (Feature f : o.features) {
+        if (f == Feature::GKPD1) which |= kGkpd1;
+        if (f == Feature::GKPD2) which |= kGkpd2;
+        if (f == Feature::GKPCD2) which |= kGkpcd2;
+      }
+      GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which);
+      for (std::size_t f = 0; f < o.features.size(); ++f) {
+        if (o.features[f] == Feature::GKPD1) values[f] = std::move(geo.gkpd1);
+        if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2);
+        if (o.features[f] == Feature::GKPCD2) values[f] = std::move(geo.gkpcd2);
+      }
+      if (geo_out) *geo_out = std::move(geo);
+      out.times.geodesic += clock.lap();
     }
-    out.pdfs.push_back(histogramPdf(values[f], o.histogram.bins, range));
+    for (std::size_t f = 0; f < o.features.size(); ++f)
+      if (!isKeypointFeature(o.features[f]) && with_shape_functions)
+        values[f] = osadaShapeFunction(set.points, osadaOf(o.features[f]), o.osada);
+    out.times.osada += clock.lap();
+    std::vector<std::vector<double>> pdfs;
+    for (std::size_t f = 0; f < o.features.size(); ++f) {
+      if (!with_shape_functions && !isKeypointFeature(o.features[f])) {
+        pdfs.emplace_back();
+        continue;
+      }
+      HistogramRange range = featureRange(o.features[f], o.histogram);
+      if (o.histogram.mode == RangeMode::PerView && !isAngleFeature(o.features[f])) {
+        float hi = 0.f;
+        for (float v : values[f]) hi = std::max(hi, v);
+        range.hi = hi > 0.f ? hi : 1.0;
+      }
+      pdfs.push_back(histogramPdf(values[f], o.histogram.bins, range));
+    }
+    out.times.histogram += clock.lap();
+    return pdfs;
+  };
+
+  GeodesicResult geo;
+  out.pdfs = pdfsFor(keypoints, true, &geo);
+  out.unreachable_keypoints = geo.unreachable_from_centroid;
+  out.unreachable_pairs = geo.unreachable_pairs;
+  if (o.random_keypoints_twin && need_kp) {
+    // The same number of keypoints drawn uniformly from the filtered points:
+    // what the keypoint functions give without ISS's choice of points.
+    std::vector<int> all(set.size());
+    std::iota(all.begin(), all.end(), 0);
+    std::vector<int> drawn;
+    std::sample(all.begin(), all.end(), std::back_inserter(drawn), keypoints.size(), std::mt19937_64(o.random_seed));
+    out.random_keypoint_pdfs = pdfsFor(drawn, false, nullptr);
   }
-  out.times.histogram = clock.lap();
+  graph = LocalCompleteGraph();
   out.times.total =
       std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return out;

@@ -1,12 +1,24 @@
 #include "keyturn/core/pcl_baselines.h"
 
+#include <fcntl.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
 #include <pcl/features/esf.h>
 #include <pcl/features/normal_3d.h>
+#include <pcl/features/our_cvfh.h>
 #include <pcl/features/vfh.h>
 #include <pcl/keypoints/iss_3d.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/search/kdtree.h>
+
+#include "keyturn/core/error.h"
 
 namespace keyturn {
 namespace {
@@ -66,6 +78,99 @@ std::vector<float> pclVfh(const PointSet& set, double normal_radius) {
   vfh.compute(out);
   if (out.empty()) return {};
   return std::vector<float>(out[0].histogram, out[0].histogram + 308);
+}
+
+std::vector<float> ourCvfhInProcess(const PointSet& set, double normal_radius) {
+  auto cloud = toPcl(set);
+  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setInputCloud(cloud);
+  ne.setSearchMethod(tree);
+  ne.setRadiusSearch(normal_radius);
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+  ne.compute(*normals);
+  // Points with too few neighbours get NaN normals; PCL's OUR-CVFH then builds a
+  // NaN reference frame and indexes its histogram out of bounds (an assertion in
+  // Debian's build). Keep only points with a finite normal.
+  pcl::PointCloud<pcl::PointXYZ>::Ptr kept(new pcl::PointCloud<pcl::PointXYZ>);
+  pcl::PointCloud<pcl::Normal>::Ptr kept_normals(new pcl::PointCloud<pcl::Normal>);
+  for (std::size_t i = 0; i < normals->size(); ++i) {
+    const auto& n = (*normals)[i];
+    if (!std::isfinite(n.normal_x) || !std::isfinite(n.normal_y) || !std::isfinite(n.normal_z) ||
+        !std::isfinite(n.curvature))
+      continue;
+    kept->push_back((*cloud)[i]);
+    kept_normals->push_back(n);
+  }
+  if (kept->size() < 50) return {};
+  cloud = kept;
+  normals = kept_normals;
+  tree->setInputCloud(cloud);
+  pcl::OURCVFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> cvfh;
+  cvfh.setInputCloud(cloud);
+  cvfh.setInputNormals(normals);
+  cvfh.setSearchMethod(tree);
+  // PCL's recommended region growing: 5° normal deviation, curvature ≤ 1, ≥ 50 points.
+  cvfh.setEPSAngleThreshold(5.0f / 180.0f * static_cast<float>(M_PI));
+  cvfh.setCurvatureThreshold(1.0f);
+  cvfh.setNormalizeBins(false);
+  cvfh.setClusterTolerance(static_cast<float>(3 * normal_radius));
+  cvfh.setMinPoints(50);
+  cvfh.setAxisRatio(0.8f);
+  pcl::PointCloud<pcl::VFHSignature308> out;
+  cvfh.compute(out);
+  if (out.empty()) return {};
+  return std::vector<float>(out[0].histogram, out[0].histogram + 308);
+}
+
+// PCL 1.13's OUR-CVFH aborts on some views (an out-of-range histogram index in
+// computeRFAndShapeDistribution: an assertion in Debian's build, a stray write
+// without one) and no input check we can make predicts it. It runs in a forked
+// child: the histogram comes back through a pipe, a crash becomes an error.
+std::vector<float> pclOurCvfh(const PointSet& set, double normal_radius) {
+  int fds[2];
+  if (::pipe(fds) != 0) throw Error("OUR-CVFH: cannot create a pipe");
+  const pid_t child = ::fork();
+  if (child < 0) {
+    ::close(fds[0]);
+    ::close(fds[1]);
+    throw Error("OUR-CVFH: cannot fork");
+  }
+  if (child == 0) {
+    ::close(fds[0]);
+    // PCL's assertion text would reach the user's terminal; the parent reports instead.
+    const int null_fd = ::open("/dev/null", O_WRONLY);
+    if (null_fd >= 0) ::dup2(null_fd, STDERR_FILENO);
+    const std::vector<float> h = ourCvfhInProcess(set, normal_radius);
+    const std::uint32_t n = static_cast<std::uint32_t>(h.size());
+    bool ok = ::write(fds[1], &n, sizeof n) == sizeof n;
+    const auto bytes = static_cast<ssize_t>(h.size() * sizeof(float));
+    if (ok && n) ok = ::write(fds[1], h.data(), static_cast<std::size_t>(bytes)) == bytes;
+    ::_exit(ok ? 0 : 3);
+  }
+  ::close(fds[1]);
+  std::vector<char> data;
+  char buf[4096];
+  for (ssize_t got; (got = ::read(fds[0], buf, sizeof buf)) != 0;) {
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) break;
+    data.insert(data.end(), buf, buf + got);
+  }
+  ::close(fds[0]);
+  int status = 0;
+  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
+  }
+  if (WIFSIGNALED(status))
+    throw Error("PCL's OUR-CVFH crashed on this view (signal " + std::to_string(WTERMSIG(status)) +
+                ", PCL 1.13 computeRFAndShapeDistribution)");
+  std::uint32_t n = 0;
+  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || data.size() < sizeof n)
+    throw Error("OUR-CVFH: the worker process failed");
+  std::memcpy(&n, data.data(), sizeof n);
+  if (data.size() != sizeof n + n * sizeof(float)) throw Error("OUR-CVFH: short result from the worker process");
+  std::vector<float> h(n);
+  if (n) std::memcpy(h.data(), data.data() + sizeof n, n * sizeof(float));
+  return h;
 }
 
 }  // namespace keyturn

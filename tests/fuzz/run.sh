@@ -9,7 +9,7 @@ runs=${2:-4000}
 here=$(cd "$(dirname "$0")" && pwd)
 out=$(mktemp -d)
 pass=0; fail=0
-for target in point_cloud mesh dataset configs; do
+for target in point_cloud mesh dataset configs learning; do
   bin="$build/tests/fuzz/fuzz_$target"
   corpus="$out/$target"
   mkdir -p "$corpus"

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <fstream>
 #include <random>
+#include <thread>
 
 #include "keyturn/learning/model_file.h"
 #include "support/error_of.h"
@@ -109,6 +110,26 @@ TEST_P(ClassifierKind, SavedModelPredictsIdentically) {
   EXPECT_EQ(back.info.params.kind, GetParam());
   const Matrix p0 = m.classifier->predictProba(test), p1 = back.classifier->predictProba(test);
   EXPECT_EQ(p0, p1);  // bit for bit
+}
+
+TEST_P(ClassifierKind, FoldsTrainedInParallelThreadsMatchSequentialOnes) {
+  // evaluate trains folds on worker threads: scheduling must not change a model.
+  Matrix x;
+  std::vector<int> y;
+  blobs(30, 9, x, y);
+  auto reference = makeClassifier(paramsFor(GetParam()));
+  reference->fit(x, y, 3);
+  const Matrix expected = reference->predictProba(x);
+  std::vector<Matrix> got(2);
+  std::vector<std::thread> workers;
+  for (int t = 0; t < 2; ++t)
+    workers.emplace_back([&, t] {
+      auto c = makeClassifier(paramsFor(GetParam()));
+      c->fit(x, y, 3);
+      got[t] = c->predictProba(x);
+    });
+  for (auto& w : workers) w.join();
+  for (const auto& g : got) EXPECT_EQ(g, expected);
 }
 
 INSTANTIATE_TEST_SUITE_P(XgboostAndMlp, ClassifierKind, ::testing::Values("xgboost", "mlp"));

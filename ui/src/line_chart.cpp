@@ -13,26 +13,10 @@
 #include <filesystem>
 #include <memory>
 
+#include "headless_app.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::ui {
-namespace {
-
-// Charts need a QApplication; a command-line tool may have none, and a
-// headless machine no display.
-void ensureApplication() {
-  if (QCoreApplication::instance()) return;
-  if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM"))
-    ::setenv("QT_QPA_PLATFORM", "offscreen", 1);
-  static int argc = 1;
-  static char name[] = "keyturn";
-  static char* argv[] = {name, nullptr};
-  static QApplication* app = new QApplication(argc, argv);  // lives for the process
-  (void)app;
-}
-
-}  // namespace
-
 void saveChartPng(const LineChart& c, const std::string& path, int width, int height) {
   ensureApplication();
   auto* chart = new QtCharts::QChart();

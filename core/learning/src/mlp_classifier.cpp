@@ -1,8 +1,10 @@
 #include "mlp_classifier.h"
 
+#include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>
 
 #include <algorithm>
+#include <mutex>
 
 #include "keyturn/core/error.h"
 
@@ -10,29 +12,45 @@ namespace keyturn::learning {
 
 namespace {
 
+// Dropout is drawn from the caller's generator, not libtorch's global one, so
+// folds trained in parallel threads stay repeatable.
 struct MlpNetImpl : torch::nn::Module {
-  MlpNetImpl(int inputs, int classes, const MlpParams& p) {
+  MlpNetImpl(int inputs, int classes, const MlpParams& p) : dropout(p.dropout) {
     mean = register_buffer("mean", torch::zeros({inputs}));
     scale = register_buffer("scale", torch::ones({inputs}));
     int width = inputs;
-    for (int l = 0; l < p.layers; ++l) {
-      layers->push_back(torch::nn::Linear(width, p.hidden));
-      layers->push_back(torch::nn::ReLU());
-      layers->push_back(torch::nn::Dropout(p.dropout));
-      width = p.hidden;
+    for (int l = 0; l <= p.layers; ++l) {
+      const int next = l == p.layers ? classes : p.hidden;
+      layers.push_back(register_module("fc" + std::to_string(l), torch::nn::Linear(width, next)));
+      width = next;
     }
-    layers->push_back(torch::nn::Linear(width, classes));
-    register_module("layers", layers);
   }
-  torch::Tensor forward(const torch::Tensor& x) { return layers->forward((x - mean) * scale); }
+  torch::Tensor forward(torch::Tensor x, at::Generator* gen) {
+    x = (x - mean) * scale;
+    for (std::size_t l = 0; l + 1 < layers.size(); ++l) {
+      x = torch::relu(layers[l]->forward(x));
+      if (gen && dropout > 0)
+        x = x * torch::bernoulli(torch::full_like(x, 1.0 - dropout), *gen) / (1.0 - dropout);
+    }
+    return layers.back()->forward(x);
+  }
 
+  double dropout;
   torch::Tensor mean, scale;
-  torch::nn::Sequential layers;
+  std::vector<torch::nn::Linear> layers;
 };
 TORCH_MODULE(MlpNet);
 
+// Parameter initialisation draws from libtorch's global generator: one net at a time.
+std::mutex& initMutex() {
+  static std::mutex m;
+  return m;
+}
+
+// Missing values (NaN: a block a view could not give) enter the network as 0.
 torch::Tensor toTensor(const Matrix& x) {
-  return torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32).clone();
+  return torch::nan_to_num(torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32), 0.0)
+      .clone();
 }
 
 class MlpClassifier : public Classifier {
@@ -46,8 +64,12 @@ class MlpClassifier : public Classifier {
     if (x.rows() != static_cast<Eigen::Index>(y.size()) || x.rows() == 0)
       throw Error("MLP: " + std::to_string(x.rows()) + " feature rows for " + std::to_string(y.size()) + " labels");
     const MlpParams& p = params_.mlp;
-    torch::manual_seed(params_.seed);
-    build(static_cast<int>(x.cols()), classes);
+    {
+      std::lock_guard<std::mutex> lock(initMutex());
+      torch::manual_seed(params_.seed);
+      build(static_cast<int>(x.cols()), classes);
+    }
+    at::Generator gen = at::make_generator<at::CPUGeneratorImpl>(params_.seed);
     const torch::Tensor inputs = toTensor(x);
     const torch::Tensor labels = torch::tensor(std::vector<std::int64_t>(y.begin(), y.end()), torch::kInt64);
     net_->mean.copy_(inputs.mean(0));
@@ -55,12 +77,11 @@ class MlpClassifier : public Classifier {
     torch::optim::Adam adam(net_->parameters(), torch::optim::AdamOptions(p.learning_rate));
     const std::int64_t n = inputs.size(0);
     const torch::Tensor one_hot = torch::one_hot(labels, classes).to(torch::kFloat32);
-    net_->train();
     for (int epoch = 0; epoch < p.epochs; ++epoch) {
-      const torch::Tensor order = torch::randperm(n, torch::kInt64);
+      const torch::Tensor order = torch::randperm(n, gen, torch::kInt64);
       for (std::int64_t start = 0; start < n; start += p.batch) {
         const torch::Tensor idx = order.slice(0, start, std::min<std::int64_t>(n, start + p.batch));
-        const torch::Tensor out = net_->forward(inputs.index_select(0, idx));
+        const torch::Tensor out = net_->forward(inputs.index_select(0, idx), &gen);
         const torch::Tensor loss =
             p.sigmoid_output
                 ? torch::binary_cross_entropy_with_logits(out, one_hot.index_select(0, idx))
@@ -70,13 +91,12 @@ class MlpClassifier : public Classifier {
         adam.step();
       }
     }
-    net_->eval();
   }
 
   Matrix predictProba(const Matrix& x) const override {
     if (!net_) throw Error("MLP: the model is not trained or loaded");
     torch::NoGradGuard no_grad;
-    const torch::Tensor logits = net_->forward(toTensor(x));
+    const torch::Tensor logits = net_->forward(toTensor(x), nullptr);
     torch::Tensor prob = params_.mlp.sigmoid_output ? torch::sigmoid(logits) : torch::softmax(logits, 1);
     if (params_.mlp.sigmoid_output) prob = prob / prob.sum(1, true);
     prob = prob.contiguous();
@@ -106,7 +126,6 @@ class MlpClassifier : public Classifier {
       throw Error(path + ": the network takes " + std::to_string(params.front().size(1)) + " inputs and gives " +
                   std::to_string(got_out) + " classes; its sidecar says " + std::to_string(inputs) + " and " +
                   std::to_string(classes));
-    net_->eval();
   }
 
  private:

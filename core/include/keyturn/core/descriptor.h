@@ -25,6 +25,10 @@ struct DescriptorOptions {
                                    Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};
   int min_keypoints = 3;      // fewer is an error: no triangle, no histogram
   int low_keypoints = 10;     // fewer is flagged: the histogram is thin
+  // Also describe the view with as many keypoints as ISS found, drawn uniformly
+  // at random from the filtered points (seeded): shows what ISS's choice adds.
+  bool random_keypoints_twin = false;
+  unsigned long long random_seed = 7;
 };
 
 // Milliseconds spent in each stage of one describeView call.
@@ -43,6 +47,9 @@ struct ViewDescriptor {
   bool low_keypoints = false;
   std::vector<Feature> features;
   std::vector<std::vector<double>> pdfs;  // one PDF per feature, same order
+  // With random_keypoints_twin: the keypoint features' PDFs on random points
+  // (same order as `features`; shape functions are left empty there).
+  std::vector<std::vector<double>> random_keypoint_pdfs;
   StageTimes times;
 
   int keypointCount() const { return static_cast<int>(keypoints.size()); }

@@ -16,7 +16,7 @@ using Matrix = Eigen::Matrix<float, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMa
 struct XgboostParams {
   double eta = 0.3;          // XGBoost's default learning rate
   int max_depth = 6;         // XGBoost's default
-  int rounds = 40;
+  int rounds = 30;
   double subsample = 1.0;
   double colsample_bytree = 1.0;
   int threads = 0;           // 0: all cores
@@ -27,7 +27,7 @@ struct MlpParams {
   int layers = 1;
   double dropout = 0.1;
   double learning_rate = 1e-3;  // Adam
-  int epochs = 60;
+  int epochs = 30;
   int batch = 64;
   bool sigmoid_output = false;  // the paper's Keras output layer; softmax + cross-entropy otherwise
 };

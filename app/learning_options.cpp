@@ -1,0 +1,52 @@
+#include "learning_options.h"
+
+#include <sstream>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::app {
+
+void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
+  cmd.add_option("--model-seed", p.seed, "Seed of the classifiers")->capture_default_str();
+  cmd.add_option("--eta", p.xgboost.eta, "XGBoost learning rate")->capture_default_str();
+  cmd.add_option("--max-depth", p.xgboost.max_depth, "XGBoost tree depth")->capture_default_str();
+  cmd.add_option("--rounds", p.xgboost.rounds, "XGBoost boosting rounds")->capture_default_str();
+  cmd.add_option("--subsample", p.xgboost.subsample, "XGBoost row subsampling")->capture_default_str();
+  cmd.add_option("--colsample", p.xgboost.colsample_bytree, "XGBoost feature subsampling per tree")
+      ->capture_default_str();
+  cmd.add_option("--hidden", p.mlp.hidden, "Network: units per hidden layer")->capture_default_str();
+  cmd.add_option("--layers", p.mlp.layers, "Network: hidden layers")->capture_default_str();
+  cmd.add_option("--dropout", p.mlp.dropout, "Network: dropout after each hidden layer")->capture_default_str();
+  cmd.add_option("--epochs", p.mlp.epochs, "Network: training epochs (Adam)")->capture_default_str();
+  cmd.add_option("--learning-rate", p.mlp.learning_rate, "Network: Adam learning rate")->capture_default_str();
+  cmd.add_option("--batch", p.mlp.batch, "Network: mini-batch size")->capture_default_str();
+  cmd.add_flag("--sigmoid-output", p.mlp.sigmoid_output,
+               "Network: the paper's sigmoid output layer (default: softmax with cross-entropy)");
+}
+
+std::vector<std::string> featureSetBlocks(const std::string& set) {
+  std::vector<std::string> out;
+  std::stringstream ss(set);
+  for (std::string b; std::getline(ss, b, '+');) {
+    if (b.empty()) throw Error("feature set '" + set + "': empty part");
+    out.push_back(b);
+  }
+  if (out.empty()) throw Error("empty feature set");
+  return out;
+}
+
+std::vector<std::string> splitList(const std::string& list) {
+  std::vector<std::string> out;
+  std::string cur;
+  for (char c : list + " ") {
+    if (c == ' ' || c == ',' || c == '\t' || c == '\n') {
+      if (!cur.empty()) out.push_back(cur);
+      cur.clear();
+    } else {
+      cur += c;
+    }
+  }
+  return out;
+}
+
+}  // namespace keyturn::app

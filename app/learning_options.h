@@ -1,0 +1,16 @@
+#pragma once
+// Command-line options of the classifiers, shared by evaluate and train.
+#include <CLI/CLI.hpp>
+
+#include "keyturn/learning/classifier.h"
+
+namespace keyturn::app {
+
+void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p);
+
+// "kpd2+gkpd2" → {"kpd2", "gkpd2"}; names are checked against the cache later.
+std::vector<std::string> featureSetBlocks(const std::string& set);
+// Splits on spaces and commas: "kpd2 kpd2+kpa3,esf" → three sets.
+std::vector<std::string> splitList(const std::string& list);
+
+}  // namespace keyturn::app

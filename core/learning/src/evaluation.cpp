@@ -1,0 +1,82 @@
+#include "keyturn/learning/evaluation.h"
+
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <mutex>
+#include <thread>
+
+namespace keyturn::learning {
+
+double Evaluation::mean() const {
+  double s = 0;
+  for (const auto& f : folds) s += f.accuracy();
+  return folds.empty() ? 0.0 : s / static_cast<double>(folds.size());
+}
+
+double Evaluation::stddev() const {
+  if (folds.size() < 2) return 0.0;
+  const double m = mean();
+  double s = 0;
+  for (const auto& f : folds) s += (f.accuracy() - m) * (f.accuracy() - m);
+  return std::sqrt(s / static_cast<double>(folds.size()));
+}
+
+double Evaluation::trainMsPerView() const {
+  double ms = 0, n = 0;
+  for (const auto& f : folds) ms += f.train_ms, n += static_cast<double>(f.train_views);
+  return n ? ms / n : 0.0;
+}
+
+double Evaluation::predictMsPerView() const {
+  double ms = 0, n = 0;
+  for (const auto& f : folds) ms += f.predict_ms, n += static_cast<double>(f.test_views);
+  return n ? ms / n : 0.0;
+}
+
+Evaluation evaluateFolds(const FeatureTable& table, const std::vector<std::string>& blocks,
+                         const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                         const ClassifierParams& params, int jobs, const std::function<void()>& fold_done) {
+  Evaluation ev;
+  ev.folds.resize(folds.size());
+  ev.confusion.assign(static_cast<std::size_t>(classes), std::vector<int>(static_cast<std::size_t>(classes), 0));
+  std::mutex mutex;
+  std::atomic<std::size_t> next{0};
+  ClassifierParams per_worker = params;
+  per_worker.xgboost.threads = 1;  // parallel over folds instead
+  auto worker = [&] {
+    for (std::size_t i = next++; i < folds.size(); i = next++) {
+      const Fold& fold = folds[i];
+      FoldOutcome out;
+      out.name = fold.name;
+      out.train_views = fold.train.size();
+      out.test_views = fold.test.size();
+      std::vector<int> y;
+      for (auto r : fold.train) y.push_back(labels[r]);
+      const auto t0 = std::chrono::steady_clock::now();
+      auto clf = makeClassifier(per_worker);
+      clf->fit(table.select(blocks, fold.train), y, classes);
+      const auto t1 = std::chrono::steady_clock::now();
+      const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
+      const auto t2 = std::chrono::steady_clock::now();
+      out.train_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+      out.predict_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+      std::lock_guard<std::mutex> lock(mutex);
+      for (std::size_t k = 0; k < fold.test.size(); ++k) {
+        const int truth = labels[fold.test[k]];
+        out.correct += predicted[k] == truth;
+        ++ev.confusion[static_cast<std::size_t>(truth)][static_cast<std::size_t>(predicted[k])];
+      }
+      ev.folds[i] = out;
+      if (fold_done) fold_done();
+    }
+  };
+  std::vector<std::thread> pool;
+  const int n = std::max(1, jobs > 0 ? jobs : static_cast<int>(std::thread::hardware_concurrency()));
+  for (int t = 1; t < std::min<int>(n, static_cast<int>(folds.size())); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  return ev;
+}
+
+}  // namespace keyturn::learning

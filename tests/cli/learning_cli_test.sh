@@ -1,0 +1,79 @@
+#!/usr/bin/env bash
+# evaluate, train, classify, consistency and sharded describe as a user runs
+# them, on a small simulated dataset: two categories with two instances each,
+# two elevations, 12 views per turn (96 views).
+set -u
+source "$(dirname "$0")/lib.sh"
+objects=$(cd "$(dirname "$0")/../../data/objects" && pwd)
+
+{
+  echo "class,instance,mesh"
+  echo "bottle,ycb_021_bleach_cleanser,$objects/bottle__ycb_021_bleach_cleanser.ply"
+  echo "bottle,ycb_006_mustard_bottle,$objects/bottle__ycb_006_mustard_bottle.ply"
+  echo "can,ycb_002_master_chef_can,$objects/can__ycb_002_master_chef_can.ply"
+  echo "can,ycb_005_tomato_soup_can,$objects/can__ycb_005_tomato_soup_can.ply"
+} > "$work/objects.csv"
+"$KT" simulate --objects "$work/objects.csv" --elevations 30,60 --step 30 -q --out "$work/ds" 2> "$work/sim.err"
+check "simulate exits 0" test $? -eq 0
+cp -r "$work/ds" "$work/ds_sharded"
+
+fast="--rounds 10 --epochs 15"
+"$KT" evaluate "$work/ds" --features "kpd2 kpd2+gkpd2 esf" --classifier xgboost,mlp \
+  --protocol kfold4,leave-elevation,leave-instance $fast -q --out "$work/report" --json > "$work/report.json"
+check "evaluate exits 0" test $? -eq 0
+for f in report.md report.csv report.json confusion/kfold4_32bins.png confusion/leave-elevation_32bins.png \
+         confusion/leave-instance_32bins.png pdfs/kpd2_ycb_006_mustard_bottle.png; do
+  check "report has $f" test -s "$work/report/$f"
+done
+# 3 feature sets × 2 classifiers × 3 protocols.
+check "one CSV row per set, classifier and protocol" test "$(tail -n +2 "$work/report/report.csv" | wc -l)" -eq 18
+check "fold counts: 4, 2 elevations, 4 instances" \
+  test "$(awk -F, 'NR > 1 {print $2 ":" $6}' "$work/report/report.csv" | sort -u | tr '\n' ' ')" = \
+       "kfold4:4 leave-elevation:2 leave-instance:4 "
+check "every test view tested once per row" test "$(awk -F, 'NR > 1 && $7 != 96' "$work/report/report.csv" | wc -l)" -eq 0
+check "accuracies are fractions" test "$(awk -F, 'NR > 1 && ($8 < 0 || $8 > 1)' "$work/report/report.csv" | wc -l)" -eq 0
+# Four instances: chance is 25 %. Keypoint distances on the same views must do far better.
+acc=$(awk -F, '$2 == "kfold4" && $4 == "kpd2+gkpd2" && $5 == "xgboost" {print $8}' "$work/report/report.csv")
+check "kpd2+gkpd2 beats chance under k-fold ($acc)" awk -v a="$acc" 'BEGIN {exit !(a > 0.6)}'
+check "leave-instance labels categories" grep -q '"label": "category"' "$work/report.json"
+cache=$(ls "$work"/ds/.keyturn/features-*.csv)
+check "one feature cache" test "$(echo "$cache" | wc -l)" -eq 1
+before=$(stat -c %Y "$cache")
+sleep 1
+"$KT" evaluate "$work/ds" --features kpd2 --classifier xgboost --protocol kfold4 $fast -q --out "$work/report2"
+check "a second evaluate reuses the cache" test "$(stat -c %Y "$cache")" -eq "$before"
+check "the same split gives the same accuracy" test \
+  "$(awk -F, '$2 == "kfold4" && $4 == "kpd2" && $5 == "xgboost" {print $8}' "$work/report/report.csv")" = \
+  "$(awk -F, '$2 == "kfold4" {print $8}' "$work/report2/report.csv")"
+
+# Shards of an array job merge into the same cache.
+"$KT" describe "$work/ds_sharded" --shard 1/2 -q && "$KT" describe "$work/ds_sharded" --shard 2/2 -q
+check "two shards written" test "$(ls "$work"/ds_sharded/.keyturn/*shard-*-of-2.csv | wc -l)" -eq 2
+"$KT" evaluate "$work/ds_sharded" --features kpd2 --classifier xgboost --protocol kfold4 $fast --out "$work/report3" \
+  2> "$work/merge.err"
+check "evaluate merges the shards" grep -q "merged 2 feature shards" "$work/merge.err"
+check "merged cache equals the single-process one" cmp -s "$cache" "$work/ds_sharded/.keyturn/$(basename "$cache")"
+
+# A model: train, classify views, refuse features computed another way.
+"$KT" train "$work/ds" --features kpd2+gkpd2 --classifier xgboost $fast -q --out "$work/model"
+check "train writes the sidecar and the weights" test -s "$work/model/model.json" -a -s "$work/model/model.xgb.json"
+"$KT" classify "$work/model" "$work/ds/can/ycb_005_tomato_soup_can/e30/a0.0.pcd" \
+  "$work/ds/bottle/ycb_006_mustard_bottle/e60/a90.0.pcd" --json -q > "$work/classify.json"
+check "classify exits 0" test $? -eq 0
+check "classify names both views" test "$(grep -c '"view"' "$work/classify.json")" -eq 2
+check "a training view is classified as itself" \
+  grep -A1 -E '"class": "ycb_005_tomato_soup_can"' "$work/classify.json" -q
+"$KT" classify "$work/model" "$work/ds/can/ycb_005_tomato_soup_can/e30/a0.0.pcd" --bins 16 -q 2> "$work/mismatch.err"
+check "features with other bins are refused" test $? -ne 0
+check "the mismatch names the parameter" grep -q "bins: model 32, features 16" "$work/mismatch.err"
+"$KT" classify "$work/model" "$cache" -q > "$work/classify_cache.txt"
+check "classify a feature cache: one line per view" test "$(wc -l < "$work/classify_cache.txt")" -eq 96
+
+"$KT" consistency "$work/ds" --object can/ycb_002_master_chef_can --out "$work/cons" -q
+check "consistency writes CSV and one plot per elevation" test -s "$work/cons/consistency.csv" -a -s "$work/cons/consistency_e30.png" -a -s "$work/cons/consistency_e60.png"
+check "the first view is identical to itself" \
+  test "$(awk -F, '$1 == 30 && $2 == 0 {print $4 + $8}' "$work/cons/consistency.csv")" = "0"
+check "24 views + header" test "$(wc -l < "$work/cons/consistency.csv")" -eq 25
+"$KT" evaluate "$work/ds" --protocol sideways --out "$work/r4" 2> "$work/proto.err"
+check "an unknown protocol is named" grep -q "unknown protocol 'sideways'" "$work/proto.err"
+finish
