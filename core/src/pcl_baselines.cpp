@@ -28,6 +28,17 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const PointSet& set) {
   for (const auto& p : set.points) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   return c;
 }
+pcl::PointCloud<pcl::Normal>::Ptr normalsOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
+                                            const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree, double radius) {
+  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setInputCloud(cloud);
+  ne.setSearchMethod(tree);
+  ne.setRadiusSearch(radius);
+  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
+  ne.compute(*normals);
+  return normals;
+}
+
 }  // namespace
 
 std::vector<Eigen::Vector3f> pclIssKeypoints(const PointSet& set, double frame_radius,
@@ -64,12 +75,7 @@ std::vector<float> pclEsf(const PointSet& set) {
 std::vector<float> pclVfh(const PointSet& set, double normal_radius) {
   auto cloud = toPcl(set);
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
-  ne.setInputCloud(cloud);
-  ne.setSearchMethod(tree);
-  ne.setRadiusSearch(normal_radius);
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
-  ne.compute(*normals);
+  auto normals = normalsOf(cloud, tree, normal_radius);
   pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
   vfh.setInputCloud(cloud);
   vfh.setInputNormals(normals);
@@ -80,15 +86,10 @@ std::vector<float> pclVfh(const PointSet& set, double normal_radius) {
   return std::vector<float>(out[0].histogram, out[0].histogram + 308);
 }
 
-std::vector<float> ourCvfhInProcess(const PointSet& set, double normal_radius) {
+static std::vector<float> ourCvfhInProcess(const PointSet& set, double normal_radius) {
   auto cloud = toPcl(set);
   pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
-  ne.setInputCloud(cloud);
-  ne.setSearchMethod(tree);
-  ne.setRadiusSearch(normal_radius);
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
-  ne.compute(*normals);
+  auto normals = normalsOf(cloud, tree, normal_radius);
   // Points with too few neighbours get NaN normals; PCL's OUR-CVFH then builds a
   // NaN reference frame and indexes its histogram out of bounds (an assertion in
   // Debian's build). Keep only points with a finite normal.
