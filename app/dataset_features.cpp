@@ -26,7 +26,7 @@ using learning::FeatureTable;
 
 namespace {
 
-constexpr int kCacheVersion = 1;
+constexpr int kCacheVersion = 2;  // 2: values written with 9 significant digits (exact)
 constexpr double kNormalRadius = 0.012;  // VFH / OUR-CVFH normals, metres (≈ 4 SR4000 pixels at 0.6 m)
 const std::vector<Feature> kKeypointBlocks = {Feature::KPD2, Feature::KPD3, Feature::KPA3,
                                               Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};

@@ -8,6 +8,7 @@
 #include <numeric>
 #include <thread>
 
+#include "keyturn/core/error.h"
 #include "support/synthetic_clouds.h"
 
 using namespace keyturn;
@@ -33,8 +34,24 @@ TEST(PclBaselines, SeededEsfRepeatsAcrossSecondsAndChangesWithTheSeed) {
   EXPECT_GT(std::accumulate(a.begin(), a.end(), 0.0), 0.0);
 }
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define KEYTURN_UNDER_ASAN 1
+#endif
+#endif
+
 TEST(PclBaselines, VfhAndOurCvfhGiveTheirHistograms) {
-  const PointSet set = cylinder();
+#ifdef KEYTURN_UNDER_ASAN
+  // ASan stops PCL's OUR-CVFH on every cloud: it frees Eigen's aligned-malloc
+  // memory with operator delete (alloc-dealloc-mismatch inside libpcl_features).
+  // The worker turns that into an error (next test); the histogram is checked in
+  // the normal build.
+  GTEST_SKIP() << "PCL's OUR-CVFH trips ASan's alloc-dealloc-mismatch check inside libpcl_features";
+#endif
+  // A box: its faces are the smooth regions OUR-CVFH builds frames on. (On some
+  // clouds, the cylinder among them in the clang build, PCL 1.13's OUR-CVFH
+  // aborts: that must come back as keyturn::Error, never take the process down.)
+  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 25, Eigen::Vector3f(0, 0, 0.6f))));
   const auto vfh = pclVfh(set, 0.012);
   const auto cvfh = pclOurCvfh(set, 0.012);
   ASSERT_EQ(vfh.size(), 308u);
@@ -42,4 +59,15 @@ TEST(PclBaselines, VfhAndOurCvfhGiveTheirHistograms) {
   EXPECT_GT(std::accumulate(cvfh.begin(), cvfh.end(), 0.0), 0.0);
   // Same input, same answer from the forked worker.
   EXPECT_EQ(pclOurCvfh(set, 0.012), cvfh);
+}
+
+TEST(PclBaselines, OurCvfhOnAnyCloudIsAHistogramOrAClearError) {
+  // Whatever PCL does on these clouds, the caller survives and gets one of the two.
+  for (const PointSet& set : {cylinder(), PointSet::fromCloud(test::unorganized(test::cylinderSurface(0.02f, 0.3f, 20, 60)))}) {
+    try {
+      EXPECT_EQ(pclOurCvfh(set, 0.012).size(), 308u);
+    } catch (const Error& e) {
+      EXPECT_NE(std::string(e.what()).find("OUR-CVFH"), std::string::npos) << e.what();
+    }
+  }
 }

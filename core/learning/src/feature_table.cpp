@@ -94,7 +94,7 @@ void saveFeatureTable(const std::string& path, const FeatureTable& t) {
     out << r.id << "," << r.cls << "," << r.instance << "," << r.elevation << "," << r.keypoints << ","
         << clean(r.problem);
     for (float v : r.values) {
-      std::snprintf(buf, sizeof buf, "%.7g", static_cast<double>(v));
+      std::snprintf(buf, sizeof buf, "%.9g", static_cast<double>(v));  // 9 digits: floats round-trip exactly
       out << "," << (std::isnan(v) ? "nan" : buf);
     }
     out << "\n";
