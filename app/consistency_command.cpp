@@ -12,6 +12,7 @@
 #include "dataset_features.h"
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/core/error.h"
+#include "keyturn/rig/durable_file.h"
 #include "keyturn/ui/line_chart.h"
 
 namespace keyturn::app {
@@ -90,7 +91,7 @@ int runConsistency(const ConsistencyArgs& a) {
     ui::saveChartPng(chart, (fs::path(a.out) / ("consistency_e" + elev + ".png")).string());
   }
   const std::string csv_path = (fs::path(a.out) / "consistency.csv").string();
-  std::ofstream(csv_path) << csv.str();
+  rig::writeFileDurably(csv_path, csv.str());
   if (!a.quiet) std::cerr << "keyturn consistency: " << a.object << " → " << csv_path << " and consistency_e*.png\n";
   return 0;
 }

@@ -16,6 +16,7 @@
 #include "dataset_features.h"
 #include "keyturn/core/error.h"
 #include "keyturn/learning/evaluation.h"
+#include "keyturn/rig/durable_file.h"
 #include "keyturn/ui/confusion_plot.h"
 #include "keyturn/ui/line_chart.h"
 #include "learning_options.h"
@@ -121,13 +122,7 @@ std::string safeName(std::string s) {
   return s;
 }
 
-void writeText(const fs::path& path, const std::string& text) {
-  std::ofstream f(path.string() + ".tmp", std::ios::trunc);
-  f << text;
-  f.close();
-  if (!f) throw Error(path.string() + ": cannot write");
-  fs::rename(path.string() + ".tmp", path);
-}
+void writeText(const fs::path& path, const std::string& text) { rig::writeFileDurably(path.string(), text); }
 
 // Mean ± 1 sd of a block's PDF over each class's views.
 void plotClassPdfs(const FeatureTable& t, const Protocol& p, const std::string& block, const fs::path& dir) {
