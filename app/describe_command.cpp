@@ -27,6 +27,7 @@ struct DescribeArgs {
   std::string out;
   int jobs = 0;
   bool quiet = false;
+  bool cache = false;  // dataset mode: fill the dataset's feature cache
   std::string shard;  // "I/N": dataset mode, this process's share of the views
   DescriptorFlags flags;
 };
@@ -96,8 +97,11 @@ void writeAtomically(const std::string& path, const std::string& text) {
 }
 
 int runDescribe(const DescribeArgs& a) {
-  if (a.inputs.size() == 1 && isDataset(a.inputs.front())) return runDescribeDataset(a);
-  if (!a.shard.empty()) throw Error("--shard needs a dataset folder (one with manifest.csv)");
+  if (a.cache || !a.shard.empty()) {
+    if (a.inputs.size() != 1 || !isDataset(a.inputs.front()))
+      throw Error(std::string(a.cache ? "--cache" : "--shard") + " needs one dataset folder (one with manifest.csv)");
+    return runDescribeDataset(a);
+  }
   const DescriptorOptions options = a.flags.toOptions();
   ViewFileList list = collectViewFiles(a.inputs);
   for (const auto& e : list.errors) std::cerr << "keyturn describe: " << e << "\n";
@@ -167,8 +171,10 @@ Command addDescribeCommand(CLI::App& app) {
   cmd->add_option("--out,-o", args->out, "CSV file to write (default: standard output)");
   cmd->add_option("--jobs,-j", args->jobs, "Parallel files (default: all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress or summary");
+  cmd->add_flag("--cache", args->cache,
+                "With a dataset folder: fill its feature cache (every block evaluate, train and consistency use)");
   cmd->add_option("--shard", args->shard,
-                  "With a dataset folder: describe only views i ≡ I-1 (mod N) into a shard of the feature "
+                  "With a dataset folder: fill only the cache shard of views i ≡ I-1 (mod N) into a shard of the feature "
                   "cache (I/N, for array jobs; the shards merge when all are present)");
   args->flags.add(*cmd);
   return {cmd, [args] { return runDescribe(*args); }};
