@@ -38,7 +38,7 @@ double angleOf(const std::string& id) {
 std::vector<double> pdfOf(const learning::FeatureTable& t, const learning::FeatureRow& r, const std::string& block) {
   const int o = t.offset(block);
   if (o < 0) throw Error("the feature cache has no '" + block + "' block");
-  const int n = t.sizes[static_cast<std::size_t>(std::find(t.blocks.begin(), t.blocks.end(), block) - t.blocks.begin())];
+  const int n = t.blockSize(block);
   return std::vector<double>(r.values.begin() + o, r.values.begin() + o + n);
 }
 

@@ -65,17 +65,25 @@ void note(FeatureRow& row, const std::string& what) { row.problem += (row.proble
 // Every block of one view. A block that cannot be computed stays NaN and the
 // row says why: the view stays in every protocol, so all features are judged
 // on the same views.
-FeatureRow describeCloud(const Cloud& cloud, const DescriptorFlags& flags, const FeatureTable& layout) {
-  FeatureRow row;
-  row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
-  row.keypoints = -1;
+// The descriptor options of every cached view: all keypoint and shape blocks,
+// the random-keypoint twin; filtering is done by the caller (the peers share it).
+DescriptorOptions cacheOptions(const DescriptorFlags& flags) {
   DescriptorOptions o = flags.toOptions();
-  const Cloud filtered = o.filter ? filterCloud(cloud, o.filter_options) : cloud;
-  o.filter = false;
   o.features = kKeypointBlocks;
   o.features.insert(o.features.end(), kShapeBlocks.begin(), kShapeBlocks.end());
   o.random_keypoints_twin = true;
   o.random_seed = flags.seed;
+  return o;
+}
+
+FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const DescriptorFlags& flags,
+                         const FeatureTable& layout) {
+  FeatureRow row;
+  row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
+  row.keypoints = -1;
+  const Cloud filtered = options.filter ? filterCloud(cloud, options.filter_options) : cloud;
+  DescriptorOptions o = options;
+  o.filter = false;
   try {
     const ViewDescriptor d = describeView(filtered, o);
     row.keypoints = d.keypointCount();
@@ -137,6 +145,7 @@ std::vector<FeatureRow> describeViews(const std::string& root, const std::vector
                                       const std::vector<std::size_t>& which, const DescriptorFlags& flags,
                                       const FeatureTable& layout, int jobs, bool quiet) {
   std::vector<FeatureRow> rows(which.size());
+  const DescriptorOptions options = cacheOptions(flags);
   Progress progress("describe", which.size(), !quiet);
   std::atomic<std::size_t> next{0};
   auto worker = [&] {
@@ -144,7 +153,7 @@ std::vector<FeatureRow> describeViews(const std::string& root, const std::vector
       const ViewRef& v = views[which[k]];
       const std::string path = (fs::path(root) / v.file).string();
       try {
-        rows[k] = describeCloud(loadCloud(path), flags, layout);
+        rows[k] = describeCloud(loadCloud(path), options, flags, layout);
       } catch (const Error& e) {
         rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
         rows[k].keypoints = -1;

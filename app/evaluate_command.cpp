@@ -128,7 +128,7 @@ void writeText(const fs::path& path, const std::string& text) { rig::writeFileDu
 void plotClassPdfs(const FeatureTable& t, const Protocol& p, const std::string& block, const fs::path& dir) {
   const int o = t.offset(block);
   if (o < 0) return;
-  const int bins = t.sizes[static_cast<std::size_t>(std::find(t.blocks.begin(), t.blocks.end(), block) - t.blocks.begin())];
+  const int bins = t.blockSize(block);
   for (std::size_t c = 0; c < p.label_names.size(); ++c) {
     std::vector<double> sum(bins, 0), sq(bins, 0);
     int n = 0;

@@ -51,13 +51,19 @@ int FeatureTable::offset(const std::string& block) const {
   return -1;
 }
 
+int FeatureTable::blockSize(const std::string& block) const {
+  for (std::size_t b = 0; b < blocks.size(); ++b)
+    if (blocks[b] == block) return sizes[b];
+  return 0;
+}
+
 Matrix FeatureTable::select(const std::vector<std::string>& wanted, const std::vector<std::size_t>& row_ids) const {
   std::vector<std::pair<int, int>> spans;  // offset, size
   int cols = 0;
   for (const auto& w : wanted) {
     const int o = offset(w);
     if (o < 0) throw Error("the feature cache has no '" + w + "' block");
-    const int s = sizes[static_cast<std::size_t>(std::find(blocks.begin(), blocks.end(), w) - blocks.begin())];
+    const int s = blockSize(w);
     spans.emplace_back(o, s);
     cols += s;
   }

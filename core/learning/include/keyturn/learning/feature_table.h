@@ -29,7 +29,8 @@ struct FeatureTable {
   // Columns of the named blocks ("kpd2+gkpd2" concatenates) for the given rows.
   // Throws keyturn::Error naming a block the table lacks.
   Matrix select(const std::vector<std::string>& blocks, const std::vector<std::size_t>& rows) const;
-  int offset(const std::string& block) const;  // -1 when absent
+  int offset(const std::string& block) const;     // -1 when absent
+  int blockSize(const std::string& block) const;  // 0 when absent
 };
 
 // Writes atomically (temporary name, fsync, rename).
