@@ -26,8 +26,7 @@ using learning::FeatureTable;
 
 namespace {
 
-constexpr int kCacheVersion = 2;  // 2: values written with 9 significant digits (exact)
-constexpr double kNormalRadius = 0.012;  // VFH / OUR-CVFH normals, metres (≈ 4 SR4000 pixels at 0.6 m)
+using learning::kNormalRadius;
 const std::vector<Feature> kKeypointBlocks = {Feature::KPD2, Feature::KPD3, Feature::KPA3,
                                               Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};
 const std::vector<Feature> kShapeBlocks = {Feature::D2, Feature::D3, Feature::A3};
@@ -38,11 +37,6 @@ std::uint64_t fnv1a(const std::string& s) {
   return h;
 }
 
-std::string fmt(double v) {
-  char b[32];
-  std::snprintf(b, sizeof b, "%g", v);
-  return b;
-}
 
 FeatureTable emptyTable(const DescriptorFlags& flags) {
   FeatureTable t;
@@ -178,24 +172,7 @@ std::vector<FeatureRow> describeViews(const std::string& root, const std::vector
 
 }  // namespace
 
-std::map<std::string, std::string> featureSpec(const DescriptorFlags& f) {
-  return {{"cache_version", std::to_string(kCacheVersion)},
-          {"bins", std::to_string(f.bins)},
-          {"range", f.range},
-          {"extent_m", fmt(f.extent)},
-          {"filter", f.no_filter ? "off" : "on"},
-          {"plane_removal", f.no_plane ? "off" : "on"},
-          {"max_range_m", fmt(f.max_range)},
-          {"jump_edge_deg", fmt(f.jump_edge_angle)},
-          {"keypoints", "iss"},
-          {"iss_frame", fmt(f.iss_frame)},
-          {"iss_nms", fmt(f.iss_nms)},
-          {"iss_density", fmt(f.iss_density)},
-          {"graph_radius", fmt(f.graph_radius)},
-          {"osada_samples", std::to_string(f.osada_samples)},
-          {"seed", std::to_string(f.seed)},
-          {"normal_radius_m", fmt(kNormalRadius)}};
-}
+std::map<std::string, std::string> featureSpec(const DescriptorFlags& f) { return learning::featureSpec(f.params()); }
 
 std::string cachePath(const std::string& dataset, const DescriptorFlags& flags, int shard, int shards) {
   std::string key;

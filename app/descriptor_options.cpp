@@ -35,25 +35,26 @@ void DescriptorFlags::add(CLI::App& cmd, bool with_features) {
       ->capture_default_str();
 }
 
+learning::FeatureParams DescriptorFlags::params() const {
+  learning::FeatureParams p;
+  p.bins = bins;
+  p.range = range;
+  p.extent = extent;
+  p.filter = !no_filter;
+  p.plane_removal = !no_plane;
+  p.max_range = max_range;
+  p.jump_edge_angle = jump_edge_angle;
+  p.iss_frame = iss_frame;
+  p.iss_nms = iss_nms;
+  p.iss_density = iss_density;
+  p.graph_radius = graph_radius;
+  p.osada_samples = osada_samples;
+  p.seed = seed;
+  return p;
+}
+
 DescriptorOptions DescriptorFlags::toOptions() const {
-  DescriptorOptions o;
-  o.features = parseFeatureList(features);
-  o.histogram.bins = bins;
-  o.histogram.mode = parseRangeMode(range);
-  o.histogram.extent = extent;
-  o.filter = !no_filter;
-  o.filter_options.remove_plane = !no_plane;
-  o.filter_options.max_range = static_cast<float>(max_range);
-  o.filter_options.jump_edge = jump_edge_angle > 0;
-  o.filter_options.jump_edge_angle_deg = static_cast<float>(jump_edge_angle);
-  if (iss_frame <= 0 || iss_nms <= 0 || iss_density <= 0 || graph_radius <= 0)
-    throw Error("radii must be positive multiples of the cloud resolution");
-  o.iss.frame_radius = iss_frame;
-  o.iss.nms_radius = iss_nms;
-  o.iss.density_radius = iss_density;
-  o.graph.radius = graph_radius;
-  o.osada.samples = osada_samples;
-  o.osada.seed = seed;
+  DescriptorOptions o = learning::descriptorOptions(params(), parseFeatureList(features));
   o.low_keypoints = low_keypoints;
   return o;
 }

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "keyturn/core/descriptor.h"
+#include "keyturn/learning/feature_spec.h"
 
 namespace keyturn::app {
 
@@ -25,6 +26,7 @@ struct DescriptorFlags {
   // with_features = false: the dataset tools, whose feature cache holds every block.
   void add(CLI::App& cmd, bool with_features = true);
   DescriptorOptions toOptions() const;  // throws keyturn::Error on bad values
+  learning::FeatureParams params() const;
 };
 
 }  // namespace keyturn::app

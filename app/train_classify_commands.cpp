@@ -47,6 +47,7 @@ int runTrain(const TrainArgs& a) {
   }
   const learning::Matrix x = t.select(m.info.blocks, all);
   m.info.inputs = static_cast<int>(x.cols());
+  m.info.class_means = learning::classMeans(x, y, static_cast<int>(m.info.classes.size()));
   m.classifier = learning::makeClassifier(m.info.params);
   const auto t0 = std::chrono::steady_clock::now();
   m.classifier->fit(x, y, static_cast<int>(m.info.classes.size()));

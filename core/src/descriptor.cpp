@@ -76,6 +76,7 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
   if (need_kp) {
     keypoints = detectIssKeypoints(set, search, out.resolution, o.iss).keypoints;
     for (int i : keypoints) out.keypoints.push_back(set.points[i]);
+    out.keypoint_index = keypoints;
     out.times.iss = clock.lap();
     if (out.keypointCount() < o.min_keypoints)
       throw Error("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +

@@ -225,6 +225,39 @@ std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int sour
   return out;
 }
 
+std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int source,
+                                            const std::vector<int>& targets) {
+  const std::vector<float> cost = shortestPathLengths(graph, source, false);
+  // Walk back from each target: the predecessor is the neighbour whose cost plus
+  // the edge gives this vertex's cost (the smallest such sum, so float rounding
+  // cannot leave the walk without a step). Costs strictly fall, so it ends at source.
+  std::vector<std::vector<int>> paths;
+  for (int t : targets) {
+    std::vector<int> path;
+    if (t >= 0 && static_cast<std::size_t>(t) < cost.size() && cost[t] < kInf) {
+      int v = t;
+      path.push_back(v);
+      while (v != source) {
+        int best = -1;
+        float best_cost = kInf;
+        for (int e = graph.offsets[v]; e < graph.offsets[v + 1]; ++e) {
+          const int u = graph.targets[e];
+          if (cost[u] < cost[v] && cost[u] + graph.length[e] < best_cost) {
+            best_cost = cost[u] + graph.length[e];
+            best = u;
+          }
+        }
+        if (best < 0) break;  // cannot happen on a consistent graph; never loop
+        v = best;
+        path.push_back(v);
+      }
+      std::reverse(path.begin(), path.end());
+    }
+    paths.push_back(std::move(path));
+  }
+  return paths;
+}
+
 GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
                                          const std::vector<int>& keypoints, int which) {
   GeodesicResult res;

@@ -110,3 +110,30 @@ TEST(Geodesic, PairsAreSymmetric) {
   const int a = cylinderVertex(3, 5), b = cylinderVertex(70, 30);
   EXPECT_FLOAT_EQ(shortestPathLengths(c.graph, a, false)[b], shortestPathLengths(c.graph, b, false)[a]);
 }
+
+TEST(Geodesic, PathsFollowTheSurfaceAndSumToTheDistance) {
+  const CylinderGraph c;
+  const int source = cylinderVertex(0, 20), half = cylinderVertex(kAround / 2, 20), up = cylinderVertex(0, 40);
+  const auto len = shortestPathLengths(c.graph, source, false);
+  const auto paths = shortestPaths(c.graph, source, {half, up, -1});
+  ASSERT_EQ(paths.size(), 3u);
+  EXPECT_TRUE(paths[2].empty());  // not a vertex
+  for (int p = 0; p < 2; ++p) {
+    const auto& path = paths[p];
+    ASSERT_GE(path.size(), 3u);
+    EXPECT_EQ(path.front(), source);
+    EXPECT_EQ(path.back(), p == 0 ? half : up);
+    float sum = 0;
+    for (std::size_t i = 1; i < path.size(); ++i) {
+      const float step = (c.set.points[path[i]] - c.set.points[path[i - 1]]).norm();
+      EXPECT_LE(step, 2 * 3.5 * c.res + 1e-6);  // consecutive vertices are graph neighbours
+      sum += step;
+    }
+    EXPECT_NEAR(sum, len[path.back()], 1e-4);
+  }
+  // half way round: close to the arc π r, far longer than the chord 2 r
+  const auto& hp = paths[0];
+  float arc = 0;
+  for (std::size_t i = 1; i < hp.size(); ++i) arc += (c.set.points[hp[i]] - c.set.points[hp[i - 1]]).norm();
+  EXPECT_NEAR(arc, M_PI * kR, 0.03 * M_PI * kR);
+}

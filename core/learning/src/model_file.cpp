@@ -2,6 +2,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <cmath>
 #include <iterator>
 #include <nlohmann/json.hpp>
 
@@ -44,7 +45,8 @@ json toJson(const ModelInfo& m) {
               {"blocks", m.blocks},
               {"inputs", m.inputs},
               {"feature_spec", m.spec},
-              {"weights", weightsName(p.kind)}};
+              {"weights", weightsName(p.kind)},
+              {"class_means", m.class_means}};
 }
 
 }  // namespace
@@ -83,12 +85,19 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
     m.blocks = j.at("blocks").get<std::vector<std::string>>();
     m.inputs = j.at("inputs").get<int>();
     m.spec = j.at("feature_spec").get<std::map<std::string, std::string>>();
+    if (j.contains("class_means")) m.class_means = j.at("class_means").get<std::vector<std::vector<float>>>();
   } catch (const json::exception& e) {
     throw Error(source + ": " + std::string(e.what()).substr(0, 160));
   }
   if (m.classes.size() < 2) throw Error(source + ": a model needs at least two classes");
   if (m.inputs <= 0 || m.inputs > 1 << 20) throw Error(source + ": bad input count " + std::to_string(m.inputs));
   if (m.blocks.empty()) throw Error(source + ": the model names no feature blocks");
+  if (!m.class_means.empty()) {
+    bool ok = m.class_means.size() == m.classes.size();
+    for (const auto& row : m.class_means) ok = ok && row.size() == static_cast<std::size_t>(m.inputs);
+    if (!ok) throw Error(source + ": class_means must be " + std::to_string(m.classes.size()) + " rows of " +
+                         std::to_string(m.inputs) + " values");
+  }
   const auto& mp = m.params.mlp;
   if (mp.hidden <= 0 || mp.hidden > 1 << 16 || mp.layers <= 0 || mp.layers > 16 || mp.dropout < 0 || mp.dropout >= 1)
     throw Error(source + ": bad network shape (hidden " + std::to_string(mp.hidden) + ", layers " +
@@ -123,6 +132,25 @@ Model loadModel(const std::string& dir) {
   m.classifier = makeClassifier(m.info.params);
   m.classifier->load(weights.string(), m.info.inputs, static_cast<int>(m.info.classes.size()));
   return m;
+}
+
+std::vector<std::vector<float>> classMeans(const Matrix& x, const std::vector<int>& y, int classes) {
+  std::vector<std::vector<double>> sum(static_cast<std::size_t>(classes), std::vector<double>(static_cast<std::size_t>(x.cols()), 0.0));
+  std::vector<std::vector<int>> count(sum.size(), std::vector<int>(static_cast<std::size_t>(x.cols()), 0));
+  for (Eigen::Index r = 0; r < x.rows(); ++r) {
+    const int c = y.at(static_cast<std::size_t>(r));
+    if (c < 0 || c >= classes) throw Error("class index " + std::to_string(c) + " outside 0.." + std::to_string(classes - 1));
+    for (Eigen::Index k = 0; k < x.cols(); ++k)
+      if (std::isfinite(x(r, k))) {
+        sum[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)] += x(r, k);
+        ++count[static_cast<std::size_t>(c)][static_cast<std::size_t>(k)];
+      }
+  }
+  std::vector<std::vector<float>> out(sum.size());
+  for (std::size_t c = 0; c < sum.size(); ++c)
+    for (std::size_t k = 0; k < sum[c].size(); ++k)
+      out[c].push_back(count[c][k] ? static_cast<float>(sum[c][k] / count[c][k]) : 0.f);
+  return out;
 }
 
 std::vector<std::string> specDifferences(const std::map<std::string, std::string>& model,

@@ -42,6 +42,7 @@ struct ViewDescriptor {
   std::size_t points = 0;           // valid points after filtering
   double resolution = 0;            // metres
   std::vector<Eigen::Vector3f> keypoints;
+  std::vector<int> keypoint_index;  // the keypoints as indices into the filtered points
   int unreachable_keypoints = 0;    // keypoints outside the centroid's component
   int unreachable_pairs = 0;
   bool low_keypoints = false;

@@ -52,4 +52,10 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
 // value is the Euclidean length of that path.
 std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int source, bool curvature);
 
+// The shortest paths (Euclidean edge costs) from `source` to each target, as
+// vertex sequences source … target; an unreachable target gets an empty path.
+// For showing a view's geodesics, e.g. GKPD1's centroid → keypoint paths.
+std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int source,
+                                            const std::vector<int>& targets);
+
 }  // namespace keyturn

@@ -18,7 +18,14 @@ struct ModelInfo {
   std::vector<std::string> blocks;            // feature blocks, concatenated in this order
   int inputs = 0;
   std::map<std::string, std::string> spec;    // every parameter that shapes the features
+  // Optional: each class's mean training feature vector (classes × inputs), so a
+  // view's PDFs can be shown over those of the class it was taken for.
+  std::vector<std::vector<float>> class_means;
 };
+
+// The per-class mean of each column, ignoring NaN (a block a view lacks); 0 where a
+// class has no value at all. y holds class indices.
+std::vector<std::vector<float>> classMeans(const Matrix& x, const std::vector<int>& y, int classes);
 
 struct Model {
   ModelInfo info;

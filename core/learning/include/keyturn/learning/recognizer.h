@@ -1,0 +1,49 @@
+#pragma once
+// Live recognition of one view with a trained model: the model's own feature
+// parameters (its sidecar's spec) → filter → describe → classify. Keeps the
+// filtered points and keypoints so a viewer can show what was recognised.
+// recognize() may be called from several threads at once.
+#include <memory>
+#include <mutex>
+#include <string>
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+#include "keyturn/core/descriptor.h"
+#include "keyturn/learning/model_file.h"
+
+namespace keyturn::learning {
+
+struct Recognition {
+  std::vector<Eigen::Vector3f> points;  // the filtered view
+  ViewDescriptor descriptor;            // keypoints (K), PDFs in the model's block order, timings
+  std::vector<float> features;          // what the classifier saw
+  std::vector<float> probabilities;     // one per class, the model's order
+  int best = -1;
+  double filter_ms = 0, describe_ms = 0, classify_ms = 0, total_ms = 0;
+};
+
+class Recognizer {
+ public:
+  // Throws keyturn::Error when the model uses a block that is not computed live
+  // (only the keypoint and Osada blocks are: kpd2 … gkpcd2, d1 … a3).
+  explicit Recognizer(Model model, std::string source = "model");
+  static Recognizer load(const std::string& dir);
+
+  const ModelInfo& info() const { return model_.info; }
+  const std::string& source() const { return source_; }
+  const DescriptorOptions& options() const { return options_; }
+  // Throws keyturn::Error for a cloud the chain cannot describe (too few
+  // points or keypoints): the caller shows it and goes on with the next frame.
+  Recognition recognize(const Cloud& cloud) const;
+  // The same without classifying (points, descriptor, features only).
+  Recognition describe(const Cloud& cloud) const;
+
+ private:
+  Model model_;
+  std::string source_;
+  DescriptorOptions options_;
+  mutable std::mutex classify_mutex_;  // one prediction at a time in the classifier
+};
+
+}  // namespace keyturn::learning

@@ -1,0 +1,77 @@
+#include "keyturn/learning/recognizer.h"
+
+#include <chrono>
+
+#include "keyturn/core/error.h"
+#include "keyturn/core/features.h"
+#include "keyturn/learning/feature_spec.h"
+
+namespace keyturn::learning {
+namespace {
+
+double msSince(std::chrono::steady_clock::time_point t0) {
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+}
+
+}  // namespace
+
+Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model)), source_(std::move(source)) {
+  if (!model_.classifier) throw Error(source_ + ": no classifier");
+  std::vector<Feature> features;
+  for (const auto& b : model_.info.blocks) {
+    try {
+      features.push_back(parseFeature(b));
+    } catch (const Error&) {
+      throw Error(source_ + ": block '" + b +
+                  "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, a3)");
+    }
+  }
+  options_ = descriptorOptions(featureParamsFromSpec(model_.info.spec, source_), features);
+  if (options_.histogram.bins * static_cast<int>(features.size()) != model_.info.inputs)
+    throw Error(source_ + ": " + std::to_string(features.size()) + " blocks of " +
+                std::to_string(options_.histogram.bins) + " bins do not make the model's " +
+                std::to_string(model_.info.inputs) + " inputs");
+}
+
+Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadModel(dir), dir); }
+
+Recognition Recognizer::describe(const Cloud& cloud) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  Recognition r;
+  // Filter here, describe unfiltered: the same split the dataset cache uses, and
+  // the filtered points are what a viewer shows.
+  const Cloud filtered = options_.filter ? filterCloud(cloud, options_.filter_options) : cloud;
+  r.points = PointSet::fromCloud(filtered).points;
+  r.filter_ms = msSince(t0);
+  DescriptorOptions o = options_;
+  o.filter = false;
+  const auto t1 = std::chrono::steady_clock::now();
+  r.descriptor = describeView(filtered, o);
+  r.describe_ms = msSince(t1);
+  for (const auto& pdf : r.descriptor.pdfs)
+    for (double v : pdf) r.features.push_back(static_cast<float>(v));
+  r.total_ms = msSince(t0);
+  return r;
+}
+
+Recognition Recognizer::recognize(const Cloud& cloud) const {
+  const auto t0 = std::chrono::steady_clock::now();
+  Recognition r = describe(cloud);
+  const auto t2 = std::chrono::steady_clock::now();
+  Matrix x(1, static_cast<Eigen::Index>(r.features.size()));
+  for (std::size_t k = 0; k < r.features.size(); ++k) x(0, static_cast<Eigen::Index>(k)) = r.features[k];
+  Matrix p;
+  {
+    std::lock_guard<std::mutex> lock(classify_mutex_);
+    p = model_.classifier->predictProba(x);
+  }
+  r.probabilities.assign(p.data(), p.data() + p.cols());
+  Eigen::Index best = 0;
+  p.row(0).maxCoeff(&best);
+  r.best = static_cast<int>(best);
+  r.classify_ms = msSince(t2);
+  r.total_ms = msSince(t0);
+  return r;
+}
+
+}  // namespace keyturn::learning

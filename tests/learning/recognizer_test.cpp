@@ -1,0 +1,124 @@
+#include <gtest/gtest.h>
+
+#include "keyturn/core/error.h"
+#include "keyturn/learning/feature_spec.h"
+#include "keyturn/learning/recognizer.h"
+#include "keyturn/sim/mesh.h"
+#include "keyturn/sim/tof_view.h"
+
+using namespace keyturn;
+using namespace keyturn::learning;
+
+namespace {
+
+Model untrainedModel(const std::vector<std::string>& blocks, int bins = 32) {
+  Model m;
+  FeatureParams p;
+  p.bins = bins;
+  m.info.spec = featureSpec(p);
+  m.info.blocks = blocks;
+  m.info.inputs = bins * static_cast<int>(blocks.size());
+  m.info.classes = {"mug", "sphere-target"};
+  m.classifier = makeClassifier(m.info.params);
+  return m;
+}
+
+Cloud render(const sim::TofViewRenderer& r, double angle, std::uint64_t seed) {
+  sim::SceneView v;
+  v.turntable_deg = angle;
+  v.seed = seed;
+  return r.render(v);
+}
+
+}  // namespace
+
+TEST(Recognizer, NamesTheObjectOfUnseenViewsWithTheModelsOwnFeatures) {
+  const sim::TofViewRenderer mug(sim::loadMeshOrBuiltin("builtin:mug"));
+  const sim::TofViewRenderer sphere(sim::loadMeshOrBuiltin("builtin:sphere-target"));
+  const Recognizer describer(untrainedModel({"kpd2", "kpa3"}));
+  Matrix x(24, 64);
+  std::vector<int> y;
+  for (int i = 0; i < 12; ++i) {
+    for (int c = 0; c < 2; ++c) {
+      const Recognition d = describer.describe(render(c ? sphere : mug, 30.0 * i, 1 + i));
+      ASSERT_EQ(d.features.size(), 64u);
+      for (int k = 0; k < 64; ++k) x(2 * i + c, k) = d.features[static_cast<std::size_t>(k)];
+      y.push_back(c);
+    }
+  }
+  Model trained = untrainedModel({"kpd2", "kpa3"});
+  trained.classifier->fit(x, y, 2);
+  trained.info.class_means = classMeans(x, y, 2);
+  const Recognizer recognizer(std::move(trained));
+  int right = 0;
+  for (int i = 0; i < 6; ++i) {
+    for (int c = 0; c < 2; ++c) {
+      const Recognition r = recognizer.recognize(render(c ? sphere : mug, 15.0 + 60.0 * i, 100 + i));
+      ASSERT_EQ(r.probabilities.size(), 2u);
+      EXPECT_NEAR(r.probabilities[0] + r.probabilities[1], 1.0f, 1e-4f);
+      EXPECT_GT(r.descriptor.keypointCount(), 5);
+      EXPECT_EQ(r.descriptor.keypoint_index.size(), r.descriptor.keypoints.size());
+      EXPECT_GT(r.points.size(), 300u);  // the filtered object, table removed
+      right += r.best == c;
+    }
+  }
+  EXPECT_GE(right, 11) << "of 12 unseen views";
+}
+
+TEST(Recognizer, RefusesModelsItCannotFeedLive) {
+  try {
+    Recognizer r(untrainedModel({"kpd2", "esf"}), "m1");
+    FAIL() << "esf accepted";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("m1: block 'esf' is not computed live"), std::string::npos) << e.what();
+  }
+  Model wrong = untrainedModel({"kpd2"});
+  wrong.info.inputs = 40;
+  EXPECT_THROW(Recognizer(std::move(wrong), "m2"), Error);
+  Model old = untrainedModel({"kpd2"});
+  old.info.spec["cache_version"] = "1";
+  EXPECT_THROW(Recognizer(std::move(old), "m3"), Error);
+}
+
+TEST(Recognizer, ABadCloudIsAnErrorNotACrash) {
+  const Recognizer r(untrainedModel({"kpd2"}));
+  Cloud empty;
+  EXPECT_THROW(r.recognize(empty), Error);
+  Cloud nan;
+  nan.width = 4;
+  nan.height = 1;
+  nan.points.assign(4, Eigen::Vector3f::Constant(std::nanf("")));
+  EXPECT_THROW(r.recognize(nan), Error);
+}
+
+TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
+  FeatureParams p;
+  p.bins = 48;
+  p.extent = 0.4;
+  p.plane_removal = false;
+  p.graph_radius = 4.5;
+  const FeatureParams q = featureParamsFromSpec(featureSpec(p), "x");
+  EXPECT_EQ(featureSpec(q), featureSpec(p));
+  EXPECT_EQ(q.bins, 48);
+  EXPECT_FALSE(q.plane_removal);
+  auto spec = featureSpec(p);
+  spec["iss_nms"] = "four";
+  try {
+    featureParamsFromSpec(spec, "model.json");
+    FAIL();
+  } catch (const Error& e) {
+    EXPECT_STREQ(e.what(), "model.json: feature spec 'iss_nms' is not a number: 'four'");
+  }
+  spec.erase("iss_nms");
+  EXPECT_THROW(featureParamsFromSpec(spec, "model.json"), Error);
+}
+
+TEST(ClassMeans, IgnoreMissingValues) {
+  Matrix x(3, 2);
+  x << 1, std::nanf(""), 3, 4, 10, 20;
+  const auto m = classMeans(x, {0, 0, 1}, 2);
+  ASSERT_EQ(m.size(), 2u);
+  EXPECT_FLOAT_EQ(m[0][0], 2.f);
+  EXPECT_FLOAT_EQ(m[0][1], 4.f);
+  EXPECT_FLOAT_EQ(m[1][1], 20.f);
+}
