@@ -55,6 +55,8 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
   CaptureProgress prog;
   prog.total = angles.size();
   for (double angle : angles) {
+    prog.frame = nullptr;
+    prog.record = nullptr;
     if (o.stop && *o.stop) {
       rep.stopped = true;
       break;
@@ -95,13 +97,16 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
       meta.frames_discarded = o.discard_frames;
       meta.frames_taken = o.frames;
       meta.redos = redos;
-      dataset.write(key, meta, drivers::medianFrame(frames));
+      const drivers::TofFrame median = drivers::medianFrame(frames);
+      const ViewRecord record = dataset.write(key, meta, median);
       rep.redos += static_cast<std::size_t>(redos);
       ++rep.written;
+      ++prog.done;
+      prog.frame = &median;
+      prog.record = &record;
+      if (progress) progress(prog);
       break;
     }
-    ++prog.done;
-    if (progress) progress(prog);
   }
   return rep;
 }

@@ -7,6 +7,8 @@
 #include <cstring>
 #include <memory>
 #include <random>
+#include <thread>
+#include <chrono>
 #include <atomic>
 #include <string>
 #include <vector>
@@ -42,6 +44,7 @@ struct CMesaDevice {
   std::uint64_t frames = 0, acquires = 0;
   bool unplugged = false;
   std::mt19937_64 fault_rng{0};
+  std::chrono::steady_clock::time_point next_frame{};  // with a frame rate: when the next frame is due
 };
 
 namespace {
@@ -221,6 +224,14 @@ SIM_EXPORT int SR_Acquire(SRCAM cam) {
     renderFrame(*cam);
   } catch (const std::exception&) {
     return -1;
+  }
+  if (cam->config.frame_rate > 0) {
+    // A real camera delivers at its frame rate: wait for the frame's slot.
+    const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+        std::chrono::duration<double>(1.0 / cam->config.frame_rate));
+    const auto now = std::chrono::steady_clock::now();
+    if (cam->next_frame > now) std::this_thread::sleep_until(cam->next_frame);
+    cam->next_frame = std::max(cam->next_frame, now) + period;
   }
   ++cam->frames;
   const int full = 2 * kPixels * static_cast<int>(sizeof(std::uint16_t));

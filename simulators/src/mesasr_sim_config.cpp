@@ -34,6 +34,8 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
     c.world = j.value("world", c.world);
     c.serial = j.value("serial", c.serial);
     c.seed = j.value("seed", c.seed);
+    c.frame_rate = j.value("frame_rate", c.frame_rate);
+    if (!(c.frame_rate >= 0 && c.frame_rate <= 1000)) throw Error(path + ": frame_rate must be in [0, 1000]");
     if (j.contains("faults")) {
       const auto& f = j.at("faults");
       c.faults.open_fail = f.value("open_fail", false);
@@ -60,6 +62,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
 void MesaSrSimConfig::save(const std::string& path) const {
   nlohmann::json j = {{"mesh", mesh},       {"distance", distance}, {"elevation", elevation},
                       {"turntable_deg", turntable_deg}, {"serial", serial}, {"seed", seed},
+                      {"frame_rate", frame_rate},
                       {"faults", {{"open_fail", faults.open_fail}, {"timeout_every", faults.timeout_every},
                                   {"corrupt_every", faults.corrupt_every},
                                   {"disconnect_after", faults.disconnect_after},

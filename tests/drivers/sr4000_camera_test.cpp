@@ -2,6 +2,7 @@
 // library would be.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -298,4 +299,19 @@ TEST_F(Sr4000SimTest, SaturatedPixelsHaveNoConfidence) {
   auto normal = open();
   const TofFrame g = normal->acquire();
   EXPECT_EQ(std::count(g.amplitude.begin(), g.amplitude.end(), 65535), 0);
+}
+
+TEST_F(Sr4000SimTest, AFrameRateSpacesTheFramesLikeARealCamera) {
+  sim::MesaSrSimConfig c;
+  c.frame_rate = 25;
+  useConfig(c);
+  auto cam = open();
+  cam->acquire();  // the first frame is due at once
+  std::vector<std::chrono::steady_clock::time_point> t;
+  for (int i = 0; i < 6; ++i) {
+    cam->acquire();
+    t.push_back(std::chrono::steady_clock::now());
+  }
+  // 5 intervals of 40 ms: never sooner (a lower bound: a slow machine may only be later).
+  EXPECT_GE(std::chrono::duration<double>(t.back() - t.front()).count(), 5 * 0.040 - 0.002);
 }

@@ -82,8 +82,17 @@ TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
   rig::Dataset ds((dir_ / "ds").string());
   auto o = options();
   o.camera_from_turntable_zero = Eigen::Matrix4d::Identity();
-  const auto rep = rig::runCapture(*camera_, *table_, ds, o);
+  std::vector<std::string> shown;  // what a GUI would show as thumbnails, in order
+  const auto rep = rig::runCapture(*camera_, *table_, ds, o, [&](const rig::CaptureProgress& p) {
+    ASSERT_NE(p.frame, nullptr);
+    ASSERT_NE(p.record, nullptr);
+    EXPECT_EQ(p.frame->width * p.frame->height, p.frame->distance.size());
+    EXPECT_DOUBLE_EQ(p.record->key.commanded_deg, p.angle_deg);
+    shown.push_back(p.record->files.at(0));
+  });
   EXPECT_EQ(rep.written, 4u);
+  EXPECT_EQ(shown, (std::vector<std::string>{"mug/builtin/e30/a0.0.pcd", "mug/builtin/e30/a10.0.pcd",
+                                             "mug/builtin/e30/a20.0.pcd", "mug/builtin/e30/a30.0.pcd"}));
   const auto views = rig::Dataset::readManifest(ds.root());
   ASSERT_EQ(views.size(), 4u);
   for (std::size_t i = 0; i < views.size(); ++i) {

@@ -35,6 +35,9 @@ struct CaptureOptions {
 struct CaptureProgress {
   std::size_t done = 0, skipped = 0, total = 0;
   double angle_deg = 0;
+  // The view just written (valid during the callback only); null for a skipped view.
+  const drivers::TofFrame* frame = nullptr;
+  const ViewRecord* record = nullptr;
 };
 
 struct CaptureReport {
