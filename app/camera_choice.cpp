@@ -17,9 +17,10 @@ std::string simulatorLibraryPath() {
 }
 
 std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
-                                               const std::string& library) {
+                                               const std::string& library,
+                                               std::function<void(const std::string&)> log) {
   drivers::Sr4000Options options;
-  options.log = [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
+  options.log = log ? std::move(log) : [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
   if (spec == "sim") {
     if (!sim_config.empty()) ::setenv("MESASR_SIM_CONFIG", sim_config.c_str(), 1);
     return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(simulatorLibraryPath()),

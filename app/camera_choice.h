@@ -2,6 +2,7 @@
 // --camera sim|usb[:SERIAL]|eth:IP → an open TofCamera. "sim" loads
 // libmesasr-sim (the build's, or $KEYTURN_MESASR_SIM) and opens its first USB
 // camera; the others load MESA's libMesaSR ($KEYTURN_MESASR_LIB or the usual sonames).
+#include <functional>
 #include <memory>
 #include <string>
 
@@ -10,8 +11,10 @@
 namespace keyturn::app {
 
 // library: libMesaSR path for usb/eth (empty: $KEYTURN_MESASR_LIB or the usual sonames).
+// log: the driver's retries and reconnects (default: stderr).
 std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
-                                               const std::string& library = "");
+                                               const std::string& library = "",
+                                               std::function<void(const std::string&)> log = {});
 std::string simulatorLibraryPath();
 
 }  // namespace keyturn::app

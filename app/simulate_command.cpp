@@ -11,6 +11,7 @@
 #include <sstream>
 
 #include "commands.h"
+#include "object_list.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/capture.h"
 #include "progress.h"
@@ -31,61 +32,6 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
-struct ObjectRow {
-  std::string cls, instance, mesh;
-};
-
-std::vector<std::string> csvFields(const std::string& line) {
-  std::vector<std::string> out;
-  std::string cur;
-  bool quoted = false;
-  for (std::size_t i = 0; i < line.size(); ++i) {
-    const char c = line[i];
-    if (quoted) {
-      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') cur += '"', ++i;
-      else if (c == '"') quoted = false;
-      else cur += c;
-    } else if (c == '"') {
-      quoted = true;
-    } else if (c == ',') {
-      out.push_back(cur);
-      cur.clear();
-    } else if (c != '\r') {
-      cur += c;
-    }
-  }
-  out.push_back(cur);
-  return out;
-}
-
-std::vector<ObjectRow> readObjects(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open the object list");
-  std::string line;
-  if (!std::getline(in, line)) throw Error(path + ": empty object list");
-  const auto header = csvFields(line);
-  int ic = -1, ii = -1, im = -1;
-  for (int i = 0; i < static_cast<int>(header.size()); ++i) {
-    if (header[i] == "class") ic = i;
-    if (header[i] == "instance") ii = i;
-    if (header[i] == "mesh") im = i;
-  }
-  if (ic < 0 || ii < 0 || im < 0) throw Error(path + ": needs class, instance and mesh columns");
-  const fs::path base = fs::path(path).parent_path();
-  std::vector<ObjectRow> out;
-  for (int n = 2; std::getline(in, line); ++n) {
-    if (line.empty()) continue;
-    const auto f = csvFields(line);
-    if (static_cast<int>(f.size()) <= std::max({ic, ii, im}))
-      throw Error(path + ": line " + std::to_string(n) + ": too few columns");
-    fs::path mesh = f[im];
-    if (mesh.is_relative()) mesh = base / mesh;
-    out.push_back({f[ic], f[ii], mesh.string()});
-  }
-  if (out.empty()) throw Error(path + ": no objects listed");
-  return out;
-}
-
 std::vector<double> parseList(const std::string& text, const char* what) {
   std::vector<double> out;
   std::stringstream ss(text);
@@ -102,7 +48,7 @@ std::vector<double> parseList(const std::string& text, const char* what) {
 }
 
 int runSimulate(const SimulateArgs& a) {
-  const auto objects = readObjects(a.objects);
+  const auto objects = readObjectList(a.objects);
   const auto elevations = parseList(a.elevations, "--elevations");
   for (const auto& o : objects)
     if (!fs::exists(o.mesh)) throw Error(a.objects + ": " + o.cls + "/" + o.instance + ": no mesh at " + o.mesh);

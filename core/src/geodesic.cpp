@@ -319,4 +319,31 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   return res;
 }
 
+std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const PointSet& set,
+                                                                    const std::vector<int>& keypoints,
+                                                                    double resolution, const GraphOptions& options) {
+  std::vector<std::vector<Eigen::Vector3f>> out;
+  const auto& points = set.points;
+  if (points.empty() || keypoints.empty()) return out;
+  const RadiusSearch search(set);
+  const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, resolution, options);
+  const Eigen::Vector3f c = set.centroid();
+  int source = 0;
+  float best = kInf;
+  for (std::size_t v = 0; v < points.size(); ++v) {
+    const float d = (points[v] - c).squaredNorm();
+    if (d < best) {
+      best = d;
+      source = static_cast<int>(v);
+    }
+  }
+  for (const auto& path : shortestPaths(graph, source, keypoints)) {
+    if (path.empty()) continue;
+    std::vector<Eigen::Vector3f> line;
+    for (int v : path) line.push_back(points[static_cast<std::size_t>(v)]);
+    out.push_back(std::move(line));
+  }
+  return out;
+}
+
 }  // namespace keyturn

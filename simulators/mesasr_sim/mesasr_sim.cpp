@@ -2,6 +2,7 @@
 // libmesasr.so so that keyturn's driver, and any program written against
 // libMesaSR, loads it exactly as it would load MESA's library.
 #include <arpa/inet.h>
+#include <sys/stat.h>
 
 #include <cmath>
 #include <cstring>
@@ -68,13 +69,19 @@ void allocateImages(CMesaDevice& d) {
   d.entries[2] = {IT_CONF_MAP, DT_USHORT, d.confidence_img.get(), kCols, kRows};
 }
 
+// The cable is "pulled" while the config's unplug file exists (tests, the studio's unplug button).
+bool unplugged(const MesaSrSimConfig& c) {
+  struct stat st;
+  return !c.unplug_file.empty() && ::stat(c.unplug_file.c_str(), &st) == 0;
+}
+
 int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned serial) {
   if (!out) return -1;
   *out = nullptr;
   try {
     auto d = std::make_unique<CMesaDevice>();
     d->config = MesaSrSimConfig::fromEnvironment();
-    if (d->config.faults.open_fail) return -1;
+    if (d->config.faults.open_fail || unplugged(d->config)) return -1;
     if (!ethernet && serial != 0 && serial != d->config.serial) return 0;  // no such camera
     const auto mesh = keyturn::sim::loadMeshOrBuiltin(d->config.mesh);
     d->renderer = std::make_unique<keyturn::sim::TofViewRenderer>(mesh);
@@ -207,6 +214,10 @@ SIM_EXPORT int SR_Acquire(SRCAM cam) {
   if (!alive(cam)) return -1;
   const auto& f = cam->config.faults;
   ++cam->acquires;
+  if (unplugged(cam->config)) {
+    cam->unplugged = true;
+    return -1;
+  }
   if (f.disconnect_after > 0 && cam->frames >= static_cast<std::uint64_t>(f.disconnect_after)) {
     cam->unplugged = true;  // stays silent until closed and opened again
     return -1;

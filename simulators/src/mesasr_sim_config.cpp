@@ -35,6 +35,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
     c.serial = j.value("serial", c.serial);
     c.seed = j.value("seed", c.seed);
     c.frame_rate = j.value("frame_rate", c.frame_rate);
+    c.unplug_file = j.value("unplug_file", c.unplug_file);
     if (!(c.frame_rate >= 0 && c.frame_rate <= 1000)) throw Error(path + ": frame_rate must be in [0, 1000]");
     if (j.contains("faults")) {
       const auto& f = j.at("faults");
@@ -56,6 +57,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
   };
   resolve(c.mesh);
   resolve(c.world);
+  resolve(c.unplug_file);
   return c;
 }
 
@@ -68,6 +70,7 @@ void MesaSrSimConfig::save(const std::string& path) const {
                                   {"disconnect_after", faults.disconnect_after},
                                   {"random_rate", faults.random_rate}}}};
   if (!world.empty()) j["world"] = world;
+  if (!unplug_file.empty()) j["unplug_file"] = unplug_file;
   std::ofstream(path) << j.dump(2) << "\n";
 }
 

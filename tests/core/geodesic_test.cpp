@@ -137,3 +137,18 @@ TEST(Geodesic, PathsFollowTheSurfaceAndSumToTheDistance) {
   for (std::size_t i = 1; i < hp.size(); ++i) arc += (c.set.points[hp[i]] - c.set.points[hp[i - 1]]).norm();
   EXPECT_NEAR(arc, M_PI * kR, 0.03 * M_PI * kR);
 }
+
+TEST(Geodesic, CentroidPolylinesEndAtEachReachableKeypoint) {
+  const CylinderGraph c;
+  const std::vector<int> kp = {cylinderVertex(0, 0), cylinderVertex(kAround / 2, 40), cylinderVertex(10, 20)};
+  const auto lines = centroidGeodesicPolylines(c.set, kp, c.res, GraphOptions());
+  ASSERT_EQ(lines.size(), 3u);
+  for (std::size_t i = 0; i < kp.size(); ++i) {
+    ASSERT_GE(lines[i].size(), 2u);
+    EXPECT_TRUE(lines[i].back().isApprox(c.set.points[kp[i]]));
+    // All start at the same vertex: the one nearest the centroid (on the axis, so r away).
+    EXPECT_TRUE(lines[i].front().isApprox(lines[0].front()));
+    EXPECT_NEAR(std::hypot(lines[i].front().x(), lines[i].front().y()), kR, 1e-4);
+    EXPECT_NEAR(lines[i].front().z(), kH / 2, 0.01);
+  }
+}

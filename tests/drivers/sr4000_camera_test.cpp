@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <fstream>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -314,4 +315,18 @@ TEST_F(Sr4000SimTest, AFrameRateSpacesTheFramesLikeARealCamera) {
   }
   // 5 intervals of 40 ms: never sooner (a lower bound: a slow machine may only be later).
   EXPECT_GE(std::chrono::duration<double>(t.back() - t.front()).count(), 5 * 0.040 - 0.002);
+}
+
+TEST_F(Sr4000SimTest, AnUnpluggedCameraFailsUntilPluggedBackIn) {
+  sim::MesaSrSimConfig c;
+  c.unplug_file = (dir_ / "unplugged").string();
+  useConfig(c);
+  auto cam = open();
+  EXPECT_EQ(cam->acquire().width, 176u);
+  std::ofstream(c.unplug_file) << "";
+  const std::string msg = errorOf([&] { cam->acquire(); });
+  EXPECT_NE(msg.find("SR4000"), std::string::npos) << msg;  // names the device
+  EXPECT_THROW(open(), Error);                              // and it cannot be opened either
+  fs::remove(c.unplug_file);
+  EXPECT_EQ(open()->acquire().width, 176u);
 }

@@ -58,7 +58,7 @@ TEST(Recognizer, NamesTheObjectOfUnseenViewsWithTheModelsOwnFeatures) {
       EXPECT_NEAR(r.probabilities[0] + r.probabilities[1], 1.0f, 1e-4f);
       EXPECT_GT(r.descriptor.keypointCount(), 5);
       EXPECT_EQ(r.descriptor.keypoint_index.size(), r.descriptor.keypoints.size());
-      EXPECT_GT(r.points.size(), 300u);  // the filtered object, table removed
+      EXPECT_GT(r.filtered.size(), 300u);  // the filtered object, table removed
       right += r.best == c;
     }
   }

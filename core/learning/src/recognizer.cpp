@@ -33,6 +33,9 @@ Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model
                 std::to_string(model_.info.inputs) + " inputs");
 }
 
+Recognizer::Recognizer(const FeatureParams& params, const std::vector<Feature>& features)
+    : source_("(no model)"), options_(descriptorOptions(params, features)) {}
+
 Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadModel(dir), dir); }
 
 Recognition Recognizer::describe(const Cloud& cloud) const {
@@ -41,7 +44,7 @@ Recognition Recognizer::describe(const Cloud& cloud) const {
   // Filter here, describe unfiltered: the same split the dataset cache uses, and
   // the filtered points are what a viewer shows.
   const Cloud filtered = options_.filter ? filterCloud(cloud, options_.filter_options) : cloud;
-  r.points = PointSet::fromCloud(filtered).points;
+  r.filtered = PointSet::fromCloud(filtered);
   r.filter_ms = msSince(t0);
   DescriptorOptions o = options_;
   o.filter = false;
@@ -57,12 +60,13 @@ Recognition Recognizer::describe(const Cloud& cloud) const {
 Recognition Recognizer::recognize(const Cloud& cloud) const {
   const auto t0 = std::chrono::steady_clock::now();
   Recognition r = describe(cloud);
+  if (!hasModel()) return r;
   const auto t2 = std::chrono::steady_clock::now();
   Matrix x(1, static_cast<Eigen::Index>(r.features.size()));
   for (std::size_t k = 0; k < r.features.size(); ++k) x(0, static_cast<Eigen::Index>(k)) = r.features[k];
   Matrix p;
   {
-    std::lock_guard<std::mutex> lock(classify_mutex_);
+    std::lock_guard<std::mutex> lock(*classify_mutex_);
     p = model_.classifier->predictProba(x);
   }
   r.probabilities.assign(p.data(), p.data() + p.cols());

@@ -9,6 +9,7 @@
 //   "turntable_deg": 0,        object rotation when no world file is given
 //   "world": "world.json",     shared world state: {"turntable_deg": A} read at every acquire
 //   "serial": 4000123, "seed": 1,
+//   "unplug_file": "",         while this file exists the camera is unplugged: opens fail, acquires fail
 //   "frame_rate": 0,           frames/s SR_Acquire keeps to, as a real camera does; 0 = as fast as it renders
 //   "faults": { "open_fail": false,      every open returns -1
 //               "timeout_every": 0,      every Nth acquire times out (returns -1)
@@ -38,6 +39,7 @@ struct MesaSrSimConfig {
   std::uint32_t serial = 4000123;
   std::uint64_t seed = 1;
   double frame_rate = 0.0;
+  std::string unplug_file;
   MesaSrSimFaults faults;
 
   // From $MESASR_SIM_CONFIG, or defaults when unset. Throws keyturn::Error.

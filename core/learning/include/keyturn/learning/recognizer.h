@@ -15,7 +15,7 @@
 namespace keyturn::learning {
 
 struct Recognition {
-  std::vector<Eigen::Vector3f> points;  // the filtered view
+  PointSet filtered;                    // the filtered view
   ViewDescriptor descriptor;            // keypoints (K), PDFs in the model's block order, timings
   std::vector<float> features;          // what the classifier saw
   std::vector<float> probabilities;     // one per class, the model's order
@@ -29,12 +29,16 @@ class Recognizer {
   // (only the keypoint and Osada blocks are: kpd2 … gkpcd2, d1 … a3).
   explicit Recognizer(Model model, std::string source = "model");
   static Recognizer load(const std::string& dir);
+  // Describes views without a model (no classes, recognize() only describes).
+  Recognizer(const struct FeatureParams& params, const std::vector<Feature>& features);
 
+  bool hasModel() const { return model_.classifier != nullptr; }
   const ModelInfo& info() const { return model_.info; }
   const std::string& source() const { return source_; }
   const DescriptorOptions& options() const { return options_; }
   // Throws keyturn::Error for a cloud the chain cannot describe (too few
   // points or keypoints): the caller shows it and goes on with the next frame.
+  // Without a model it only describes.
   Recognition recognize(const Cloud& cloud) const;
   // The same without classifying (points, descriptor, features only).
   Recognition describe(const Cloud& cloud) const;
@@ -43,7 +47,7 @@ class Recognizer {
   Model model_;
   std::string source_;
   DescriptorOptions options_;
-  mutable std::mutex classify_mutex_;  // one prediction at a time in the classifier
+  std::unique_ptr<std::mutex> classify_mutex_ = std::make_unique<std::mutex>();  // one prediction at a time
 };
 
 }  // namespace keyturn::learning

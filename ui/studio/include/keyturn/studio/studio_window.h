@@ -1,0 +1,46 @@
+#pragma once
+// keyturn studio's main window: devices, live images, the 3D view, capture
+// and live recognition. Acquisition, the pose readout and recognition run on
+// their own threads; the window only shows what they report.
+#include <QMainWindow>
+#include <memory>
+
+#include "keyturn/studio/rig_factory.h"
+
+namespace keyturn::studio {
+
+struct StudioOptions {
+  bool simulated = false;        // start with the simulated rig connected
+  std::string sim_object;        // instance on the simulated turntable ("" = the first)
+  std::string model;             // model folder to load at start ("" = the saved one)
+  std::string dataset;           // capture folder ("" = the saved one)
+  int recognition_threads = 2;
+  std::string settings_file;     // "" = the user's (QSettings keyturn/studio)
+};
+
+// Live numbers, for the status bar, tests and `keyturn-studio --measure`.
+struct StudioRates {
+  double camera_fps = 0, recognition_fps = 0, latency_ms = 0, describe_ms = 0;
+  long frames = 0, results = 0, dropped = 0;
+};
+
+class StudioWindow : public QMainWindow {
+  Q_OBJECT
+ public:
+  StudioWindow(RigFactory& factory, StudioOptions options, QWidget* parent = nullptr);
+  ~StudioWindow() override;
+
+  StudioRates rates() const;
+  QString bannerText() const;    // "" when no banner is shown
+  QString recognisedClass() const;
+  double recognisedAgreement() const;
+
+ protected:
+  void closeEvent(QCloseEvent* e) override;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> d_;
+};
+
+}  // namespace keyturn::studio

@@ -1,0 +1,342 @@
+#include "devices_panel.h"
+
+#include <QCheckBox>
+#include <QComboBox>
+#include <QDoubleSpinBox>
+#include <QFormLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QSettings>
+#include <QSpinBox>
+#include <QStackedWidget>
+#include <QVBoxLayout>
+#include <cmath>
+
+#include "keyturn/drivers/mesasr_api.h"
+
+namespace keyturn::studio {
+
+DevicesPanel::DevicesPanel(RigFactory& factory, QWidget* parent) : QWidget(parent), factory_(factory) {
+  auto* layout = new QVBoxLayout(this);
+  layout->addWidget(cameraGroup());
+  layout->addWidget(poseGroup());
+  layout->addStretch(1);
+  updateCameraKind();
+  updatePoseKind();
+}
+
+QWidget* DevicesPanel::cameraGroup() {
+  auto* box = new QGroupBox(tr("Camera"));
+  auto* form = new QFormLayout(box);
+  camera_kind_ = new QComboBox;
+  camera_kind_->addItems({tr("Simulated SR4000"), tr("USB"), tr("Ethernet")});
+  camera_kind_->setObjectName("cameraKind");
+  form->addRow(tr("Source"), camera_kind_);
+
+  camera_where_ = new QStackedWidget;
+  sim_object_ = new QComboBox;
+  sim_object_->setObjectName("simObject");
+  for (const auto& o : factory_.simObjects())
+    sim_object_->addItem(QString::fromStdString(o.cls + " / " + o.instance), QString::fromStdString(o.instance));
+  auto* usb = new QWidget;
+  auto* usb_row = new QHBoxLayout(usb);
+  usb_row->setContentsMargins(0, 0, 0, 0);
+  usb_list_ = new QComboBox;
+  auto* rescan = new QPushButton(tr("Rescan"));
+  usb_row->addWidget(usb_list_, 1);
+  usb_row->addWidget(rescan);
+  address_ = new QLineEdit("192.168.1.42");
+  address_->setPlaceholderText("IPv4 address");
+  camera_where_->addWidget(sim_object_);
+  camera_where_->addWidget(usb);
+  camera_where_->addWidget(address_);
+  form->addRow(tr("Device"), camera_where_);
+
+  auto_exposure_ = new QCheckBox(tr("Auto exposure"));
+  auto_exposure_->setChecked(false);
+  integration_ = new QSpinBox;
+  integration_->setRange(0, 255);
+  integration_->setValue(30);
+  integration_->setToolTip(tr("SR4000 integration time: 0.3 ms + n × 0.1 ms"));
+  auto* exposure_row = new QHBoxLayout;
+  exposure_row->addWidget(integration_);
+  exposure_row->addWidget(auto_exposure_);
+  form->addRow(tr("Integration"), exposure_row);
+  modulation_ = new QComboBox;
+  for (int f : {MF_30MHz, MF_29MHz, MF_31MHz, MF_15MHz, MF_14_5MHz, MF_15_5MHz})
+    modulation_->addItem(QString("%1 MHz (%2 m)").arg(drivers::modulationMHz(f)).arg(drivers::nonAmbiguousRange(f), 0, 'f', 1), f);
+  form->addRow(tr("Modulation"), modulation_);
+  threshold_ = new QSpinBox;
+  threshold_->setRange(0, 65535);
+  form->addRow(tr("Amplitude threshold"), threshold_);
+  fixed_pattern_ = new QCheckBox(tr("Fixed pattern"));
+  median_ = new QCheckBox(tr("Median"));
+  denoise_ = new QCheckBox(tr("Denoise (ANF)"));
+  conf_map_ = new QCheckBox(tr("Confidence map"));
+  for (auto* c : {fixed_pattern_, denoise_, conf_map_}) c->setChecked(true);
+  auto* flags = new QHBoxLayout;
+  for (auto* c : {fixed_pattern_, median_, denoise_, conf_map_}) flags->addWidget(c);
+  form->addRow(tr("Acquire"), flags);
+
+  camera_button_ = new QPushButton(tr("Connect"));
+  camera_button_->setObjectName("cameraConnect");
+  camera_button_->setShortcut(QKeySequence(Qt::Key_F5));
+  camera_button_->setToolTip(tr("Connect or disconnect the camera (F5)"));
+  unplug_ = new QCheckBox(tr("Pull the simulated cable"));
+  unplug_->setObjectName("simUnplug");
+  auto* row = new QHBoxLayout;
+  row->addWidget(camera_button_);
+  row->addWidget(unplug_);
+  form->addRow(row);
+  camera_status_ = new QLabel(tr("disconnected"));
+  camera_status_->setWordWrap(true);
+  camera_status_->setObjectName("cameraStatus");
+  camera_fps_ = new QLabel("–");
+  form->addRow(tr("Status"), camera_status_);
+  form->addRow(tr("Frame rate"), camera_fps_);
+
+  connect(camera_kind_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] { updateCameraKind(); });
+  connect(sim_object_, qOverload<int>(&QComboBox::currentIndexChanged), this,
+          [this] { emit simObjectChanged(simObject()); });
+  connect(rescan, &QPushButton::clicked, this, &DevicesPanel::refreshUsb);
+  connect(camera_button_, &QPushButton::clicked, this, [this] {
+    if (camera_on_) emit disconnectCamera();
+    else emit connectCamera();
+  });
+  connect(unplug_, &QCheckBox::toggled, this, &DevicesPanel::simulatedUnplug);
+  for (auto* c : {auto_exposure_, median_, denoise_, fixed_pattern_, conf_map_})
+    connect(c, &QCheckBox::toggled, this, &DevicesPanel::settingsChanged);
+  connect(auto_exposure_, &QCheckBox::toggled, integration_, &QWidget::setDisabled);
+  connect(integration_, qOverload<int>(&QSpinBox::valueChanged), this, &DevicesPanel::settingsChanged);
+  connect(threshold_, qOverload<int>(&QSpinBox::valueChanged), this, &DevicesPanel::settingsChanged);
+  connect(modulation_, qOverload<int>(&QComboBox::currentIndexChanged), this, &DevicesPanel::settingsChanged);
+  return box;
+}
+
+QWidget* DevicesPanel::poseGroup() {
+  auto* box = new QGroupBox(tr("Turntable / robot"));
+  auto* form = new QFormLayout(box);
+  pose_kind_ = new QComboBox;
+  pose_kind_->addItems({tr("None"), tr("Simulated turntable"), tr("Modbus TCP"), tr("Modbus RTU"), tr("CANopen")});
+  pose_kind_->setCurrentIndex(1);
+  form->addRow(tr("Source"), pose_kind_);
+  pose_endpoint_ = new QLineEdit;
+  form->addRow(tr("Endpoint"), pose_endpoint_);
+  pose_profile_ = new QLineEdit("keyturn-sim");
+  pose_profile_->setToolTip(tr("Modbus register profile (keyturn-sim or a JSON file), or the CANopen axes file"));
+  form->addRow(tr("Profile"), pose_profile_);
+  pose_button_ = new QPushButton(tr("Connect"));
+  pose_button_->setObjectName("poseConnect");
+  pose_button_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
+  pose_button_->setToolTip(tr("Connect or disconnect the pose source (Shift+F5)"));
+  form->addRow(pose_button_);
+  pose_status_ = new QLabel(tr("disconnected"));
+  pose_status_->setWordWrap(true);
+  form->addRow(tr("Status"), pose_status_);
+
+  angle_ = new QLabel("–");
+  angle_->setObjectName("poseAngle");
+  QFont big = angle_->font();
+  big.setPointSizeF(big.pointSizeF() * 2.0);
+  big.setBold(true);
+  angle_->setFont(big);
+  motion_ = new QLabel;
+  auto* readout = new QHBoxLayout;
+  readout->addWidget(angle_);
+  readout->addWidget(motion_, 1);
+  form->addRow(tr("Pose"), readout);
+
+  motion_box_ = new QWidget;
+  auto* motion = new QVBoxLayout(motion_box_);
+  motion->setContentsMargins(0, 0, 0, 0);
+  auto* jogs = new QHBoxLayout;
+  for (double d : {-5.0, -1.0, 1.0, 5.0}) {
+    auto* b = new QPushButton(QString("%1%2°").arg(d > 0 ? "+" : "").arg(d));
+    connect(b, &QPushButton::clicked, this, [this, d] { emit jog(d); });
+    if (d == -5.0) b->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Left));
+    if (d == 5.0) b->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_Right));
+    jogs->addWidget(b);
+  }
+  motion->addLayout(jogs);
+  auto* moves = new QHBoxLayout;
+  auto* home_b = new QPushButton(tr("Home"));
+  home_b->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_H));
+  target_ = new QDoubleSpinBox;
+  target_->setRange(0, 359.9);
+  target_->setDecimals(1);
+  target_->setSuffix("°");
+  go_ = new QPushButton(tr("Move to"));
+  auto* stop_b = new QPushButton(tr("Stop"));
+  stop_b->setShortcut(QKeySequence(Qt::Key_Escape));
+  moves->addWidget(home_b);
+  moves->addWidget(target_);
+  moves->addWidget(go_);
+  moves->addWidget(stop_b);
+  motion->addLayout(moves);
+  form->addRow(motion_box_);
+  motion_box_->setEnabled(false);
+
+  connect(pose_kind_, qOverload<int>(&QComboBox::currentIndexChanged), this, [this] { updatePoseKind(); });
+  connect(pose_button_, &QPushButton::clicked, this, [this] {
+    if (pose_on_) emit disconnectPose();
+    else emit connectPose();
+  });
+  connect(home_b, &QPushButton::clicked, this, &DevicesPanel::home);
+  connect(go_, &QPushButton::clicked, this, [this] { emit moveTo(target_->value()); });
+  connect(stop_b, &QPushButton::clicked, this, &DevicesPanel::stopMotion);
+  return box;
+}
+
+void DevicesPanel::updateCameraKind() {
+  camera_where_->setCurrentIndex(camera_kind_->currentIndex());
+  unplug_->setVisible(camera_kind_->currentIndex() == 0);
+  if (camera_kind_->currentIndex() == 1 && usb_list_->count() == 0) refreshUsb();
+}
+
+void DevicesPanel::updatePoseKind() {
+  const auto k = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
+  const bool external = k != PoseRequest::Kind::None && k != PoseRequest::Kind::Simulated;
+  pose_endpoint_->setEnabled(external);
+  pose_profile_->setEnabled(external);
+  pose_endpoint_->setPlaceholderText(k == PoseRequest::Kind::ModbusTcp   ? "127.0.0.1:1502"
+                                     : k == PoseRequest::Kind::ModbusRtu ? "/dev/ttyUSB0"
+                                     : k == PoseRequest::Kind::Can       ? "can0"
+                                                                         : "");
+}
+
+void DevicesPanel::refreshUsb() {
+  usb_list_->clear();
+  try {
+    const auto cams = factory_.usbCameras();
+    for (const auto& [serial, text] : cams) usb_list_->addItem(QString::fromStdString(text), serial);
+    if (cams.empty()) usb_list_->addItem(tr("no SwissRanger on USB"), 0u);
+  } catch (const std::exception& e) {
+    usb_list_->addItem(QString("USB: %1").arg(e.what()), 0u);
+  }
+}
+
+CameraRequest DevicesPanel::cameraRequest() const {
+  CameraRequest r;
+  r.kind = static_cast<CameraRequest::Kind>(camera_kind_->currentIndex());
+  r.usb_serial = usb_list_->currentData().toUInt();
+  r.address = address_->text().trimmed().toStdString();
+  r.sim_object = simObject().toStdString();
+  return r;
+}
+
+drivers::TofSettings DevicesPanel::cameraSettings() const {
+  drivers::TofSettings s;
+  s.integration_time = static_cast<std::uint8_t>(integration_->value());
+  s.auto_exposure.enabled = auto_exposure_->isChecked();
+  s.modulation_frequency = modulation_->currentData().toInt();
+  s.amplitude_threshold = static_cast<std::uint16_t>(threshold_->value());
+  std::uint32_t mode = AM_CONV_GRAY;
+  if (fixed_pattern_->isChecked()) mode |= AM_COR_FIX_PTRN;
+  if (median_->isChecked()) mode |= AM_MEDIAN;
+  if (denoise_->isChecked()) mode |= AM_DENOISE_ANF;
+  if (conf_map_->isChecked()) mode |= AM_CONF_MAP;
+  s.acquire_mode = mode;
+  return s;
+}
+
+PoseRequest DevicesPanel::poseRequest() const {
+  PoseRequest r;
+  r.kind = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
+  r.endpoint = pose_endpoint_->text().trimmed().toStdString();
+  r.profile = pose_profile_->text().trimmed().toStdString();
+  return r;
+}
+
+QString DevicesPanel::simObject() const { return sim_object_->currentData().toString(); }
+
+void DevicesPanel::setCameraChoice(CameraRequest::Kind kind, const QString& sim_object) {
+  camera_kind_->setCurrentIndex(static_cast<int>(kind));
+  const int i = sim_object_->findData(sim_object);
+  if (i >= 0) sim_object_->setCurrentIndex(i);
+}
+
+void DevicesPanel::setPoseChoice(PoseRequest::Kind kind) { pose_kind_->setCurrentIndex(static_cast<int>(kind)); }
+
+void DevicesPanel::save(QSettings& s) const {
+  s.setValue("camera/kind", camera_kind_->currentIndex());
+  s.setValue("camera/sim_object", simObject());
+  s.setValue("camera/address", address_->text());
+  s.setValue("camera/integration", integration_->value());
+  s.setValue("camera/auto_exposure", auto_exposure_->isChecked());
+  s.setValue("camera/modulation", modulation_->currentIndex());
+  s.setValue("camera/threshold", threshold_->value());
+  s.setValue("pose/kind", pose_kind_->currentIndex());
+  s.setValue("pose/endpoint", pose_endpoint_->text());
+  s.setValue("pose/profile", pose_profile_->text());
+}
+
+void DevicesPanel::restore(const QSettings& s) {
+  camera_kind_->setCurrentIndex(s.value("camera/kind", 0).toInt());
+  const int i = sim_object_->findData(s.value("camera/sim_object").toString());
+  if (i >= 0) sim_object_->setCurrentIndex(i);
+  address_->setText(s.value("camera/address", address_->text()).toString());
+  integration_->setValue(s.value("camera/integration", 30).toInt());
+  auto_exposure_->setChecked(s.value("camera/auto_exposure", false).toBool());
+  modulation_->setCurrentIndex(s.value("camera/modulation", 0).toInt());
+  threshold_->setValue(s.value("camera/threshold", 0).toInt());
+  pose_kind_->setCurrentIndex(s.value("pose/kind", 1).toInt());
+  pose_endpoint_->setText(s.value("pose/endpoint").toString());
+  pose_profile_->setText(s.value("pose/profile", "keyturn-sim").toString());
+}
+
+void DevicesPanel::cameraConnected(const QString& device, const QString& settings) {
+  camera_on_ = true;
+  camera_button_->setText(tr("Disconnect"));
+  camera_kind_->setEnabled(false);
+  camera_where_->setEnabled(false);
+  camera_status_->setText(QString("<b>%1</b><br>%2").arg(device.toHtmlEscaped(), settings.toHtmlEscaped()));
+}
+
+void DevicesPanel::cameraDisconnected() {
+  camera_on_ = false;
+  camera_button_->setText(tr("Connect"));
+  camera_kind_->setEnabled(true);
+  camera_where_->setEnabled(true);
+  camera_status_->setText(tr("disconnected"));
+  camera_fps_->setText("–");
+}
+
+void DevicesPanel::cameraRate(double fps) { camera_fps_->setText(QString("%1 frames/s").arg(fps, 0, 'f', 1)); }
+
+void DevicesPanel::cameraFailing(const QString& message) {
+  camera_status_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(message.toHtmlEscaped()));
+  camera_fps_->setText("–");
+}
+
+void DevicesPanel::poseConnected(const QString& device, bool can_move) {
+  pose_on_ = true;
+  pose_button_->setText(tr("Disconnect"));
+  pose_kind_->setEnabled(false);
+  pose_status_->setText(device);
+  motion_box_->setEnabled(can_move);
+}
+
+void DevicesPanel::poseDisconnected() {
+  pose_on_ = false;
+  pose_button_->setText(tr("Connect"));
+  pose_kind_->setEnabled(true);
+  pose_status_->setText(tr("disconnected"));
+  angle_->setText("–");
+  motion_->clear();
+  motion_box_->setEnabled(false);
+}
+
+void DevicesPanel::poseFailing(const QString& message) {
+  pose_status_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(message.toHtmlEscaped()));
+}
+
+void DevicesPanel::showPose(double deg, double x, double y, double z, bool moving, bool in_position) {
+  if (std::isfinite(deg)) angle_->setText(QString("%1°").arg(deg, 0, 'f', 2));
+  else angle_->setText(QString("%1, %2, %3 mm").arg(x * 1e3, 0, 'f', 1).arg(y * 1e3, 0, 'f', 1).arg(z * 1e3, 0, 'f', 1));
+  motion_->setText(moving ? tr("moving") : in_position ? tr("in position") : tr("settling"));
+}
+
+}  // namespace keyturn::studio

@@ -1,0 +1,79 @@
+#pragma once
+// Devices: the camera (simulated, USB, Ethernet) with its settings, and the
+// pose source (simulated turntable, Modbus TCP/RTU, CANopen) with a live
+// readout and jog / home / move-to / stop.
+#include <QWidget>
+
+#include "keyturn/studio/rig_factory.h"
+
+class QCheckBox;
+class QComboBox;
+class QDoubleSpinBox;
+class QLabel;
+class QLineEdit;
+class QPushButton;
+class QSpinBox;
+class QSettings;
+class QStackedWidget;
+
+namespace keyturn::studio {
+
+class DevicesPanel : public QWidget {
+  Q_OBJECT
+ public:
+  DevicesPanel(RigFactory& factory, QWidget* parent = nullptr);
+
+  CameraRequest cameraRequest() const;
+  drivers::TofSettings cameraSettings() const;
+  PoseRequest poseRequest() const;
+  void setCameraChoice(CameraRequest::Kind kind, const QString& sim_object);
+  void setPoseChoice(PoseRequest::Kind kind);
+  QString simObject() const;
+
+  void save(QSettings& s) const;
+  void restore(const QSettings& s);
+
+ public slots:
+  void cameraConnected(const QString& device, const QString& settings);
+  void cameraDisconnected();
+  void cameraRate(double fps);
+  void cameraFailing(const QString& message);
+  void poseConnected(const QString& device, bool can_move);
+  void poseDisconnected();
+  void poseFailing(const QString& message);
+  void showPose(double deg, double x, double y, double z, bool moving, bool in_position);
+  void refreshUsb();
+
+ signals:
+  void connectCamera();
+  void disconnectCamera();
+  void settingsChanged();
+  void connectPose();
+  void disconnectPose();
+  void jog(double delta_deg);
+  void home();
+  void moveTo(double deg);
+  void stopMotion();
+  void simulatedUnplug(bool unplugged);
+  void simObjectChanged(const QString& instance);
+
+ private:
+  QWidget* cameraGroup();
+  QWidget* poseGroup();
+  void updateCameraKind();
+  void updatePoseKind();
+
+  RigFactory& factory_;
+  bool camera_on_ = false, pose_on_ = false;
+  QComboBox *camera_kind_, *sim_object_, *usb_list_, *modulation_, *pose_kind_;
+  QLineEdit *address_, *pose_endpoint_, *pose_profile_;
+  QStackedWidget* camera_where_;
+  QSpinBox *integration_, *threshold_;
+  QCheckBox *auto_exposure_, *median_, *denoise_, *fixed_pattern_, *conf_map_, *unplug_;
+  QPushButton *camera_button_, *pose_button_, *go_;
+  QLabel *camera_status_, *camera_fps_, *pose_status_, *angle_, *motion_;
+  QDoubleSpinBox* target_;
+  QWidget* motion_box_;
+};
+
+}  // namespace keyturn::studio

@@ -1,0 +1,101 @@
+#include "pose_worker.h"
+
+#include <cmath>
+
+#include "keyturn/rig/locked_pose_source.h"
+
+namespace keyturn::studio {
+
+PoseWorker::PoseWorker(RigFactory& factory) : factory_(factory) {
+  poll_ = new QTimer(this);
+  poll_->setInterval(100);
+  connect(poll_, &QTimer::timeout, this, &PoseWorker::poll);
+  reconnect_ = new QTimer(this);
+  reconnect_->setInterval(1000);
+  connect(reconnect_, &QTimer::timeout, this, &PoseWorker::tryReconnect);
+}
+
+PoseWorker::~PoseWorker() = default;
+
+bool PoseWorker::connectSource() {
+  source_ = std::make_shared<rig::LockedPoseSource>(
+      factory_.openPose(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); }));
+  return true;
+}
+
+void PoseWorker::open(const PoseRequest& request) {
+  close();
+  request_ = request;
+  if (request_.kind == PoseRequest::Kind::None) return;
+  try {
+    connectSource();
+  } catch (const std::exception& e) {
+    source_.reset();
+    emit failed(QString::fromStdString(request_.describe() + ": " + e.what()));
+    return;
+  }
+  emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);
+  poll_->start();
+  poll();
+}
+
+void PoseWorker::close() {
+  poll_->stop();
+  reconnect_->stop();
+  if (source_) {
+    source_.reset();
+    emit closed();
+  }
+}
+
+void PoseWorker::poll() {
+  if (!source_) return;
+  try {
+    const drivers::Pose p = source_->read();
+    if (std::isfinite(p.turntable_deg)) last_deg_ = p.turntable_deg;
+    emit pose(p.turntable_deg, p.position.x(), p.position.y(), p.position.z(), p.moving, p.in_position);
+  } catch (const std::exception& e) {
+    poll_->stop();
+    source_.reset();
+    emit failed(QString::fromStdString(e.what()));
+    reconnect_->start();
+  }
+}
+
+void PoseWorker::tryReconnect() {
+  try {
+    connectSource();
+  } catch (const std::exception& e) {
+    source_.reset();
+    emit logLine(QString::fromStdString(std::string("reconnect: ") + e.what()));
+    return;
+  }
+  reconnect_->stop();
+  emit recovered(QString::fromStdString(source_->describe()));
+  emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);
+  poll_->start();
+}
+
+void PoseWorker::command(const char* what, const std::function<void(drivers::PoseSource&)>& f) {
+  if (!source_) return;
+  try {
+    f(*source_);
+  } catch (const std::exception& e) {
+    emit logLine(QString("%1: %2").arg(what, e.what()));
+  }
+}
+
+void PoseWorker::jog(double delta) {
+  command("jog", [&](drivers::PoseSource& s) { s.moveTo(std::fmod(std::fmod(last_deg_ + delta, 360.0) + 360.0, 360.0)); });
+}
+void PoseWorker::home() {
+  command("home", [](drivers::PoseSource& s) { s.home(); });
+}
+void PoseWorker::moveTo(double deg) {
+  command("move", [&](drivers::PoseSource& s) { s.moveTo(deg); });
+}
+void PoseWorker::stopMotion() {
+  command("stop", [](drivers::PoseSource& s) { s.stop(); });
+}
+
+}  // namespace keyturn::studio

@@ -1,0 +1,230 @@
+#include "recognition_panel.h"
+
+#include <QComboBox>
+#include <QDateTime>
+#include <QFileDialog>
+#include <QFormLayout>
+#include <QGridLayout>
+#include <QGroupBox>
+#include <QHBoxLayout>
+#include <QLabel>
+#include <QLineEdit>
+#include <QProgressBar>
+#include <QPushButton>
+#include <QVBoxLayout>
+#include <QtCharts/QChart>
+#include <QtCharts/QChartView>
+#include <QtCharts/QLineSeries>
+#include <QtCharts/QValueAxis>
+#include <algorithm>
+#include <numeric>
+
+#include "keyturn/core/features.h"
+
+using namespace QtCharts;
+
+namespace keyturn::studio {
+
+namespace {
+constexpr int kTop = 5;
+}
+
+RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
+  auto* layout = new QVBoxLayout(this);
+  auto* model_box = new QGroupBox(tr("Model"));
+  auto* ml = new QVBoxLayout(model_box);
+  auto* row = new QHBoxLayout;
+  model_path_ = new QLineEdit;
+  model_path_->setObjectName("modelPath");
+  model_path_->setPlaceholderText(tr("model folder (keyturn train --out …)"));
+  auto* browse = new QPushButton(tr("Load…"));
+  browse->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_O));
+  browse->setToolTip(tr("Load a model folder (Ctrl+O)"));
+  row->addWidget(model_path_, 1);
+  row->addWidget(browse);
+  ml->addLayout(row);
+  model_info_ = new QLabel(tr("no model: views are described, not classified"));
+  model_info_->setWordWrap(true);
+  ml->addWidget(model_info_);
+  layout->addWidget(model_box);
+
+  auto* top = new QGroupBox(tr("Current view"));
+  auto* grid = new QGridLayout(top);
+  verdict_ = new QLabel("–");
+  verdict_->setObjectName("verdict");
+  QFont big = verdict_->font();
+  big.setPointSizeF(big.pointSizeF() * 1.6);
+  big.setBold(true);
+  verdict_->setFont(big);
+  grid->addWidget(verdict_, 0, 0, 1, 2);
+  for (int i = 0; i < kTop; ++i) {
+    auto* name = new QLabel;
+    auto* bar = new QProgressBar;
+    bar->setRange(0, 1000);
+    bar->setTextVisible(true);
+    bar->setFormat("");
+    bar->setMaximumHeight(16);
+    grid->addWidget(name, i + 1, 0);
+    grid->addWidget(bar, i + 1, 1);
+    names_.push_back(name);
+    bars_.push_back(bar);
+  }
+  grid->setColumnStretch(1, 1);
+  stability_label_ = new QLabel("–");
+  stability_label_->setObjectName("stability");
+  keypoints_ = new QLabel("–");
+  keypoints_->setObjectName("keypointCount");
+  grid->addWidget(new QLabel(tr("Stability")), kTop + 1, 0);
+  grid->addWidget(stability_label_, kTop + 1, 1);
+  grid->addWidget(new QLabel(tr("Keypoints")), kTop + 2, 0);
+  grid->addWidget(keypoints_, kTop + 2, 1);
+  layout->addWidget(top);
+
+  auto* pdf_box = new QGroupBox(tr("PDFs: this view over the class mean"));
+  auto* pl = new QVBoxLayout(pdf_box);
+  block_ = new QComboBox;
+  pl->addWidget(block_);
+  chart_ = new QChart;
+  chart_->setMargins(QMargins(2, 2, 2, 2));
+  chart_->legend()->setAlignment(Qt::AlignBottom);
+  view_series_ = new QLineSeries;
+  view_series_->setName(tr("this view"));
+  view_series_->setPen(QPen(QColor(41, 128, 185), 2));
+  mean_series_ = new QLineSeries;
+  mean_series_->setName(tr("class mean"));
+  mean_series_->setPen(QPen(QColor(230, 126, 34), 2, Qt::DashLine));
+  chart_->addSeries(mean_series_);
+  chart_->addSeries(view_series_);
+  x_axis_ = new QValueAxis;
+  y_axis_ = new QValueAxis;
+  x_axis_->setTitleText(tr("bin"));
+  x_axis_->setLabelFormat("%d");
+  y_axis_->setTitleText(tr("probability"));
+  chart_->addAxis(x_axis_, Qt::AlignBottom);
+  chart_->addAxis(y_axis_, Qt::AlignLeft);
+  for (auto* s : {view_series_, mean_series_}) {
+    s->attachAxis(x_axis_);
+    s->attachAxis(y_axis_);
+  }
+  auto* view = new QChartView(chart_);
+  view->setRenderHint(QPainter::Antialiasing);
+  view->setMinimumHeight(220);
+  pl->addWidget(view, 1);
+  layout->addWidget(pdf_box, 1);
+
+  connect(browse, &QPushButton::clicked, this, [this] {
+    const QString d = QFileDialog::getExistingDirectory(this, tr("Model folder"), model_path_->text());
+    if (!d.isEmpty()) emit loadModel(d);
+  });
+  connect(model_path_, &QLineEdit::returnPressed, this, [this] { emit loadModel(model_path_->text()); });
+}
+
+void RecognitionPanel::setModel(const QString& path, const learning::Recognizer* recognizer, const QString& error) {
+  model_path_->setText(path);
+  stability_.clear();
+  classes_.clear();
+  block_->clear();
+  if (!error.isEmpty()) {
+    model_info_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(error.toHtmlEscaped()));
+    return;
+  }
+  if (!recognizer) return;
+  for (const auto& b : recognizer->options().features) block_->addItem(QString::fromStdString(featureName(b)));
+  if (!recognizer->hasModel()) {
+    model_info_->setText(tr("no model: views are described, not classified"));
+    return;
+  }
+  const auto& info = recognizer->info();
+  classes_ = info.classes;
+  QStringList blocks;
+  for (const auto& b : info.blocks) blocks << QString::fromStdString(b);
+  model_info_->setText(QString("%1 · %2 classes · %3 · %4 bins")
+                           .arg(QString::fromStdString(info.params.kind))
+                           .arg(info.classes.size())
+                           .arg(blocks.join("+"))
+                           .arg(QString::fromStdString(info.spec.at("bins"))));
+}
+
+QString RecognitionPanel::modelPath() const { return model_path_->text(); }
+
+QString RecognitionPanel::stableClass() const {
+  const int m = stability_.mode();
+  return m >= 0 && m < static_cast<int>(classes_.size()) ? QString::fromStdString(classes_[static_cast<std::size_t>(m)]) : QString();
+}
+
+void RecognitionPanel::record(const ViewResultPtr& result) {
+  if (!result) return;
+  latest_ = result;
+  fresh_ = true;
+  const auto* rec = result->recognition.get();
+  if (rec && !rec->probabilities.empty() && rec->probabilities.size() == classes_.size()) stability_.add(rec->best);
+}
+
+void RecognitionPanel::refresh() {
+  if (!fresh_ || !latest_) return;
+  fresh_ = false;
+  const ViewResultPtr result = latest_;
+  if (!result->recognition) {
+    keypoints_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(QString::fromStdString(result->error).toHtmlEscaped()));
+    return;
+  }
+  const auto& rec = *result->recognition;
+  const int k = rec.descriptor.keypointCount();
+  keypoints_->setText(rec.descriptor.low_keypoints
+                          ? QString("<span style='color:#d35400'>K = %1: few keypoints, a thin histogram</span>").arg(k)
+                          : QString("K = %1 in %2 points").arg(k).arg(rec.filtered.size()));
+  if (!rec.probabilities.empty() && rec.probabilities.size() == classes_.size()) {
+    std::vector<int> order(rec.probabilities.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::sort(order.begin(), order.end(), [&](int a, int b) { return rec.probabilities[a] > rec.probabilities[b]; });
+    for (int i = 0; i < kTop; ++i) {
+      const bool has = i < static_cast<int>(order.size());
+      names_[i]->setText(has ? QString::fromStdString(classes_[order[i]]) : QString());
+      bars_[i]->setValue(has ? static_cast<int>(1000 * rec.probabilities[order[i]]) : 0);
+      bars_[i]->setFormat(has ? QString("%1 %").arg(100.0 * rec.probabilities[order[i]], 0, 'f', 1) : QString());
+    }
+    const double a = stability_.agreement();
+    const QString colour = a >= 0.8 ? "#27ae60" : a >= 0.5 ? "#d68910" : "#c0392b";
+    stability_label_->setText(QString("<span style='color:%1'>●</span> %2 of the last %3 frames agree")
+                                  .arg(colour)
+                                  .arg(stability_.agreeing())
+                                  .arg(stability_.frames()));
+    verdict_->setText(QString("<span style='color:%1'>%2</span>").arg(colour, stableClass().toHtmlEscaped()));
+  }
+  // The chart at a few frames per second is enough for the eye.
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (now - last_plot_ms_ >= 400) {
+    last_plot_ms_ = now;
+    plot(*result);
+  }
+}
+
+void RecognitionPanel::plot(const ViewResult& r) {
+  const auto& rec = *r.recognition;
+  const int b = block_->currentIndex();
+  if (b < 0 || b >= static_cast<int>(rec.descriptor.pdfs.size())) return;
+  const auto& pdf = rec.descriptor.pdfs[static_cast<std::size_t>(b)];
+  QVector<QPointF> view, mean;
+  double top = 0;
+  for (std::size_t i = 0; i < pdf.size(); ++i) {
+    view.append(QPointF(static_cast<double>(i), pdf[i]));
+    top = std::max(top, pdf[i]);
+  }
+  const auto& info = r.recognizer->info();
+  const int best = stability_.mode();
+  if (r.recognizer->hasModel() && best >= 0 && best < static_cast<int>(info.class_means.size())) {
+    const auto& m = info.class_means[static_cast<std::size_t>(best)];
+    const std::size_t offset = static_cast<std::size_t>(b) * pdf.size();
+    for (std::size_t i = 0; i < pdf.size() && offset + i < m.size(); ++i) {
+      mean.append(QPointF(static_cast<double>(i), m[offset + i]));
+      top = std::max(top, static_cast<double>(m[offset + i]));
+    }
+    mean_series_->setName(tr("mean of %1").arg(QString::fromStdString(info.classes[static_cast<std::size_t>(best)])));
+  }
+  view_series_->replace(view);
+  mean_series_->replace(mean);
+  x_axis_->setRange(0, std::max<double>(1, static_cast<double>(pdf.size()) - 1));
+  y_axis_->setRange(0, top > 0 ? top * 1.1 : 1);
+}
+
+}  // namespace keyturn::studio

@@ -1,0 +1,61 @@
+#pragma once
+// Recognition: the model, the current view's top classes with probabilities,
+// how steady the answer has been over the last frames, and the view's PDFs
+// drawn over the mean PDFs of the class it was recognised as.
+#include <QWidget>
+
+#include "frame_types.h"
+#include "stability.h"
+
+class QComboBox;
+class QLabel;
+class QLineEdit;
+class QProgressBar;
+class QPushButton;
+
+namespace QtCharts {
+class QChart;
+class QChartView;
+class QLineSeries;
+class QValueAxis;
+}  // namespace QtCharts
+
+namespace keyturn::studio {
+
+class RecognitionPanel : public QWidget {
+  Q_OBJECT
+ public:
+  explicit RecognitionPanel(QWidget* parent = nullptr);
+  void setModel(const QString& path, const learning::Recognizer* recognizer, const QString& error = {});
+  QString modelPath() const;
+  // The class the last N frames agree on ("" before any), and that agreement.
+  QString stableClass() const;
+  double stableAgreement() const { return stability_.agreement(); }
+
+ public slots:
+  // Every result counts towards stability; refresh() draws the newest.
+  void record(const keyturn::studio::ViewResultPtr& result);
+  void refresh();
+
+ signals:
+  void loadModel(const QString& path);
+
+ private:
+  void plot(const ViewResult& r);
+
+  QLineEdit* model_path_;
+  QLabel *model_info_, *keypoints_, *stability_label_, *verdict_;
+  std::vector<QLabel*> names_;
+  std::vector<QProgressBar*> bars_;
+  QComboBox* block_;
+  QtCharts::QChart* chart_;
+  QtCharts::QLineSeries *view_series_, *mean_series_;
+  QtCharts::QValueAxis *x_axis_, *y_axis_;
+  Stability stability_{20};
+  std::vector<std::string> classes_;
+  qint64 last_plot_ms_ = 0;
+  ViewResultPtr latest_;
+  bool fresh_ = false;
+};
+
+}  // namespace keyturn::studio
