@@ -1,0 +1,185 @@
+// keyturn studio against the simulated rig, through the real drivers: connect,
+// live recognition, a short capture sequence, a pulled cable, settings.
+// Runs under xvfb-run (the 3D view needs an OpenGL context).
+#include <QCheckBox>
+#include <QDir>
+#include <QDoubleSpinBox>
+#include <QLabel>
+#include <QListWidget>
+#include <QLineEdit>
+#include <QPushButton>
+#include <QTemporaryDir>
+#include <QtTest>
+
+#include "image_panel.h"
+#include "keyturn/rig/dataset.h"
+#include "keyturn/studio/studio_window.h"
+#include "stability.h"
+#include "studio_rig_factory.h"
+
+using namespace keyturn;
+using namespace keyturn::studio;
+
+class StudioTest : public QObject {
+  Q_OBJECT
+
+ private:
+  std::unique_ptr<app::StudioRigFactory> factory_;
+  QTemporaryDir dir_;
+
+  StudioOptions simulated(const std::string& object) {
+    StudioOptions o;
+    o.simulated = true;
+    o.sim_object = object;
+    o.model = std::string(KEYTURN_DATA_DIR) + "/models/sim-objects";
+    o.settings_file = dir_.filePath("studio.ini").toStdString();
+    return o;
+  }
+
+ private slots:
+  void init() { factory_ = std::make_unique<app::StudioRigFactory>(std::string(KEYTURN_DATA_DIR) + "/objects/objects.csv"); }
+  void cleanup() { factory_.reset(); }
+
+  void connectsAndShowsLiveFramesAndTheirCloud() {
+    StudioWindow w(*factory_, simulated("ycb_025_mug"));
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 30, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > 10, 15000);
+    auto* angle = w.findChild<QLabel*>("poseAngle");
+    QVERIFY(angle);
+    QTRY_COMPARE_WITH_TIMEOUT(angle->text(), QString("0.00°"), 5000);
+    auto* k = w.findChild<QLabel*>("keypointCount");
+    QVERIFY(k);
+    QTRY_VERIFY_WITH_TIMEOUT(k->text().startsWith("K = "), 5000);
+    QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
+  }
+
+  void recognisesTheObjectOnTheSimulatedTurntable() {
+    for (const char* object : {"ycb_035_power_drill", "ycb_024_bowl"}) {
+      StudioWindow w(*factory_, simulated(object));
+      w.show();
+      QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString(object), 20000);
+      QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, 20000);
+      QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
+    }
+  }
+
+  void capturesAShortSequenceThatVerifies() {
+    const QString dataset = dir_.filePath("captured");
+    StudioOptions o = simulated("ycb_025_mug");
+    o.dataset = dataset.toStdString();
+    StudioWindow w(*factory_, o);
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    auto* angle = w.findChild<QLabel*>("poseAngle");
+    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), 5000);  // the turntable is connected
+    w.findChild<QDoubleSpinBox*>("captureRange")->setValue(15);
+    w.findChild<QDoubleSpinBox*>("captureStep")->setValue(5);
+    QTest::mouseClick(w.findChild<QPushButton*>("captureStart"), Qt::LeftButton);
+    auto* eta = w.findChild<QLabel*>("captureEta");
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QCOMPARE(eta->text(), QString("done: 3 views written, 0 were already there"));
+    QCOMPARE(w.findChild<QListWidget*>("captureThumbnails")->count(), 3);
+    const auto views = rig::Dataset::readManifest(dataset.toStdString());
+    QCOMPARE(views.size(), std::size_t(3));
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      QCOMPARE(views[i].key.cls, std::string("mug"));
+      QCOMPARE(views[i].key.instance, std::string("ycb_025_mug"));
+      QCOMPARE(views[i].key.commanded_deg, 5.0 * static_cast<double>(i));
+      QVERIFY(std::abs(views[i].measured_deg - 5.0 * static_cast<double>(i)) < 0.2);
+    }
+    const auto report = rig::Dataset::verify(dataset.toStdString());
+    QVERIFY(report.ok());
+    QVERIFY(QFile::exists(dataset + "/mug/ycb_025_mug/e30/a10.0_distance.png"));
+  }
+
+  void aPausedCaptureResumesWithTheMissingViewsOnly() {
+    const QString dataset = dir_.filePath("paused");
+    StudioOptions o = simulated("ycb_025_mug");
+    o.dataset = dataset.toStdString();
+    StudioWindow w(*factory_, o);
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), 15000);
+    w.findChild<QDoubleSpinBox*>("captureRange")->setValue(30);  // 6 views
+    auto* start = w.findChild<QPushButton*>("captureStart");
+    QTest::mouseClick(start, Qt::LeftButton);
+    auto* thumbs = w.findChild<QListWidget*>("captureThumbnails");
+    QTRY_VERIFY_WITH_TIMEOUT(thumbs->count() >= 1, 20000);
+    QTest::mouseClick(w.findChild<QPushButton*>("capturePause"), Qt::LeftButton);
+    auto* eta = w.findChild<QLabel*>("captureEta");
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("paused"), 20000);
+    const std::size_t before = rig::Dataset::readManifest(dataset.toStdString()).size();
+    QVERIFY(before >= 1 && before < 6);
+    QCOMPARE(start->text(), QString("Resume"));
+    QTest::mouseClick(start, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QCOMPARE(eta->text(), QString("done: %1 views written, %2 were already there").arg(6 - before).arg(before));
+    QCOMPARE(rig::Dataset::readManifest(dataset.toStdString()).size(), std::size_t(6));
+    QVERIFY(rig::Dataset::verify(dataset.toStdString()).ok());
+  }
+
+  void aPulledCableShowsTheBannerAndTheSessionRecovers() {
+    StudioWindow w(*factory_, simulated("ycb_025_mug"));
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 10, 15000);
+    auto* unplug = w.findChild<QCheckBox*>("simUnplug");
+    QVERIFY(unplug);
+    unplug->setChecked(true);
+    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), 15000);
+    QVERIFY2(w.bannerText().startsWith("Camera stopped answering: "), qPrintable(w.bannerText()));
+    QVERIFY2(w.bannerText().contains("SR4000"), qPrintable(w.bannerText()));  // names the device
+    const long frames_while_out = w.rates().frames;
+    QTest::qWait(1500);
+    QCOMPARE(w.rates().frames, frames_while_out);  // nothing arrives while unplugged
+    unplug->setChecked(false);
+    QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frames_while_out + 10, 15000);
+  }
+
+  void settingsPersistAcrossSessions() {
+    const std::string ini = dir_.filePath("persist.ini").toStdString();
+    {
+      StudioOptions o;
+      o.settings_file = ini;
+      StudioWindow w(*factory_, o);
+      w.findChild<QDoubleSpinBox*>("captureStep")->setValue(7.5);
+      w.findChild<QLineEdit*>("captureFolder")->setText("/data/rig-a");
+      w.close();
+    }
+    StudioOptions o;
+    o.settings_file = ini;
+    StudioWindow w(*factory_, o);
+    QCOMPARE(w.findChild<QDoubleSpinBox*>("captureStep")->value(), 7.5);
+    QCOMPARE(w.findChild<QLineEdit*>("captureFolder")->text(), QString("/data/rig-a"));
+  }
+
+  void stabilityIsTheShareAgreeingWithTheMostFrequentClass() {
+    Stability s(4);
+    QCOMPARE(s.mode(), -1);
+    for (int l : {1, 2, 2, 3, 2}) s.add(l);  // window keeps 2, 2, 3, 2
+    QCOMPARE(s.frames(), 4);
+    QCOMPARE(s.mode(), 2);
+    QCOMPARE(s.agreeing(), 3);
+    QCOMPARE(s.agreement(), 0.75);
+    s.add(3);  // 2, 3, 2, 3: a tie goes to the newest
+    QCOMPARE(s.mode(), 3);
+  }
+
+  void distanceImageScaleIsInMetres() {
+    // One pixel with no return, then 1000, 1020, …, 3000 counts at 1 mm per count:
+    // the scale spans the valid pixels' 2nd to 98th percentile, in metres.
+    std::vector<std::uint16_t> raw = {0};
+    for (int v = 1000; v <= 3000; v += 20) raw.push_back(static_cast<std::uint16_t>(v));
+    ImageScale scale;
+    const QImage img = distanceImage(raw, static_cast<int>(raw.size()), 1, 0.001, &scale);
+    QCOMPARE(img.size(), QSize(102, 1));
+    QCOMPARE(img.pixelColor(0, 0), QColor(Qt::black));  // no return stays black
+    QVERIFY2(std::abs(scale.lo - 1.04) < 1e-9, qPrintable(QString::number(scale.lo)));
+    QVERIFY2(std::abs(scale.hi - 2.96) < 1e-9, qPrintable(QString::number(scale.hi)));
+    QCOMPARE(scale.unit, QString("m"));
+    QVERIFY(img.pixelColor(1, 0) != img.pixelColor(101, 0));  // near and far differ
+  }
+};
+
+QTEST_MAIN(StudioTest)
+#include "studio_test.moc"
