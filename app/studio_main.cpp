@@ -24,6 +24,7 @@ struct Args {
   bool simulated = false;
   std::string object, model, dataset, settings, screenshot;
   int threads = 2;
+  bool start_capture = false, paths = false;
   double measure = 0;
 };
 
@@ -37,8 +38,11 @@ int main(int argc, char** argv) {
   cli.add_option("--model", a.model, "Model folder (keyturn train --out …); with --simulated the built-in one by default");
   cli.add_option("--dataset", a.dataset, "Capture dataset folder");
   cli.add_option("--threads", a.threads, "Recognition threads")->capture_default_str()->check(CLI::Range(1, 16));
+  cli.add_flag("--start-capture", a.start_capture, "Start the capture sequence as soon as camera and turntable answer");
+  cli.add_flag("--geodesic-paths", a.paths, "Show the geodesic paths (centre → keypoints) in the 3D view");
   cli.add_option("--settings", a.settings, "Settings file (INI) instead of the user's");
-  cli.add_option("--measure", a.measure, "Run this many seconds after a 3 s warm-up, print the rates as JSON, quit");
+  cli.add_option("--measure", a.measure, "Run this many seconds after a 3 s warm-up, print the rates as JSON, quit")
+      ->check(CLI::PositiveNumber);
   cli.add_option("--screenshot", a.screenshot, "Save the window as PNG before quitting (with --measure)");
   // Qt takes its own options (-platform, …) first.
   QApplication app(argc, argv);
@@ -56,6 +60,8 @@ int main(int argc, char** argv) {
   o.dataset = a.dataset;
   o.recognition_threads = a.threads;
   o.settings_file = a.settings;
+  o.start_capture = a.start_capture;
+  o.geodesic_paths = a.paths;
   keyturn::studio::StudioWindow window(factory, o);
   window.show();
 

@@ -19,8 +19,10 @@ packages=(
   libmodbus-dev
   # SHA-256 checksums of captured files (OpenSSL libcrypto)
   libssl-dev
-  # plots (Qt Charts, rendered to PNG headless) and the GUI
-  qtbase5-dev libqt5charts5-dev fonts-dejavu-core
+  # plots (Qt Charts, rendered to PNG headless) and the GUI: Qt Widgets, VTK's Qt
+  # widget, OpenCV's colour maps; Xvfb + Mesa (llvmpipe) for the GUI tests and headless runs
+  qtbase5-dev libqt5charts5-dev fonts-dejavu-core libvtk9-qt-dev libopencv-imgproc-dev
+  xvfb xauth libgl1-mesa-dri
   # a standard Modbus master, polls the simulated turntable in the tests
   mbpoll
   # images: 16-bit PNGs of raw distance, amplitude and confidence

@@ -87,7 +87,11 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
 
   LocalCompleteGraph graph;
   const bool need_graph = wants(o.features, isGeodesicFeature);
-  if (need_graph) graph = buildLocalCompleteGraph(set, search, out.resolution, o.graph);
+  if (need_graph) {
+    GraphOptions go = o.graph;
+    go.curvature_weights = std::find(o.features.begin(), o.features.end(), Feature::GKPCD2) != o.features.end();
+    graph = buildLocalCompleteGraph(set, search, out.resolution, go);
+  }
   out.times.graph = clock.lap();
 
   // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.

@@ -5,6 +5,8 @@
 #include <limits>
 #include <algorithm>
 
+#include "keyturn/core/error.h"
+
 namespace keyturn {
 namespace {
 
@@ -175,8 +177,11 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
     nb_off[i + 1] = static_cast<int>(nb.size());
   }
 
-  g.normals.resize(n);
-  for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
+  const bool weights = options.curvature_weights;
+  if (weights) {
+    g.normals.resize(n);
+    for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
+  }
 
   // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph.
   g.offsets.assign(n + 1, 0);
@@ -184,25 +189,26 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
   const std::size_t expect = 4 * nb.size() + 16;
   g.targets.reserve(expect);
   g.length.reserve(expect);
-  g.curved.reserve(expect);
+  if (weights) g.curved.reserve(expect);
   std::vector<int> mark(n, -1);
   const float eps = static_cast<float>(options.curvature_epsilon);
   for (int j = 0; j < n; ++j) {
     mark[j] = j;
     const Eigen::Vector3f& pj = set.points[j];
-    const Eigen::Vector3f& nj = g.normals[j];
     auto add = [&](int k) {
       if (mark[k] == j) return;
       mark[k] = j;
       const float len = (set.points[k] - pj).norm();
+      g.targets.push_back(k);
+      g.length.push_back(len);
+      if (!weights) return;
+      const Eigen::Vector3f& nj = g.normals[j];
       const Eigen::Vector3f& nk = g.normals[k];
       float c = 1.f;  // no normal: treat as maximally curved
       if (nj.allFinite() && nk.allFinite()) {
         const float d = std::min(1.f, std::abs(nj.dot(nk)));
         c = std::sqrt(1.f - d * d);  // sin(arccos(n_j·n_k))
       }
-      g.targets.push_back(k);
-      g.length.push_back(len);
       g.curved.push_back(std::max(c, eps) * len);
     };
     for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
@@ -302,6 +308,8 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   for (int pass = 0; pass < 2; ++pass) {
     const bool curved = pass == 1;
     if (!(which & (curved ? kGkpcd2 : kGkpd2))) continue;
+    if (curved && graph.curved.size() != graph.targets.size())
+      throw Error("GKPCD2 needs a graph built with curvature weights");
     std::vector<float>& out = curved ? res.gkpcd2 : res.gkpd2;
     int unreachable = 0;
     for (int a = 0; a + 1 < k; ++a) {
@@ -326,7 +334,9 @@ std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const PointS
   const auto& points = set.points;
   if (points.empty() || keypoints.empty()) return out;
   const RadiusSearch search(set);
-  const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, resolution, options);
+  GraphOptions lengths_only = options;
+  lengths_only.curvature_weights = false;
+  const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, resolution, lengths_only);
   const Eigen::Vector3f c = set.centroid();
   int source = 0;
   float best = kInf;

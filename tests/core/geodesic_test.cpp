@@ -4,6 +4,7 @@
 #include <random>
 #include <set>
 
+#include "keyturn/core/error.h"
 #include "keyturn/core/geodesic.h"
 #include "support/synthetic_clouds.h"
 
@@ -151,4 +152,21 @@ TEST(Geodesic, CentroidPolylinesEndAtEachReachableKeypoint) {
     EXPECT_NEAR(std::hypot(lines[i].front().x(), lines[i].front().y()), kR, 1e-4);
     EXPECT_NEAR(lines[i].front().z(), kH / 2, 0.01);
   }
+}
+
+TEST(Geodesic, WithoutCurvatureWeightsTheLengthsAreTheSame) {
+  const CylinderGraph c;
+  GraphOptions o;
+  o.curvature_weights = false;
+  const auto lean = buildLocalCompleteGraph(c.set, *c.search, c.res, o);
+  EXPECT_TRUE(lean.normals.empty());
+  EXPECT_TRUE(lean.curved.empty());
+  EXPECT_EQ(lean.targets, c.graph.targets);
+  EXPECT_EQ(lean.length, c.graph.length);
+  const std::vector<int> kp = {cylinderVertex(0, 0), cylinderVertex(30, 20), cylinderVertex(70, 40)};
+  const auto full = geodesicKeypointDistances(c.graph, c.set, kp, kGkpd1 | kGkpd2);
+  const auto part = geodesicKeypointDistances(lean, c.set, kp, kGkpd1 | kGkpd2);
+  EXPECT_EQ(full.gkpd1, part.gkpd1);
+  EXPECT_EQ(full.gkpd2, part.gkpd2);
+  EXPECT_THROW(geodesicKeypointDistances(lean, c.set, kp, kGkpcd2), Error);
 }

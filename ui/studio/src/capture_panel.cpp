@@ -90,8 +90,9 @@ CapturePanel::CapturePanel(QWidget* parent) : QWidget(parent) {
   rl->addLayout(buttons);
   bar_ = new QProgressBar;
   bar_->setObjectName("captureProgress");
-  bar_->setFormat("%v / %m views");
+  bar_->setRange(0, 1);
   bar_->setValue(0);
+  bar_->setFormat(tr("no capture yet"));
   rl->addWidget(bar_);
   eta_ = new QLabel(tr("idle"));
   eta_->setObjectName("captureEta");
@@ -168,6 +169,8 @@ void CapturePanel::setObject(const QString& cls, const QString& instance) {
   instance_->setText(instance);
 }
 
+void CapturePanel::startFromOutside() { start_->click(); }
+
 void CapturePanel::setDataset(const QString& folder) { folder_->setText(folder); }
 
 void CapturePanel::save(QSettings& s) const {
@@ -188,6 +191,7 @@ void CapturePanel::restore(const QSettings& s) {
 
 void CapturePanel::progress(int done, int skipped, int total, double angle, FramePtr frame, const QString& view) {
   if (state_ == State::Idle) setState(State::Running);
+  bar_->setFormat(tr("%v / %m views"));
   bar_->setMaximum(total);
   bar_->setValue(done + skipped);
   if (first_done_ < 0) {

@@ -30,6 +30,7 @@ class CapturePanel : public QWidget {
   void save(QSettings& s) const;
   void restore(const QSettings& s);
   bool running() const { return state_ == State::Running; }
+  void startFromOutside();  // as if Start were clicked
 
  public slots:
   void progress(int done, int skipped, int total, double angle, keyturn::studio::FramePtr frame, const QString& view);

@@ -4,6 +4,7 @@
 #include <QComboBox>
 #include <QDoubleSpinBox>
 #include <QFormLayout>
+#include <QGridLayout>
 #include <QGroupBox>
 #include <QHBoxLayout>
 #include <QLabel>
@@ -77,8 +78,11 @@ QWidget* DevicesPanel::cameraGroup() {
   denoise_ = new QCheckBox(tr("Denoise (ANF)"));
   conf_map_ = new QCheckBox(tr("Confidence map"));
   for (auto* c : {fixed_pattern_, denoise_, conf_map_}) c->setChecked(true);
-  auto* flags = new QHBoxLayout;
-  for (auto* c : {fixed_pattern_, median_, denoise_, conf_map_}) flags->addWidget(c);
+  auto* flags = new QGridLayout;
+  flags->addWidget(fixed_pattern_, 0, 0);
+  flags->addWidget(median_, 0, 1);
+  flags->addWidget(denoise_, 1, 0);
+  flags->addWidget(conf_map_, 1, 1);
   form->addRow(tr("Acquire"), flags);
 
   camera_button_ = new QPushButton(tr("Connect"));
@@ -292,7 +296,17 @@ void DevicesPanel::cameraConnected(const QString& device, const QString& setting
   camera_button_->setText(tr("Disconnect"));
   camera_kind_->setEnabled(false);
   camera_where_->setEnabled(false);
-  camera_status_->setText(QString("<b>%1</b><br>%2").arg(device.toHtmlEscaped(), settings.toHtmlEscaped()));
+  // libMesaSR's device string is long ("VendorID:0x1ad2, ProductID:…, Product:'SR4000'…"): its product and
+  // maker in the panel, the whole string in the tooltip.
+  QString shown = device;
+  const int product = device.indexOf("Product:'");
+  const int maker = device.indexOf("Manufacturer:'");
+  if (product >= 0) {
+    shown = device.mid(product + 9).section('\'', 0, 0);
+    if (maker >= 0) shown += " · " + device.mid(maker + 14).section('\'', 0, 0);
+  }
+  camera_status_->setToolTip(device);
+  camera_status_->setText(QString("<b>%1</b><br>%2").arg(shown.toHtmlEscaped(), settings.toHtmlEscaped()));
 }
 
 void DevicesPanel::cameraDisconnected() {

@@ -185,7 +185,7 @@ void RecognitionPanel::refresh() {
     }
     const double a = stability_.agreement();
     const QString colour = a >= 0.8 ? "#27ae60" : a >= 0.5 ? "#d68910" : "#c0392b";
-    stability_label_->setText(QString("<span style='color:%1'>●</span> %2 of the last %3 frames agree")
+    stability_label_->setText(QString("<span style='color:%1'>●</span> %2 / %3 frames agree")
                                   .arg(colour)
                                   .arg(stability_.agreeing())
                                   .arg(stability_.frames()));

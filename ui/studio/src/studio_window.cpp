@@ -505,6 +505,18 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
     emit d_->devices->connectPose();
     emit d_->devices->connectCamera();
   }
+  if (d_->options.geodesic_paths) d_->paths_action->setChecked(true);
+  if (d_->options.start_capture) {
+    // Unattended runs: start as soon as both devices answer.
+    auto* wait = new QTimer(this);
+    connect(wait, &QTimer::timeout, this, [this, wait] {
+      if (!d_->pose_source || d_->frames == 0) return;
+      wait->deleteLater();
+      wait->stop();
+      d_->capture->startFromOutside();
+    });
+    wait->start(100);
+  }
 }
 
 StudioWindow::~StudioWindow() {

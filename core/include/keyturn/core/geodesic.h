@@ -14,6 +14,9 @@ namespace keyturn {
 struct GraphOptions {
   double radius = 3.5;               // multiples of the cloud resolution
   double curvature_epsilon = 1e-4;   // floor of the curvature factor C for coplanar normals
+  // Normals and curvature-weighted costs are only needed for GKPCD2; without
+  // them the graph builds faster (describeView leaves them out when not asked for).
+  bool curvature_weights = true;
 };
 
 // Compressed adjacency (CSR) with Euclidean and curvature-weighted edge costs.
@@ -21,8 +24,8 @@ struct LocalCompleteGraph {
   std::vector<int> offsets;       // size n+1
   std::vector<int> targets;
   std::vector<float> length;      // Euclidean edge length L
-  std::vector<float> curved;      // max(C, ε) · L, C = sin(arccos(n_i·n_j))
-  std::vector<Eigen::Vector3f> normals;  // PCA normal per vertex (NaN when undefined)
+  std::vector<float> curved;      // max(C, ε) · L, C = sin(arccos(n_i·n_j)); empty without curvature weights
+  std::vector<Eigen::Vector3f> normals;  // PCA normal per vertex (NaN when undefined); idem
   std::size_t vertexCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   std::size_t edgeCount() const { return targets.size() / 2; }
 };

@@ -16,6 +16,8 @@ struct StudioOptions {
   std::string dataset;           // capture folder ("" = the saved one)
   int recognition_threads = 2;
   std::string settings_file;     // "" = the user's (QSettings keyturn/studio)
+  bool start_capture = false;    // start the capture sequence once camera and turntable are up
+  bool geodesic_paths = false;   // show the geodesic paths in the 3D view from the start
 };
 
 // Live numbers, for the status bar, tests and `keyturn-studio --measure`.
