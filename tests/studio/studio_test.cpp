@@ -2,6 +2,7 @@
 // live recognition, a short capture sequence, a pulled cable, settings.
 // Runs under xvfb-run (the 3D view needs an OpenGL context).
 #include <QCheckBox>
+#include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
 #include <QLabel>
@@ -134,6 +135,22 @@ class StudioTest : public QObject {
     unplug->setChecked(false);
     QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), 15000);
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frames_while_out + 10, 15000);
+  }
+
+  void aCameraThatCannotBeOpenedIsNamedInTheBanner() {
+    StudioOptions o;
+    o.settings_file = dir_.filePath("eth.ini").toStdString();
+    StudioWindow w(*factory_, o);
+    w.show();
+    w.findChild<QComboBox*>("cameraKind")->setCurrentIndex(2);  // Ethernet
+    w.findChild<QLineEdit*>("cameraAddress")->setText("192.0.2.7");
+    ::setenv("KEYTURN_MESASR_LIB", "/nonexistent/libmesasr.so", 1);  // no MESA library here
+    QTest::mouseClick(w.findChild<QPushButton*>("cameraConnect"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), 10000);
+    ::unsetenv("KEYTURN_MESASR_LIB");
+    QVERIFY2(w.bannerText().startsWith("Could not open the camera: SR4000 at 192.0.2.7: "), qPrintable(w.bannerText()));
+    QVERIFY2(w.bannerText().contains("libMesaSR"), qPrintable(w.bannerText()));
+    QCOMPARE(w.findChild<QPushButton*>("cameraConnect")->text(), QString("Connect"));
   }
 
   void settingsPersistAcrossSessions() {

@@ -27,7 +27,7 @@ void CameraWorker::open(const CameraRequest& request, const drivers::TofSettings
     camera_->configure(settings_);
   } catch (const std::exception& e) {
     camera_.reset();
-    emit failed(QString::fromStdString(request_.describe() + ": " + e.what()));
+    emit openFailed(QString::fromStdString(request_.describe() + ": " + e.what()));
     return;
   }
   const auto s = camera_->settings();

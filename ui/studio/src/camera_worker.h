@@ -37,7 +37,8 @@ class CameraWorker : public QObject {
   void opened(QString device, QString settings_text);
   void closed();
   void frameReady(keyturn::studio::FramePtr frame);
-  void failed(QString message);  // the camera stopped answering; reconnecting
+  void openFailed(QString message);  // could not open it (no retries: the user chose it just now)
+  void failed(QString message);      // the camera stopped answering; reconnecting
   void recovered(QString device);
   void logLine(QString line);
   void rate(double frames_per_second);

@@ -51,6 +51,7 @@ QWidget* DevicesPanel::cameraGroup() {
   usb_row->addWidget(rescan);
   address_ = new QLineEdit("192.168.1.42");
   address_->setPlaceholderText("IPv4 address");
+  address_->setObjectName("cameraAddress");
   camera_where_->addWidget(sim_object_);
   camera_where_->addWidget(usb);
   camera_where_->addWidget(address_);

@@ -31,7 +31,7 @@ void PoseWorker::open(const PoseRequest& request) {
     connectSource();
   } catch (const std::exception& e) {
     source_.reset();
-    emit failed(QString::fromStdString(request_.describe() + ": " + e.what()));
+    emit openFailed(QString::fromStdString(request_.describe() + ": " + e.what()));
     return;
   }
   emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);

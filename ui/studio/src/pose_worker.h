@@ -28,6 +28,7 @@ class PoseWorker : public QObject {
   void opened(QString device, bool can_move, std::shared_ptr<keyturn::drivers::PoseSource> source);
   void closed();
   void pose(double turntable_deg, double x, double y, double z, bool moving, bool in_position);
+  void openFailed(QString message);
   void failed(QString message);
   void recovered(QString device);
   void logLine(QString line);

@@ -275,6 +275,11 @@ void StudioWindow::Impl::wire() {
     camera_fps = 0;
     updateBanner();
   });
+  QObject::connect(camera, &CameraWorker::openFailed, w, [this](const QString& why) {
+    camera_problem = tr("Could not open the camera: %1").arg(why);
+    devices->cameraFailing(why);
+    updateBanner();
+  });
   QObject::connect(camera, &CameraWorker::recovered, w, [this](const QString& device) {
     camera_problem.clear();
     updateBanner();
@@ -303,6 +308,11 @@ void StudioWindow::Impl::wire() {
   QObject::connect(pose, &PoseWorker::pose, devices, &DevicesPanel::showPose);
   QObject::connect(pose, &PoseWorker::failed, w, [this](const QString& why) {
     pose_problem = tr("Pose source stopped answering: %1. Reconnecting every second…").arg(why);
+    devices->poseFailing(why);
+    updateBanner();
+  });
+  QObject::connect(pose, &PoseWorker::openFailed, w, [this](const QString& why) {
+    pose_problem = tr("Could not open the pose source: %1").arg(why);
     devices->poseFailing(why);
     updateBanner();
   });
@@ -520,11 +530,13 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
 }
 
 StudioWindow::~StudioWindow() {
-  d_->camera->captureStop() = true;
+  d_->camera->captureStop() = true;  // a running capture ends after its current view
   d_->camera_thread.quit();
   d_->pose_thread.quit();
   d_->camera_thread.wait();
   d_->pose_thread.wait();
+  delete d_->pool;  // joins the recognition threads while the window's state still exists
+  d_->pool = nullptr;
 }
 
 void StudioWindow::closeEvent(QCloseEvent* e) {
