@@ -21,8 +21,12 @@ mbpoll -m tcp -p "$port" -a 1 -r 1 -c 3 -t 4 -1 127.0.0.1 > "$work/poll1.txt"
 check "mbpoll reads the simulated table" grep -qE '^\[3\]:[[:space:]]+2$' "$work/poll1.txt"
 mbpoll -m tcp -p "$port" -a 1 -r 11 -t 4 -1 127.0.0.1 -- 0 12000 1 > /dev/null
 check "mbpoll commands a move" test $? -eq 0
-sleep 0.6
-"$KT" turntable --pose "$ep" > "$work/pose.txt"
+# The move takes about half a second; on a loaded machine longer: poll until it is in position.
+for _ in $(seq 50); do
+  "$KT" turntable --pose "$ep" > "$work/pose.txt"
+  grep -q 'in_position=yes' "$work/pose.txt" && grep -q '^120.000' "$work/pose.txt" && break
+  sleep 0.2
+done
 check "keyturn turntable sees mbpoll's move (120°)" grep -q '^120.000 deg  moving=no  in_position=yes' "$work/pose.txt"
 check "the shared world follows the table" grep -q '"turntable_deg":120' "$work/world.json"
 "$KT" turntable --pose "$ep" --move-to 200.5 > "$work/move.txt"
