@@ -8,7 +8,6 @@
 #include "camera_choice.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/modbus_turntable.h"
-#include "keyturn/drivers/usb_discovery.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
@@ -132,6 +131,23 @@ std::vector<std::pair<unsigned, std::string>> StudioRigFactory::usbCameras() {
     out.emplace_back(serial, text);
   }
   return out;
+}
+
+bool StudioRigFactory::usbCamerasChanged() {
+  if (!hotplug_tried_) {
+    hotplug_tried_ = true;
+    try {
+      hotplug_ = std::make_unique<drivers::UsbHotplugWatcher>(
+          [this](bool, const drivers::UsbCameraInfo&) { usb_changed_ = true; });
+    } catch (const Error&) {
+      // No hot-plug here (or no USB at all): the panel's Rescan still works.
+    }
+  }
+  if (!hotplug_) return false;
+  hotplug_->poll(0);
+  const bool changed = usb_changed_;
+  usb_changed_ = false;
+  return changed;
 }
 
 std::optional<Eigen::Matrix4d> StudioRigFactory::cameraFromTurntable() const {

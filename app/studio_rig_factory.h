@@ -5,6 +5,7 @@
 // world file in a private runtime folder).
 #include <mutex>
 
+#include "keyturn/drivers/usb_discovery.h"
 #include "keyturn/studio/rig_factory.h"
 #include "object_list.h"
 
@@ -21,6 +22,7 @@ class StudioRigFactory final : public studio::RigFactory {
   std::vector<studio::SimObject> simObjects() const override { return objects_; }
   void setSimulatedCameraUnplugged(bool unplugged) override;
   std::vector<std::pair<unsigned, std::string>> usbCameras() override;
+  bool usbCamerasChanged() override;
   std::optional<Eigen::Matrix4d> cameraFromTurntable() const override;
   const std::string& runtimeDir() const { return dir_; }
 
@@ -29,6 +31,8 @@ class StudioRigFactory final : public studio::RigFactory {
   std::string dir_;
   mutable std::mutex mutex_;
   std::optional<Eigen::Matrix4d> camera_from_turntable_;
+  std::unique_ptr<drivers::UsbHotplugWatcher> hotplug_;
+  bool hotplug_tried_ = false, usb_changed_ = false;
 };
 
 }  // namespace keyturn::app

@@ -13,6 +13,7 @@
 #include <QSettings>
 #include <QSpinBox>
 #include <QStackedWidget>
+#include <QTimer>
 #include <QVBoxLayout>
 #include <cmath>
 
@@ -107,6 +108,12 @@ QWidget* DevicesPanel::cameraGroup() {
   connect(sim_object_, qOverload<int>(&QComboBox::currentIndexChanged), this,
           [this] { emit simObjectChanged(simObject()); });
   connect(rescan, &QPushButton::clicked, this, &DevicesPanel::refreshUsb);
+  // Hot-plug: while USB is the chosen source, the list follows cameras plugged in or out.
+  auto* hotplug = new QTimer(this);
+  connect(hotplug, &QTimer::timeout, this, [this] {
+    if (camera_kind_->currentIndex() == 1 && !camera_on_ && factory_.usbCamerasChanged()) refreshUsb();
+  });
+  hotplug->start(1000);
   connect(camera_button_, &QPushButton::clicked, this, [this] {
     if (camera_on_) emit disconnectCamera();
     else emit connectCamera();

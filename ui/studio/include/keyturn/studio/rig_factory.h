@@ -46,6 +46,9 @@ class RigFactory {
   virtual void setSimulatedCameraUnplugged(bool unplugged) = 0;
   // "SR4000 4000123 on USB 1-2" lines for the USB camera list; throws when USB is unusable.
   virtual std::vector<std::pair<unsigned, std::string>> usbCameras() = 0;
+  // Handles pending USB hot-plug events without waiting: true when a SwissRanger
+  // arrived or left since the last call. False where libusb has no hot-plug.
+  virtual bool usbCamerasChanged() { return false; }
   // Camera ← turntable at 0° for the views' sidecars: exact for the simulated
   // rig, from an axis calibration for a real one, none when not calibrated.
   virtual std::optional<Eigen::Matrix4d> cameraFromTurntable() const { return std::nullopt; }
