@@ -1,5 +1,6 @@
 #include "studio_rig_factory.h"
 
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -59,6 +60,9 @@ StudioRigFactory::StudioRigFactory(std::string objects_csv) {
   if (objects_.empty()) objects_.push_back({"mug", "builtin", "builtin:mug"});
   dir_ = (fs::temp_directory_path() / ("keyturn-studio-" + std::to_string(::getpid()))).string();
   fs::create_directories(dir_);
+  // libmesasr-sim reads its configuration from the environment at every open: set it once here,
+  // before any device thread runs, rather than from the camera thread (setenv is not thread-safe).
+  ::setenv("MESASR_SIM_CONFIG", (dir_ + "/camera.json").c_str(), 1);
 }
 
 StudioRigFactory::~StudioRigFactory() {
@@ -85,8 +89,7 @@ std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const studio::C
   c.world = dir_ + "/world.json";
   c.unplug_file = dir_ + "/unplugged";
   c.frame_rate = kSimFrameRate;
-  const std::string config = dir_ + "/camera.json";
-  c.save(config);
+  c.save(dir_ + "/camera.json");  // $MESASR_SIM_CONFIG (set in the constructor)
   sim::SceneView view;
   view.distance = r.sim_distance_m;
   view.elevation_deg = r.sim_elevation_deg;
@@ -95,7 +98,7 @@ std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const studio::C
     std::lock_guard<std::mutex> l(mutex_);
     camera_from_turntable_ = pose;
   }
-  return app::openCamera("sim", config, "", log);
+  return app::openCamera("sim", "", "", log);
 }
 
 std::unique_ptr<drivers::PoseSource> StudioRigFactory::openPose(const studio::PoseRequest& r, Log log) {

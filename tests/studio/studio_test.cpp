@@ -1,6 +1,7 @@
 // keyturn studio against the simulated rig, through the real drivers: connect,
 // live recognition, a short capture sequence, a pulled cable, settings.
 // Runs under xvfb-run (the 3D view needs an OpenGL context).
+#include <QAction>
 #include <QCheckBox>
 #include <QComboBox>
 #include <QDir>
@@ -92,6 +93,33 @@ class StudioTest : public QObject {
     const auto report = rig::Dataset::verify(dataset.toStdString());
     QVERIFY(report.ok());
     QVERIFY(QFile::exists(dataset + "/mug/ycb_025_mug/e30/a10.0_distance.png"));
+  }
+
+  void pauseFreezesTheLiveViewAndSnapshotSavesTheFrame() {
+    const QString dataset = dir_.filePath("snap");
+    StudioOptions o = simulated("ycb_025_mug");
+    o.dataset = dataset.toStdString();
+    StudioWindow w(*factory_, o);
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    QAction* pause = nullptr;
+    QAction* snapshot = nullptr;
+    for (QAction* a : w.findChildren<QAction*>()) {
+      if (a->text() == "Pause live view") pause = a;
+      if (a->text() == "Snapshot") snapshot = a;
+    }
+    QVERIFY(pause && snapshot);
+    snapshot->trigger();
+    const QDir snaps(dataset + "/snapshots");
+    QCOMPARE(snaps.entryList({"*.pcd"}, QDir::Files).size(), 1);
+    QCOMPARE(snaps.entryList({"*.png"}, QDir::Files).size(), 3);  // distance, amplitude, confidence
+    pause->trigger();
+    QTest::qWait(200);  // frames already queued to the window are dropped
+    const long frozen = w.rates().frames;
+    QTest::qWait(1000);
+    QCOMPARE(w.rates().frames, frozen);
+    pause->trigger();
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frozen + 10, 10000);
   }
 
   void aPausedCaptureResumesWithTheMissingViewsOnly() {
