@@ -161,8 +161,11 @@ class StudioTest : public QObject {
     QTest::qWait(1500);
     QCOMPARE(w.rates().frames, frames_while_out);  // nothing arrives while unplugged
     unplug->setChecked(false);
+    const long results_while_out = w.rates().results;
     QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), 15000);
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frames_while_out + 10, 15000);
+    // The reopened camera counts its frames from 0 again: recognition must follow it.
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > results_while_out + 10, 15000);
   }
 
   void aCameraThatCannotBeOpenedIsNamedInTheBanner() {

@@ -259,6 +259,7 @@ void StudioWindow::Impl::wire() {
   // Camera worker → window.
   QObject::connect(camera, &CameraWorker::opened, w, [this](const QString& device, const QString& s) {
     camera_problem.clear();
+    last_result_sequence = 0;
     updateBanner();
     devices->cameraConnected(device, s);
     w->statusBar()->showMessage(tr("camera connected: %1").arg(device), 4000);
@@ -282,6 +283,7 @@ void StudioWindow::Impl::wire() {
   });
   QObject::connect(camera, &CameraWorker::recovered, w, [this](const QString& device) {
     camera_problem.clear();
+    last_result_sequence = 0;
     updateBanner();
     devices->cameraConnected(device, tr("reconnected"));
     w->statusBar()->showMessage(tr("camera back: %1").arg(device), 6000);
@@ -352,7 +354,8 @@ void StudioWindow::Impl::showFrame(const FramePtr& frame) {
 void StudioWindow::Impl::showResult(const ViewResultPtr& r) {
   if (paused || !r || !r->frame) return;
   // Two workers can finish out of order: never step back to an older frame.
-  if (r->frame->sequence < last_result_sequence && r->frame->sequence + 1000 > last_result_sequence) return;
+  // (A reopened camera counts from 0 again: opened / recovered reset the mark.)
+  if (r->frame->sequence < last_result_sequence) return;
   last_result_sequence = r->frame->sequence;
   if (r->recognition) {
     ++results;
