@@ -78,7 +78,8 @@ QWidget* DevicesPanel::cameraGroup() {
   fixed_pattern_ = new QCheckBox(tr("Fixed pattern"));
   median_ = new QCheckBox(tr("Median"));
   denoise_ = new QCheckBox(tr("Denoise (ANF)"));
-  conf_map_ = new QCheckBox(tr("Confidence map"));
+  conf_map_ = new QCheckBox(tr("Confidence"));
+  conf_map_->setToolTip(tr("Acquire the confidence map (AM_CONF_MAP)"));
   for (auto* c : {fixed_pattern_, denoise_, conf_map_}) c->setChecked(true);
   auto* flags = new QGridLayout;
   flags->addWidget(fixed_pattern_, 0, 0);
@@ -100,6 +101,7 @@ QWidget* DevicesPanel::cameraGroup() {
   camera_status_ = new QLabel(tr("disconnected"));
   camera_status_->setWordWrap(true);
   camera_status_->setObjectName("cameraStatus");
+  camera_status_->setMinimumHeight(3 * camera_status_->fontMetrics().lineSpacing() + 4);  // device, maker, settings
   camera_fps_ = new QLabel("–");
   form->addRow(tr("Status"), camera_status_);
   form->addRow(tr("Frame rate"), camera_fps_);
