@@ -66,10 +66,7 @@ int runCapture(const CaptureArgs& a) {
   }
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
-    o.camera_from_turntable_zero = rig::readAxisCalibration(a.calibration);
-    std::ifstream in(a.calibration);
-    rig::writeFileDurably(a.out + "/calibration.json",
-                          std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+    o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
   }
   if (a.pose == "sim") {
     if (!simrig.pose.source) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");

@@ -1,10 +1,13 @@
 #include "keyturn/rig/sidecars.h"
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/rig/durable_file.h"
 
 namespace keyturn::rig {
 namespace {
@@ -49,6 +52,15 @@ Eigen::Matrix4d readAxisCalibration(const std::string& path) {
     throw Error(path + ": not a keyturn axis calibration");
   if (!j.contains("camera_from_turntable")) throw Error(path + ": no camera_from_turntable");
   return matrix(path, j["camera_from_turntable"]);
+}
+
+Eigen::Matrix4d adoptAxisCalibration(const std::string& path, const std::string& dataset_root) {
+  const Eigen::Matrix4d m = readAxisCalibration(path);
+  std::ifstream in(path, std::ios::binary);
+  std::filesystem::create_directories(dataset_root);
+  writeFileDurably(dataset_root + "/calibration.json",
+                   std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
+  return m;
 }
 
 }  // namespace keyturn::rig

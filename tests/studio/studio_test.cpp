@@ -15,6 +15,7 @@
 
 #include "image_panel.h"
 #include "keyturn/rig/dataset.h"
+#include "keyturn/rig/sidecars.h"
 #include "keyturn/studio/studio_window.h"
 #include "stability.h"
 #include "studio_rig_factory.h"
@@ -93,6 +94,47 @@ class StudioTest : public QObject {
     const auto report = rig::Dataset::verify(dataset.toStdString());
     QVERIFY(report.ok());
     QVERIFY(QFile::exists(dataset + "/mug/ycb_025_mug/e30/a10.0_distance.png"));
+  }
+
+  void anAxisCalibrationGoesIntoEveryViewAndTheDataset() {
+    const QString dataset = dir_.filePath("calibrated");
+    StudioOptions o = simulated("ycb_025_mug");
+    o.dataset = dataset.toStdString();
+    StudioWindow w(*factory_, o);
+    w.show();
+    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    w.findChild<QDoubleSpinBox*>("captureRange")->setValue(10);  // 2 views
+    auto* calibration = w.findChild<QLineEdit*>("captureCalibration");
+    auto* start = w.findChild<QPushButton*>("captureStart");
+    auto* eta = w.findChild<QLabel*>("captureEta");
+    // A file that is not a calibration: refused, named, nothing captured.
+    const QString bad = dir_.filePath("bad.json");
+    QFile(bad).open(QIODevice::WriteOnly);
+    calibration->setText(bad);
+    QTest::mouseClick(start, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().contains("capture failed"), 5000);
+    QVERIFY2(eta->text().contains(bad), qPrintable(eta->text()));
+    QVERIFY(!QFile::exists(dataset + "/manifest.csv"));
+    // A measured axis: camera 0.8 m in front of the table, turned; every view gets it composed
+    // with its turntable angle.
+    const QString good = dir_.filePath("axis.json");
+    QFile f(good);
+    QVERIFY(f.open(QIODevice::WriteOnly));
+    f.write(R"({"format": "keyturn-axis-calibration", "version": 1,
+               "camera_from_turntable": [[1,0,0,0.01],[0,0,-1,0.05],[0,1,0,0.8],[0,0,0,1]]})");
+    f.close();
+    calibration->setText(good);
+    QTest::mouseClick(start, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QVERIFY(QFile::exists(dataset + "/calibration.json"));
+    const auto views = rig::Dataset::readManifest(dataset.toStdString());
+    QCOMPARE(views.size(), std::size_t(2));
+    const auto t5 = rig::readViewTransform((dataset + "/mug/ycb_025_mug/e30/a5.0.json").toStdString());
+    QVERIFY(t5.has_value());
+    QVERIFY(std::abs((*t5)(2, 3) - 0.8) < 1e-9);  // the calibration's translation
+    const double a = views[1].measured_deg * M_PI / 180.0;
+    QVERIFY2(std::abs((*t5)(0, 0) - std::cos(a)) < 1e-9, qPrintable(QString::number((*t5)(0, 0))));
   }
 
   void pauseFreezesTheLiveViewAndSnapshotSavesTheFrame() {

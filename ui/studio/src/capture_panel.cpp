@@ -71,7 +71,20 @@ CapturePanel::CapturePanel(QWidget* parent) : QWidget(parent) {
   angles->addWidget(new QLabel(tr("over")));
   angles->addWidget(range_);
   form->addRow(tr("Turntable"), angles);
+  calibration_ = new QLineEdit;
+  calibration_->setObjectName("captureCalibration");
+  calibration_->setPlaceholderText(tr("axis calibration (keyturn calibrate-axis); simulated rig: exact"));
+  calibration_->setToolTip(tr("Gives every view its camera ← turntable transform; copied into the dataset"));
+  auto* calib_browse = new QPushButton(tr("…"));
+  auto* calib_row = new QHBoxLayout;
+  calib_row->addWidget(calibration_, 1);
+  calib_row->addWidget(calib_browse);
+  form->addRow(tr("Calibration"), calib_row);
   layout->addWidget(setup);
+  connect(calib_browse, &QPushButton::clicked, this, [this] {
+    const QString f = QFileDialog::getOpenFileName(this, tr("Axis calibration"), calibration_->text(), "JSON (*.json)");
+    if (!f.isEmpty()) calibration_->setText(f);
+  });
 
   auto* run = new QGroupBox(tr("Run"));
   auto* rl = new QVBoxLayout(run);
@@ -144,12 +157,14 @@ void CapturePanel::setState(State s) {
   start_->setText(s == State::Paused ? tr("Resume") : tr("Start capture"));
   pause_->setEnabled(s == State::Running);
   stop_->setEnabled(s != State::Idle);
-  for (QWidget* w : std::initializer_list<QWidget*>{folder_, cls_, instance_, elevation_label_, elevation_, step_, start_deg_, range_})
+  for (QWidget* w : std::initializer_list<QWidget*>{folder_, cls_, instance_, elevation_label_, elevation_, step_,
+                                                    start_deg_, range_, calibration_})
     w->setEnabled(s == State::Idle);
   if (s == State::Running) clock_.start();
 }
 
 std::string CapturePanel::dataset() const { return folder_->text().trimmed().toStdString(); }
+std::string CapturePanel::calibration() const { return calibration_->text().trimmed().toStdString(); }
 
 rig::CaptureOptions CapturePanel::options() const {
   rig::CaptureOptions o;
@@ -179,6 +194,7 @@ void CapturePanel::save(QSettings& s) const {
   s.setValue("capture/elevation", elevation_->value());
   s.setValue("capture/step", step_->value());
   s.setValue("capture/range", range_->value());
+  s.setValue("capture/calibration", calibration_->text());
 }
 
 void CapturePanel::restore(const QSettings& s) {
@@ -187,6 +203,7 @@ void CapturePanel::restore(const QSettings& s) {
   elevation_->setValue(s.value("capture/elevation", 30.0).toDouble());
   step_->setValue(s.value("capture/step", 5.0).toDouble());
   range_->setValue(s.value("capture/range", 360.0).toDouble());
+  calibration_->setText(s.value("capture/calibration").toString());
 }
 
 void CapturePanel::progress(int done, int skipped, int total, double angle, FramePtr frame, const QString& view) {

@@ -24,6 +24,7 @@ class CapturePanel : public QWidget {
   explicit CapturePanel(QWidget* parent = nullptr);
 
   std::string dataset() const;
+  std::string calibration() const;  // axis calibration file, "" = none
   rig::CaptureOptions options() const;
   void setObject(const QString& cls, const QString& instance);
   void setDataset(const QString& folder);
@@ -46,7 +47,7 @@ class CapturePanel : public QWidget {
   enum class State { Idle, Running, Pausing, Paused, Stopping } state_ = State::Idle;
   void setState(State s);
 
-  QLineEdit *folder_, *cls_, *instance_, *elevation_label_;
+  QLineEdit *folder_, *cls_, *instance_, *elevation_label_, *calibration_;
   QDoubleSpinBox *elevation_, *step_, *start_deg_, *range_;
   QPushButton *start_, *pause_, *stop_;
   QProgressBar* bar_;

@@ -8,6 +8,7 @@
 
 #include "keyturn/rig/dataset.h"
 #include "keyturn/rig/frame_files.h"
+#include "keyturn/rig/sidecars.h"
 
 namespace keyturn::studio {
 
@@ -45,7 +46,17 @@ void StudioWindow::Impl::startCapture() {
       return;
     }
   }
+  // A measured axis (kept with the dataset, as `keyturn capture --calibration` does) wins over the
+  // simulated rig's exact one; a real rig without one writes views without the transform.
   o.camera_from_turntable_zero = factory.cameraFromTurntable();
+  if (!capture->calibration().empty()) {
+    try {
+      o.camera_from_turntable_zero = rig::adoptAxisCalibration(capture->calibration(), root);
+    } catch (const std::exception& e) {
+      capture->finished(0, 0, false, QString::fromUtf8(e.what()));
+      return;
+    }
+  }
   CaptureRequest req{root, o};
   camera->captureStop() = false;
   capture->progress(0, 0, static_cast<int>(total), o.start_deg, nullptr, QString());

@@ -13,4 +13,8 @@ std::optional<Eigen::Matrix4d> readViewTransform(const std::string& sidecar_path
 // A keyturn-axis-calibration file's camera ← turntable at 0°.
 Eigen::Matrix4d readAxisCalibration(const std::string& path);
 
+// A capture's axis calibration: reads it (as above) and keeps a copy with the
+// dataset as DATASET/calibration.json (written durably). Returns camera ← turntable at 0°.
+Eigen::Matrix4d adoptAxisCalibration(const std::string& path, const std::string& dataset_root);
+
 }  // namespace keyturn::rig
