@@ -9,6 +9,7 @@
 #include <QScreen>
 #include <QTimer>
 #include <cstdio>
+#include <cstdlib>
 #include <iostream>
 
 #include "keyturn/studio/studio_window.h"
@@ -44,13 +45,19 @@ int main(int argc, char** argv) {
   cli.add_option("--measure", a.measure, "Run this many seconds after a 3 s warm-up, print the rates as JSON, quit")
       ->check(CLI::PositiveNumber);
   cli.add_option("--screenshot", a.screenshot, "Save the window as PNG before quitting (with --measure)");
-  // Qt takes its own options (-platform, …) first.
-  QApplication app(argc, argv);
+  // keyturn's options first (so --help works anywhere); Qt's own (-platform, …) pass through.
+  cli.allow_extras();
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
     return cli.exit(e);
   }
+  if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM")) {
+    std::cerr << "keyturn-studio: no display (DISPLAY is not set): run it on a desktop, or headless as "
+                 "xvfb-run -a keyturn-studio …\n";
+    return 1;
+  }
+  QApplication app(argc, argv);
   const std::string data = KEYTURN_DATA_DIR;
   keyturn::app::StudioRigFactory factory(data + "/objects/objects.csv");
   keyturn::studio::StudioOptions o;

@@ -23,8 +23,7 @@ void CameraWorker::open(const CameraRequest& request, const drivers::TofSettings
   request_ = request;
   settings_ = settings;
   try {
-    camera_ = factory_.openCamera(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); });
-    camera_->configure(settings_);
+    openCamera();
   } catch (const std::exception& e) {
     camera_.reset();
     emit openFailed(QString::fromStdString(request_.describe() + ": " + e.what()));
@@ -39,6 +38,11 @@ void CameraWorker::open(const CameraRequest& request, const drivers::TofSettings
   second_start_ms_ = QDateTime::currentMSecsSinceEpoch();
   frames_in_second_ = 0;
   live_->start();
+}
+
+void CameraWorker::openCamera() {
+  camera_ = factory_.openCamera(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); });
+  camera_->configure(settings_);
 }
 
 void CameraWorker::close() {
@@ -91,8 +95,7 @@ void CameraWorker::reconnectNow() {
 
 void CameraWorker::tryReconnect() {
   try {
-    camera_ = factory_.openCamera(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); });
-    camera_->configure(settings_);
+    openCamera();
   } catch (const std::exception& e) {
     camera_.reset();
     emit logLine(QString::fromStdString(std::string("reconnect: ") + e.what()));

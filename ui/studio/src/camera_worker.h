@@ -46,6 +46,7 @@ class CameraWorker : public QObject {
   void captureFinished(int written, int skipped, bool stopped, QString error);
 
  private:
+  void openCamera();  // request_ with settings_; throws
   void acquireOne();
   void lost(const std::string& why);
   void tryReconnect();

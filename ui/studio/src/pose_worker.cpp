@@ -17,10 +17,9 @@ PoseWorker::PoseWorker(RigFactory& factory) : factory_(factory) {
 
 PoseWorker::~PoseWorker() = default;
 
-bool PoseWorker::connectSource() {
+void PoseWorker::connectSource() {
   source_ = std::make_shared<rig::LockedPoseSource>(
       factory_.openPose(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); }));
-  return true;
 }
 
 void PoseWorker::open(const PoseRequest& request) {

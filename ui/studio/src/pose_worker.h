@@ -37,7 +37,7 @@ class PoseWorker : public QObject {
   void poll();
   void command(const char* what, const std::function<void(drivers::PoseSource&)>& f);
   void tryReconnect();
-  bool connectSource();
+  void connectSource();  // request_; throws
 
   RigFactory& factory_;
   PoseRequest request_;

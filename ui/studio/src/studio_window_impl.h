@@ -56,7 +56,7 @@ struct StudioWindow::Impl {
   static constexpr int kCloudRedrawHz = 5;
   bool frame_fresh = false, result_fresh = false;
   RateMeter frame_rate, result_rate;
-  double camera_fps = 0, latency_ms = 0, describe_ms = 0;
+  double latency_ms = 0, describe_ms = 0;
   long frames = 0, results = 0;
 
   Impl(StudioWindow* window, RigFactory& f, StudioOptions o) : w(window), factory(f), options(std::move(o)) {}

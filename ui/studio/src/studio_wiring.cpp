@@ -67,14 +67,10 @@ void StudioWindow::Impl::wire() {
   });
   QObject::connect(camera, &CameraWorker::closed, devices, &DevicesPanel::cameraDisconnected);
   QObject::connect(camera, &CameraWorker::frameReady, w, [this](const FramePtr& f) { showFrame(f); });
-  QObject::connect(camera, &CameraWorker::rate, w, [this](double fps) {
-    camera_fps = fps;
-    devices->cameraRate(fps);
-  });
+  QObject::connect(camera, &CameraWorker::rate, devices, &DevicesPanel::cameraRate);
   QObject::connect(camera, &CameraWorker::failed, w, [this](const QString& why) {
     camera_problem = tr("Camera stopped answering: %1. Reconnecting every second…").arg(why);
     devices->cameraFailing(why);
-    camera_fps = 0;
     updateBanner();
   });
   QObject::connect(camera, &CameraWorker::openFailed, w, [this](const QString& why) {
