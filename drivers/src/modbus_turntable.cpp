@@ -2,6 +2,7 @@
 
 #include <modbus/modbus.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <thread>
@@ -145,20 +146,28 @@ auto ModbusTurntable::withRetry(const char* what, F&& f) -> decltype(f()) {
   throw Error(describe() + ": " + what + " failed after " + std::to_string(options_.retries) + " retries: " + last);
 }
 
-std::uint32_t ModbusTurntable::readRaw(const ModbusRegister& r) {
-  std::uint16_t regs[2] = {0, 0};
-  const int n = r.bits / 16;
-  const int rc = r.function == ModbusRegister::Function::Input
-                     ? modbus_read_input_registers(ctx_->m, r.address, n, regs)
-                     : modbus_read_registers(ctx_->m, r.address, n, regs);
+void ModbusTurntable::readBlock(ModbusRegister::Function function, int address, int n, std::uint16_t* regs) {
+  const int rc = function == ModbusRegister::Function::Input ? modbus_read_input_registers(ctx_->m, address, n, regs)
+                                                             : modbus_read_registers(ctx_->m, address, n, regs);
   if (rc != n) {
     const int err = errno;
-    const std::string msg = "reading register " + std::to_string(r.address) + ": " + modbusErrorText(err);
+    const std::string msg = "reading register " + std::to_string(address) + ": " + modbusErrorText(err);
     if (isModbusException(err)) throw DeviceError(describe() + ": " + msg);
     throw Error(msg);
   }
-  if (n == 1) return regs[0];
+}
+
+namespace {
+std::uint32_t decodeRegister(const ModbusRegister& r, const std::uint16_t* regs) {
+  if (r.bits == 16) return regs[0];
   return r.high_word_first ? (std::uint32_t(regs[0]) << 16) | regs[1] : (std::uint32_t(regs[1]) << 16) | regs[0];
+}
+}  // namespace
+
+std::uint32_t ModbusTurntable::readRaw(const ModbusRegister& r) {
+  std::uint16_t regs[2] = {0, 0};
+  readBlock(r.function, r.address, r.bits / 16, regs);
+  return decodeRegister(r, regs);
 }
 
 void ModbusTurntable::writeRaw(const ModbusRegister& r, std::int64_t value) {
@@ -187,19 +196,37 @@ void ModbusTurntable::writeOne(const ModbusWrite& w) {
 
 Pose ModbusTurntable::read() {
   return withRetry("read", [&] {
+    // Position and status must describe the same instant: a position read while the table still moved,
+    // paired with a status read after it arrived, would report "in position" at the wrong angle. When the
+    // status sits near the position (holding registers) one request reads both; otherwise the status is
+    // read first, so "in position" always comes with a position taken after it.
+    const ModbusRegister& pos = profile_.position;
+    std::uint32_t raw = 0, status_bits = 0;
+    if (profile_.status) {
+      const int status_at = profile_.status->address, pos_words = pos.bits / 16;
+      const int lo = std::min(pos.address, status_at), hi = std::max(pos.address + pos_words - 1, status_at);
+      if (pos.function == ModbusRegister::Function::Holding && hi - lo < kSnapshotSpan) {
+        std::uint16_t regs[kSnapshotSpan] = {};
+        readBlock(ModbusRegister::Function::Holding, lo, hi - lo + 1, regs);
+        raw = decodeRegister(pos, regs + (pos.address - lo));
+        status_bits = regs[status_at - lo];
+      } else {
+        ModbusRegister s;
+        s.address = status_at;
+        status_bits = readRaw(s);
+        raw = readRaw(pos);
+      }
+    } else {
+      raw = readRaw(pos);
+    }
     Pose p;
-    std::uint32_t raw = readRaw(profile_.position);
-    double counts = profile_.position.is_signed
-                        ? (profile_.position.bits == 32 ? static_cast<double>(static_cast<std::int32_t>(raw))
-                                                        : static_cast<double>(static_cast<std::int16_t>(raw)))
-                        : static_cast<double>(raw);
+    const double counts = pos.is_signed ? (pos.bits == 32 ? static_cast<double>(static_cast<std::int32_t>(raw))
+                                                          : static_cast<double>(static_cast<std::int16_t>(raw)))
+                                        : static_cast<double>(raw);
     p.turntable_deg = profile_.countsToDegrees(counts);
     if (profile_.status) {
-      ModbusRegister s;
-      s.address = profile_.status->address;
-      const std::uint32_t bits = readRaw(s);
-      p.moving = (bits >> profile_.status->moving_bit) & 1u;
-      p.in_position = (bits >> profile_.status->in_position_bit) & 1u;
+      p.moving = (status_bits >> profile_.status->moving_bit) & 1u;
+      p.in_position = (status_bits >> profile_.status->in_position_bit) & 1u;
     }
     p.stamp = std::chrono::system_clock::now();
     return p;

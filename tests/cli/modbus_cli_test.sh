@@ -5,8 +5,9 @@ set -u
 source "$(dirname "$0")/lib.sh"
 if ! command -v mbpoll > /dev/null; then echo "SKIPPED: mbpoll not installed"; echo "0 passed, 0 failed"; exit 0; fi
 
+# Each simulator lives at most 2 minutes (killed on exit anyway): a loaded CI machine takes its time.
 start_sim() {  # start_sim OUTFILE ARGS… → prints the endpoint
-  "$KT" sim turntable "${@:2}" --speed 720 --accel 7200 --settle 0.01 --duration 20 > "$1" 2> "$1.err" &
+  "$KT" sim turntable "${@:2}" --speed 720 --accel 7200 --settle 0.01 --duration 120 > "$1" 2> "$1.err" &
   sims+=($!)
   for _ in $(seq 50); do [ -s "$1" ] && break; sleep 0.1; done
   head -1 "$1"

@@ -114,6 +114,29 @@ TEST(ModbusTurntable, MovesOverTcpWithARealisticProfile) {
   EXPECT_LT(took, 0.8);
 }
 
+TEST(ModbusTurntable, InPositionIsNeverPairedWithAStaleAngle) {
+  // Position and status come from one request, so a table arriving between two reads cannot report
+  // "in position" at an angle it had already left. Polled as tightly as a capture does, over many moves.
+  sim::TurntableServer server(fastTable());
+  auto table = connectTo(server);
+  const long before = server.requests();
+  table->read();
+  EXPECT_EQ(server.requests() - before, 1);  // one snapshot per read
+  int in_position_reads = 0;
+  for (int i = 1; i <= 12; ++i) {
+    const double target = i * 7.5;
+    table->moveTo(target);
+    const auto end = Clock::now() + std::chrono::seconds(3);
+    for (Pose p = table->read(); Clock::now() < end; p = table->read()) {
+      if (!p.in_position) continue;
+      ++in_position_reads;
+      ASSERT_NEAR(p.turntable_deg, target, 0.011) << "move " << i;
+      break;
+    }
+  }
+  EXPECT_EQ(in_position_reads, 12);
+}
+
 TEST(ModbusTurntable, ReversingShowsBacklash) {
   sim::TurntableServer server(fastTable());
   auto table = connectTo(server);

@@ -51,6 +51,8 @@ class ModbusTurntable final : public PoseSource {
  private:
   void connect();
   void disconnect();
+  static constexpr int kSnapshotSpan = 16;  // registers read in one request for position + status
+  void readBlock(ModbusRegister::Function function, int address, int n, std::uint16_t* regs);
   std::uint32_t readRaw(const ModbusRegister& r);
   void writeRaw(const ModbusRegister& r, std::int64_t value);
   void writeOne(const ModbusWrite& w);
