@@ -13,6 +13,8 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <utility>
+
 #include "image_panel.h"
 #include "keyturn/rig/dataset.h"
 #include "keyturn/rig/sidecars.h"
@@ -22,6 +24,39 @@
 
 using namespace keyturn;
 using namespace keyturn::studio;
+
+namespace {
+// The studio's own devices, except the USB bus: cameras are plugged in and out by the test,
+// and the bus reports a change as the libusb hot-plug watcher does.
+class PluggableUsbFactory final : public RigFactory {
+ public:
+  explicit PluggableUsbFactory(RigFactory& real) : real_(real) {}
+  void plug(std::vector<std::pair<unsigned, std::string>> cameras) {
+    cameras_ = std::move(cameras);
+    changed_ = true;
+  }
+  int scans = 0;
+
+  std::unique_ptr<drivers::TofCamera> openCamera(const CameraRequest& r, Log log) override {
+    return real_.openCamera(r, std::move(log));
+  }
+  std::unique_ptr<drivers::PoseSource> openPose(const PoseRequest& r, Log log) override {
+    return real_.openPose(r, std::move(log));
+  }
+  std::vector<SimObject> simObjects() const override { return real_.simObjects(); }
+  void setSimulatedCameraUnplugged(bool unplugged) override { real_.setSimulatedCameraUnplugged(unplugged); }
+  std::vector<std::pair<unsigned, std::string>> usbCameras() override {
+    ++scans;
+    return cameras_;
+  }
+  bool usbCamerasChanged() override { return std::exchange(changed_, false); }
+
+ private:
+  RigFactory& real_;
+  std::vector<std::pair<unsigned, std::string>> cameras_;
+  bool changed_ = false;
+};
+}  // namespace
 
 class StudioTest : public QObject {
   Q_OBJECT
@@ -224,6 +259,31 @@ class StudioTest : public QObject {
     QVERIFY2(w.bannerText().startsWith("Could not open the camera: SR4000 at 192.0.2.7: "), qPrintable(w.bannerText()));
     QVERIFY2(w.bannerText().contains("libMesaSR"), qPrintable(w.bannerText()));
     QCOMPARE(w.findChild<QPushButton*>("cameraConnect")->text(), QString("Connect"));
+  }
+
+  void theUsbListFollowsCamerasPluggedInAndOut() {
+    PluggableUsbFactory usb(*factory_);
+    StudioOptions o;
+    o.settings_file = dir_.filePath("usb.ini").toStdString();
+    StudioWindow w(usb, o);
+    w.show();
+    auto* list = w.findChild<QComboBox*>("usbCameras");
+    QVERIFY(list);
+    w.findChild<QComboBox*>("cameraKind")->setCurrentIndex(1);  // USB
+    QCOMPARE(list->count(), 1);
+    QCOMPARE(list->itemText(0), QString("no SwissRanger on USB"));
+    const int scans_before = usb.scans;
+    QTest::qWait(1500);
+    QCOMPARE(usb.scans, scans_before);  // no change on the bus: no rescan
+    usb.plug({{4000123u, "SR4000 serial 4000123 (bus 1, port 2)"}, {4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});
+    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 2, 3000);
+    QCOMPARE(list->itemData(1).toUInt(), 4000456u);
+    QVERIFY2(list->itemText(0).contains("4000123"), qPrintable(list->itemText(0)));
+    usb.plug({{4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});  // the first one pulled out
+    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 1, 3000);
+    QCOMPARE(list->itemData(0).toUInt(), 4000456u);
+    usb.plug({});
+    QTRY_COMPARE_WITH_TIMEOUT(list->itemText(0), QString("no SwissRanger on USB"), 3000);
   }
 
   void settingsPersistAcrossSessions() {

@@ -47,6 +47,7 @@ QWidget* DevicesPanel::cameraGroup() {
   auto* usb_row = new QHBoxLayout(usb);
   usb_row->setContentsMargins(0, 0, 0, 0);
   usb_list_ = new QComboBox;
+  usb_list_->setObjectName("usbCameras");
   auto* rescan = new QPushButton(tr("Rescan"));
   usb_row->addWidget(usb_list_, 1);
   usb_row->addWidget(rescan);
