@@ -51,21 +51,31 @@ std::vector<double> ViewDescriptor::featureVector() const {
 
 ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
   if (o.features.empty()) throw Error("no features requested");
+  const auto start = std::chrono::steady_clock::now();
+  if (input.points.empty()) throw Error("empty point cloud");
+  const std::size_t valid = input.validCount();
+  if (valid == 0) throw Error("no valid points (all NaN or infinite)");
+  const PointSet set = PointSet::fromCloud(o.filter ? filterCloud(input, o.filter_options) : input);
+  const double filter_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  if (set.size() < 3)
+    throw Error("only " + std::to_string(set.size()) + " of " + std::to_string(valid) +
+                " points left after filtering");
+  ViewDescriptor out = describeFilteredPoints(set, o);
+  out.input_points = valid;
+  out.times.filter = filter_ms;
+  out.times.total += filter_ms;
+  return out;
+}
+
+ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o) {
+  if (o.features.empty()) throw Error("no features requested");
   ViewDescriptor out;
   out.features = o.features;
   const auto start = std::chrono::steady_clock::now();
   StageClock clock;
-
-  if (input.points.empty()) throw Error("empty point cloud");
-  out.input_points = input.validCount();
-  if (out.input_points == 0) throw Error("no valid points (all NaN or infinite)");
-  const Cloud filtered = o.filter ? filterCloud(input, o.filter_options) : input;
-  const PointSet set = PointSet::fromCloud(filtered);
+  out.input_points = set.size();
   out.points = set.size();
-  out.times.filter = clock.lap();
-  if (set.size() < 3)
-    throw Error("only " + std::to_string(set.size()) + " of " + std::to_string(out.input_points) +
-                " points left after filtering");
+  if (set.size() < 3) throw Error("only " + std::to_string(set.size()) + " points left after filtering");
 
   const RadiusSearch search(set);
   out.resolution = cloudResolution(set, search);

@@ -5,6 +5,7 @@
 
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/filter.h"
 #include "keyturn/sim/tof_view.h"
 #include "support/synthetic_clouds.h"
 
@@ -74,6 +75,30 @@ TEST(Descriptor, SameViewSameDescriptor) {
   DescriptorOptions o;
   const Cloud c = mugView(40);
   EXPECT_EQ(describeView(c, o).featureVector(), describeView(c, o).featureVector());
+}
+
+TEST(Descriptor, FilteredPointsGiveTheSameDescriptorAsTheWholeChain) {
+  DescriptorOptions o;
+  o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2, Feature::D2};
+  const Cloud c = mugView(40);
+  const ViewDescriptor whole = describeView(c, o);
+  const PointSet filtered = PointSet::fromCloud(filterCloud(c, o.filter_options));
+  const ViewDescriptor part = describeFilteredPoints(filtered, o);
+  EXPECT_EQ(part.points, whole.points);
+  EXPECT_EQ(part.input_points, filtered.size());  // only the filtered points were seen
+  EXPECT_GT(whole.input_points, whole.points);
+  EXPECT_EQ(part.keypoint_index, whole.keypoint_index);
+  EXPECT_EQ(part.featureVector(), whole.featureVector());
+  EXPECT_EQ(part.times.filter, 0.0);
+  EXPECT_GT(whole.times.filter, 0.0);
+  PointSet two;
+  two.points = {Eigen::Vector3f(0, 0, 1), Eigen::Vector3f(0, 0.01f, 1)};
+  try {
+    describeFilteredPoints(two, o);
+    ADD_FAILURE() << "two points were described";
+  } catch (const Error& e) {
+    EXPECT_NE(std::string(e.what()).find("only 2 points left after filtering"), std::string::npos) << e.what();
+  }
 }
 
 TEST(Descriptor, EmptyAndAllNaNCloudsAreClearErrors) {

@@ -41,15 +41,13 @@ Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadMode
 Recognition Recognizer::describe(const Cloud& cloud) const {
   const auto t0 = std::chrono::steady_clock::now();
   Recognition r;
-  // Filter here, describe unfiltered: the same split the dataset cache uses, and
+  // Filter here, then describe the filtered points: the same split the dataset cache uses, and
   // the filtered points are what a viewer shows.
-  const Cloud filtered = options_.filter ? filterCloud(cloud, options_.filter_options) : cloud;
-  r.filtered = PointSet::fromCloud(filtered);
+  if (cloud.validCount() == 0) throw Error("no valid points (empty, or all NaN or infinite)");
+  r.filtered = PointSet::fromCloud(options_.filter ? filterCloud(cloud, options_.filter_options) : cloud);
   r.filter_ms = msSince(t0);
-  DescriptorOptions o = options_;
-  o.filter = false;
   const auto t1 = std::chrono::steady_clock::now();
-  r.descriptor = describeView(filtered, o);
+  r.descriptor = describeFilteredPoints(r.filtered, options_);
   r.describe_ms = msSince(t1);
   for (const auto& pdf : r.descriptor.pdfs)
     for (double v : pdf) r.features.push_back(static_cast<float>(v));

@@ -61,4 +61,8 @@ struct ViewDescriptor {
 // all-NaN cloud, a cloud the filter empties, or fewer than min_keypoints keypoints.
 ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options);
 
+// The same for points already filtered (options.filter is not applied again): for callers that
+// keep the filtered points, e.g. to show them, so they are built once. input_points = points.
+ViewDescriptor describeFilteredPoints(const PointSet& filtered, const DescriptorOptions& options);
+
 }  // namespace keyturn
