@@ -17,8 +17,9 @@ struct BenchRuns {
 };
 
 // Keys: name, frame_pixels, input_points, points, resolution_mm, keypoints, repetitions,
-// STAGE_ms (median) and stages.STAGE.{median,min,max}_ms for filter … total and pcl_iss,
-// pcl_esf, pcl_vfh; pcl_iss_keypoints; iss_speedup_vs_pcl (PCL time / keyturn time)
+// STAGE_ms (median wall time) and stages.STAGE.{median,min,max}_ms for filter … total and
+// pcl_iss, pcl_esf, pcl_vfh; the same as thread CPU time for total_cpu, pcl_iss_cpu,
+// pcl_esf_cpu, pcl_vfh_cpu (also as total_cpu_ms …); pcl_iss_keypoints; iss_speedup_vs_pcl (PCL time / keyturn time)
 // and iss_vs_pcl ("2.3× faster"). Throws keyturn::Error when the view cannot be described.
 nlohmann::json benchView(const std::string& name, const Cloud& cloud, const BenchRuns& runs,
                          const DescriptorOptions& options);
