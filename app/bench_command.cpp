@@ -3,11 +3,13 @@
 // ISSKeypoint3D, ESF and VFH timed on the same filtered cloud in the same run.
 // A view that cannot be read or described is named on stderr (and as an "error"
 // entry in --json); the others are still timed, and the exit status is then 1.
+// --scaling times the chain against input size instead (bench_scaling.h).
 #include <cstdio>
 #include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
+#include "bench_scaling.h"
 #include "bench_view.h"
 #include "commands.h"
 #include "descriptor_options.h"
@@ -15,6 +17,10 @@
 #include "keyturn/core/error.h"
 #include "keyturn/sim/tof_view.h"
 #include "view_files.h"
+
+#ifndef KEYTURN_DATA_DIR
+#define KEYTURN_DATA_DIR "data"
+#endif
 
 namespace keyturn::app {
 namespace {
@@ -24,6 +30,9 @@ struct BenchArgs {
   BenchRuns runs;
   bool json = false;
   bool no_builtin = false;
+  bool scaling = false;
+  std::vector<std::size_t> sizes = defaultScalingSizes();
+  std::string plot;
   DescriptorFlags flags;
 };
 
@@ -92,21 +101,47 @@ int runBench(const BenchArgs& a) {
   return failed ? 1 : 0;
 }
 
+int runScalingCommand(const BenchArgs& a) {
+  if (a.files.size() > 1) throw Error("bench --scaling takes one frame (or none: the shipped Kinect frame)");
+  ScalingArgs s;
+  s.file = a.files.empty() ? std::string(KEYTURN_DATA_DIR) + "/frames/mosd_learn0.pcd" : a.files[0];
+  s.sizes = a.sizes;
+  s.runs = a.runs;
+  s.runs.progress = !a.json;
+  s.json = a.json;
+  s.plot = a.plot;
+  return runScaling(s, a.flags.toOptions());
+}
+
 }  // namespace
 
 Command addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = app.add_subcommand("bench", "Time every stage of the chain against PCL's ISS, ESF and VFH");
   cmd->add_option("files", args->files,
-                  "Extra PCD/PLY views or folders of them to time (the built-in view always runs first)");
-  cmd->add_option("--repetitions,-n", args->runs.repetitions, "Runs per view")
+                  "Extra PCD/PLY views or folders of them to time (the built-in view always runs first); "
+                  "with --scaling, the one frame to scale");
+  auto* reps = cmd->add_option("--repetitions,-n", args->runs.repetitions, "Runs per view (--scaling: 5 unless given)")
       ->capture_default_str()->check(CLI::Range(1, 100000));
-  cmd->add_option("--pcl-repetitions", args->runs.pcl_repetitions, "Runs of each PCL baseline")
+  auto* pcl_reps = cmd->add_option("--pcl-repetitions", args->runs.pcl_repetitions,
+                                   "Runs of each PCL baseline (--scaling: 3 unless given)")
       ->capture_default_str()->check(CLI::Range(1, 100000));
   cmd->add_flag("--json", args->json, "Print one JSON object (milliseconds) instead of a table");
   cmd->add_flag("--no-builtin", args->no_builtin, "Skip the built-in synthetic SR4000 view");
+  auto* scaling = cmd->add_flag("--scaling", args->scaling,
+                                "Time the whole chain against input size on one real frame (default: the shipped "
+                                "640 × 480 Kinect frame data/frames/mosd_learn0.pcd); see docs/benchmarks.md");
+  cmd->add_option("--sizes", args->sizes, "Input sizes for --scaling, comma-separated")
+      ->delimiter(',')->needs(scaling)->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
+  cmd->add_option("--plot", args->plot, "With --scaling: also write a log-log PNG of time against size")
+      ->needs(scaling);
   args->flags.add(*cmd);
-  return {cmd, [args] { return runBench(*args); }};
+  return {cmd, [args, reps, pcl_reps] {
+            if (!args->scaling) return runBench(*args);
+            if (reps->count() == 0) args->runs.repetitions = 5;
+            if (pcl_reps->count() == 0) args->runs.pcl_repetitions = 3;
+            return runScalingCommand(*args);
+          }};
 }
 
 }  // namespace keyturn::app
