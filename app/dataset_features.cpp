@@ -75,11 +75,13 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
   FeatureRow row;
   row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
   row.keypoints = -1;
+  // The keypoint blocks through the one view path (filter, working resolution), as describe and the
+  // recogniser see a view; the peers (ESF, VFH, OUR-CVFH) on the filtered points at the sensor's own
+  // density, as their users run them.
   const Cloud filtered = options.filter ? filterCloud(cloud, options.filter_options) : cloud;
-  DescriptorOptions o = options;
-  o.filter = false;
+  const DescriptorOptions& o = options;
   try {
-    const ViewDescriptor d = describeView(filtered, o);
+    const ViewDescriptor d = describeView(cloud, o);
     row.keypoints = d.keypointCount();
     for (std::size_t f = 0; f < o.features.size(); ++f) {
       put(row, layout, featureName(o.features[f]), d.pdfs[f]);

@@ -111,7 +111,13 @@ std::string explanation(const std::string& file, const ViewDescriptor& d) {
     }
   }
   const auto& w = d.working;
-  if (w.spacing > 0)
+  if (!d.filter.steps.empty()) {
+    // The working resolution ran as a filter step; say what spacing it chose.
+    if (w.spacing > 0)
+      std::snprintf(line, sizeof line, "  (working spacing %.2f mm = extent %.0f mm / samples across%s)\n",
+                    w.spacing * 1000, w.extent * 1000, w.subsampled ? "" : "; no denser than that: kept");
+    else line[0] = '\0';
+  } else if (w.spacing > 0)
     std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (spacing %.2f mm = extent %.0f mm / samples across%s)\n",
                   "working-resolution", w.before, w.after, w.spacing * 1000, w.extent * 1000,
                   w.subsampled ? "" : "; no denser than that: kept");

@@ -55,7 +55,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   PreparedView v;
   v.input_points = input.validCount();
   if (v.input_points == 0) throw Error("no valid points (all NaN or infinite)");
-  Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter) : input;
+  Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working) : input;
   const std::size_t filtered = cloud.validCount();
   if (filtered < 3) {
     std::string why;
@@ -65,7 +65,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
                 " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
                 (why.empty() ? "nothing removed" : why) + "; --explain shows each step)");
   }
-  subsampleToWorkingResolution(cloud, o.working, &v.working);
+  if (!o.filter) subsampleToWorkingResolution(cloud, o.working, &v.working);
   v.points = PointSet::fromCloud(cloud);
   v.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return v;

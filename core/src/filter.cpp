@@ -307,7 +307,8 @@ std::string FilterReport::flaggedSummary() const {
   return out;
 }
 
-Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report) {
+Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report,
+                  const WorkingResolutionOptions* working, WorkingResolutionReport* working_report) {
   Cloud cloud = input;
   FilterReport r;
   r.kind = classifyInput(input);
@@ -325,7 +326,8 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
     if (wanted) run(s);
     else s.note = skip_note;
     s.after = count = cloud.validCount();
-    const bool segmenting = r.plane_found && (s.name == "support-plane" || s.name == "cluster");
+    const bool segmenting =
+        s.name == "working-resolution" || (r.plane_found && (s.name == "support-plane" || s.name == "cluster"));
     s.flagged = s.applied && !segmenting && s.before > 0 && 2 * s.removed() > s.before;
     r.steps.push_back(std::move(s));
   };
@@ -343,6 +345,12 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
   r.after_plane = count;
   step("cluster", o.largest_cluster, "off", [&](FilterStep&) { keepLargestCluster(cloud, o.cluster_tolerance); });
   r.after_cluster = count;
+  if (working)
+    step("working-resolution", working->enabled, "off", [&](FilterStep&) {
+      WorkingResolutionReport w;
+      subsampleToWorkingResolution(cloud, *working, &w);
+      if (working_report) *working_report = w;
+    });
   step("outliers", o.outlier_removal, "off",
        [&](FilterStep&) { removeStatisticalOutliers(cloud, o.sor_k, o.sor_std_mul); });
   r.after_outliers = count;

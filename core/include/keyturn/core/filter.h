@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/core/working_resolution.h"
 
 namespace keyturn {
 
@@ -39,7 +40,7 @@ struct FilterOptions {
   float plane_distance = 0.008f;
   float plane_min_fraction = 0.15f;
   int plane_iterations = 200;
-  int plane_max_samples = 20000;   // RANSAC hypotheses scored on at most this many points
+  int plane_max_samples = 5000;    // RANSAC hypotheses scored on at most this many points
   int support_min_points = 30;     // points above a support: fewer and it is not holding anything
 
   // Keep only the largest Euclidean cluster (the object), cluster tolerance in metres.
@@ -88,7 +89,10 @@ constexpr double kMaskedFrameMaxValidFraction = 0.3;
 InputKind classifyInput(const Cloud& cloud);
 
 // Returns a cloud of the same layout (organized stays organized, removed points NaN).
-Cloud filterCloud(const Cloud& input, const FilterOptions& options, FilterReport* report = nullptr);
+// With `working`, the view is also brought to the working resolution, as the step before the
+// outlier removal (whose statistics are then those of the working spacing, and cheap).
+Cloud filterCloud(const Cloud& input, const FilterOptions& options, FilterReport* report = nullptr,
+                  const WorkingResolutionOptions* working = nullptr, WorkingResolutionReport* working_report = nullptr);
 
 // Individual steps, each keeping the layout.
 void cropRange(Cloud& cloud, float min_range, float max_range);
