@@ -15,6 +15,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
+#include "keyturn/learning/feature_spec.h"
 #include "keyturn/rig/dataset.h"
 #include "progress.h"
 
@@ -40,9 +41,9 @@ std::uint64_t fnv1a(const std::string& s) {
 
 FeatureTable emptyTable(const DescriptorFlags& flags) {
   FeatureTable t;
-  for (Feature f : kKeypointBlocks) t.blocks.push_back(featureName(f)), t.sizes.push_back(flags.bins);
-  for (Feature f : kShapeBlocks) t.blocks.push_back(featureName(f)), t.sizes.push_back(flags.bins);
-  for (Feature f : kKeypointBlocks) t.blocks.push_back("u_" + featureName(f)), t.sizes.push_back(flags.bins);
+  for (Feature f : kKeypointBlocks) t.blocks.push_back(featureName(f)), t.sizes.push_back(flags.options.histogram.bins);
+  for (Feature f : kShapeBlocks) t.blocks.push_back(featureName(f)), t.sizes.push_back(flags.options.histogram.bins);
+  for (Feature f : kKeypointBlocks) t.blocks.push_back("u_" + featureName(f)), t.sizes.push_back(flags.options.histogram.bins);
   t.blocks.insert(t.blocks.end(), {"esf", "vfh", "ourcvfh"});
   t.sizes.insert(t.sizes.end(), {640, 308, 308});
   t.spec = featureSpec(flags);
@@ -66,7 +67,7 @@ DescriptorOptions cacheOptions(const DescriptorFlags& flags) {
   o.features = kKeypointBlocks;
   o.features.insert(o.features.end(), kShapeBlocks.begin(), kShapeBlocks.end());
   o.random_keypoints_twin = true;
-  o.random_seed = flags.seed;
+  o.random_seed = o.osada.seed;
   return o;
 }
 
@@ -103,7 +104,7 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
       note(row, block + ": " + e.what());
     }
   };
-  copy("esf", [&] { return pclEsfSeeded(set, static_cast<unsigned>(flags.seed)); });
+  copy("esf", [&] { return pclEsfSeeded(set, static_cast<unsigned>(flags.options.osada.seed)); });
   copy("vfh", [&] { return pclVfh(set, kNormalRadius); });
   copy("ourcvfh", [&] { return pclOurCvfh(set, kNormalRadius); });
   return row;
@@ -172,7 +173,7 @@ std::vector<FeatureRow> describeViews(const std::string& root, const std::vector
 
 }  // namespace
 
-std::map<std::string, std::string> featureSpec(const DescriptorFlags& f) { return learning::featureSpec(f.params()); }
+std::map<std::string, std::string> featureSpec(const DescriptorFlags& f) { return learning::featureSpec(f.options); }
 
 std::string cachePath(const std::string& dataset, const DescriptorFlags& flags, int shard, int shards) {
   std::string key;

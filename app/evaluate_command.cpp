@@ -193,7 +193,7 @@ int runEvaluate(const EvaluateArgs& a) {
   const auto protocol_names = splitList(a.protocols);
   std::vector<int> bins_list;
   for (const auto& b : splitList(a.bins)) bins_list.push_back(std::stoi(b));
-  if (bins_list.empty()) bins_list.push_back(a.flags.bins);
+  if (bins_list.empty()) bins_list.push_back(a.flags.options.histogram.bins);
   if (sets.empty() || classifiers.empty() || protocol_names.empty())
     throw Error("evaluate needs at least one feature set, classifier and protocol");
   for (const auto& c : classifiers) {
@@ -213,7 +213,7 @@ int runEvaluate(const EvaluateArgs& a) {
     CacheRequest req;
     req.dataset = a.dataset;
     req.flags = a.flags;
-    req.flags.bins = bins;
+    req.flags.options.histogram.bins = bins;
     req.jobs = a.jobs;
     req.quiet = a.quiet;
     const auto t0 = std::chrono::steady_clock::now();
@@ -273,10 +273,10 @@ int runEvaluate(const EvaluateArgs& a) {
   md << "# keyturn evaluate: " << a.dataset << "\n\n";
   for (int bins : bins_list) {
     const FeatureTable& t = tables[bins];
-    const DataSummary s = summarise(t, a.flags.low_keypoints);
+    const DataSummary s = summarise(t, a.flags.options.low_keypoints);
     md << "## " << bins << " bins\n\n"
        << s.views << " views; ISS keypoints K per view: median " << s.k_median << " (" << s.k_min << "–" << s.k_max
-       << "), " << s.low << " views with K < " << a.flags.low_keypoints << ", " << s.failed
+       << "), " << s.low << " views with K < " << a.flags.options.low_keypoints << ", " << s.failed
        << " views without keypoint features. Features described in " << std::fixed << std::setprecision(1)
        << describe_s[bins] << " s (" << std::setprecision(1) << 1000.0 * describe_s[bins] / std::max<std::size_t>(1, s.views)
        << " ms/view wall; 0 when cached).\n\n";
