@@ -40,7 +40,7 @@ int runCalibrate(const CalibrateArgs& a) {
   double radius = 0;
   Progress progress("calibrate", views.size(), true);
   for (const auto& v : views) {
-    const std::string pcd = a.dataset + "/" + v.files.front();
+    const std::string pcd = a.dataset + "/" + v.pcd();
     try {
       const SphereTargetObservation obs = observeSphereTarget(loadCloud(pcd));
       centres.push_back(obs.sphere.centre);

@@ -38,21 +38,19 @@ bool isDataset(const std::string& path) {
 
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
-  CacheRequest r;
-  r.dataset = a.inputs.front();
-  r.flags = a.flags;
-  r.jobs = a.jobs;
-  r.quiet = a.quiet;
+  int shard = 0, shards = 1;
   if (!a.shard.empty()) {
-    int i = 0, n = 0;
     char slash = 0;
     std::istringstream in(a.shard);
-    if (!(in >> i >> slash >> n) || slash != '/' || !in.eof())
+    if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
       throw Error("--shard " + a.shard + ": expected I/N, e.g. 3/16");
-    r.shard = i - 1;
-    r.shards = n;
+    --shard;
   }
-  const std::string path = r.shards > 1 ? describeDatasetShard(r) : (loadOrDescribeDataset(r), cachePath(r.dataset, r.flags));
+  const std::string& dataset = a.inputs.front();
+  DescribeProgressLine progress(a.quiet);
+  const learning::FeatureCache cache{dataset, datasetViews(dataset), a.flags.options, a.jobs, &progress};
+  const std::string path = shards > 1 ? learning::describeCacheShard(cache, shard, shards)
+                                      : (learning::loadOrDescribeCache(cache), learning::featureCachePath(dataset, cache.options));
   if (!a.quiet) std::cerr << "keyturn describe: feature cache → " << path << "\n";
   return 0;
 }

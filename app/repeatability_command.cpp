@@ -73,12 +73,12 @@ std::vector<View> viewsFromDataset(const std::string& root) {
   std::vector<View> out;
   for (const auto& r : rig::Dataset::readManifest(root)) {
     View v;
-    v.file = root + "/" + r.files.front();
+    v.file = root + "/" + r.pcd();
     v.group = r.key.cls + "/" + r.key.instance + "/e" + r.key.elevation;
     v.angle_deg = r.measured_deg;
-    const auto T = rig::readViewTransform(root + "/" + r.files.back());
+    const auto T = rig::readViewTransform(root + "/" + r.sidecar());
     if (!T)
-      throw Error(root + ": " + r.files.back() +
+      throw Error(root + ": " + r.sidecar() +
                   " has no camera_from_turntable: capture with --calibration (keyturn calibrate-axis), or give a pose list");
     // The sidecar's camera ← turntable at this view's angle maps the object's own
     // (table-fixed) coordinates into this camera: the object frame is the common frame.

@@ -10,8 +10,10 @@
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "descriptor_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/learning/model_file.h"
+#include "keyturn/learning/protocols.h"
 #include "learning_options.h"
 #include "view_files.h"
 
@@ -27,24 +29,18 @@ struct TrainArgs {
 };
 
 int runTrain(const TrainArgs& a) {
-  if (a.label != "instance" && a.label != "category") throw Error("--label " + a.label + ": expected instance or category");
-  CacheRequest req{a.dataset, a.flags, a.jobs, a.quiet};
-  const learning::FeatureTable t = loadOrDescribeDataset(req);
+  const learning::LabelKind kind = learning::parseLabelKind(a.label);
+  const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
+  const learning::Labels labels = learning::labelRows(t, kind);
   learning::Model m;
   m.info.params = a.params;
   m.info.params.kind = a.classifier;
   m.info.blocks = featureSetBlocks(a.features);
   m.info.spec = t.spec;
-  std::set<std::string> names;
-  for (const auto& r : t.rows) names.insert(a.label == "category" ? r.cls : r.instance);
-  m.info.classes.assign(names.begin(), names.end());
-  std::vector<int> y;
-  std::vector<std::size_t> all;
-  for (std::size_t i = 0; i < t.rows.size(); ++i) {
-    const auto& key = a.label == "category" ? t.rows[i].cls : t.rows[i].instance;
-    y.push_back(static_cast<int>(std::lower_bound(m.info.classes.begin(), m.info.classes.end(), key) - m.info.classes.begin()));
-    all.push_back(i);
-  }
+  m.info.classes = labels.names;
+  const std::vector<int>& y = labels.of_row;
+  std::vector<std::size_t> all(t.rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   const learning::Matrix x = t.select(m.info.blocks, all);
   m.info.inputs = static_cast<int>(x.cols());
   m.info.class_means = learning::classMeans(x, y, static_cast<int>(m.info.classes.size()));
@@ -76,8 +72,13 @@ int runClassify(const ClassifyArgs& a) {
   } else {
     ViewFileList list = collectViewFiles(a.inputs);
     errors = list.errors;
-    t = describeFiles(list.files, a.flags, a.jobs, a.quiet, &errors);
-    t.spec = featureSpec(a.flags);
+    std::vector<learning::LabelledView> views;
+    for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
+    DescribeProgressLine progress(a.quiet || views.size() < 2);
+    t = learning::featureLayout(learning::cacheBlocks(), a.flags.options);
+    t.rows = learning::describeViews(views, a.flags.options, t, a.jobs, &progress);
+    for (const auto& row : t.rows)
+      if (row.keypoints < 0) errors.push_back(row.id + ": " + row.problem);
   }
   const auto diff = learning::specDifferences(m.info.spec, t.spec);
   if (!diff.empty()) {

@@ -83,7 +83,16 @@ void repairInterruptedAppend(const std::string& manifest) {
   writeFileDurably(manifest, keep == std::string::npos ? manifestHeader() + "\n" : text.substr(0, keep + 1));
 }
 
+std::string fileEndingIn(const std::vector<std::string>& files, const std::string& suffix) {
+  for (const auto& f : files)
+    if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0) return f;
+  return "";
+}
+
 }  // namespace
+
+std::string ViewRecord::pcd() const { return fileEndingIn(files, ".pcd"); }
+std::string ViewRecord::sidecar() const { return fileEndingIn(files, ".json"); }
 
 bool ViewKey::operator==(const ViewKey& o) const {
   return cls == o.cls && instance == o.instance && elevation == o.elevation &&
