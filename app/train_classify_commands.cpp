@@ -1,6 +1,7 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -12,6 +13,7 @@
 #include "dataset_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/error.h"
+#include "keyturn/learning/feature_spec.h"
 #include "keyturn/learning/model_file.h"
 #include "keyturn/learning/protocols.h"
 #include "learning_options.h"
@@ -60,7 +62,6 @@ struct ClassifyArgs {
   std::vector<std::string> inputs;
   bool json = false, quiet = false;
   int jobs = 0;
-  DescriptorFlags flags;
 };
 
 int runClassify(const ClassifyArgs& a) {
@@ -74,11 +75,16 @@ int runClassify(const ClassifyArgs& a) {
     errors = list.errors;
     std::vector<learning::LabelledView> views;
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
+    // The model's own parameters, and only its blocks.
+    const DescriptorOptions options = learning::descriptorOptionsFromSpec(m.info.spec, a.model + "/model.json");
+    std::vector<std::string> blocks;
+    for (const auto& b : m.info.blocks)
+      if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
     DescribeProgressLine progress(a.quiet || views.size() < 2);
-    t = learning::featureLayout(learning::cacheBlocks(), a.flags.options);
-    t.rows = learning::describeViews(views, a.flags.options, t, a.jobs, &progress);
+    t = learning::featureLayout(blocks, options);
+    t.rows = learning::describeViews(views, options, t, a.jobs, &progress);
     for (const auto& row : t.rows)
-      if (row.keypoints < 0) errors.push_back(row.id + ": " + row.problem);
+      if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
   }
   const auto diff = learning::specDifferences(m.info.spec, t.spec);
   if (!diff.empty()) {
@@ -130,13 +136,12 @@ Command addTrainCommand(CLI::App& app) {
 
 Command addClassifyCommand(CLI::App& app) {
   auto a = std::make_shared<ClassifyArgs>();
-  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, folders, or a feature cache CSV) with a model");
+  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, folders, or a feature cache CSV) with a model, described with the model's own parameters");
   cmd->add_option("model", a->model, "Model folder (from keyturn train)")->required();
   cmd->add_option("views", a->inputs, "PCD/PLY files or folders, or one feature cache .csv")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views");
   cmd->add_flag("--json", a->json, "Class and probabilities per view as JSON");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
-  a->flags.add(*cmd, false);
   return {cmd, [a] { return runClassify(*a); }};
 }
 
