@@ -11,7 +11,7 @@
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
 #include "keyturn/rig/devices.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/rig/sidecars.h"
 #include "keyturn/rig/simulated_rig.h"
 #include "progress.h"

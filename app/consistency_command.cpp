@@ -13,7 +13,7 @@
 #include "descriptor_options.h"
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/ui/line_chart.h"
 
 namespace keyturn::app {
@@ -91,7 +91,7 @@ int runConsistency(const ConsistencyArgs& a) {
     ui::saveChartPng(chart, (fs::path(a.out) / ("consistency_e" + elev + ".png")).string());
   }
   const std::string csv_path = (fs::path(a.out) / "consistency.csv").string();
-  rig::writeFileDurably(csv_path, csv.str());
+  writeFileDurably(csv_path, csv.str());
   if (!a.quiet) std::cerr << "keyturn consistency: " << a.object << " → " << csv_path << " and consistency_e*.png\n";
   return 0;
 }

@@ -5,7 +5,6 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "dataset_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "progress.h"
 #include "view_files.h"
@@ -80,20 +80,6 @@ std::string csvRow(const std::string& file, const ViewDescriptor& d) {
   return r.str();
 }
 
-void writeAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    if (!f) throw Error(path + ": cannot open for writing");
-    f << text;
-    f.flush();
-    if (!f) throw Error(path + ": write failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw Error(path + ": cannot move written file into place: " + ec.message());
-}
-
 int runDescribe(const DescribeArgs& a) {
   if (a.cache || !a.shard.empty()) {
     if (a.inputs.size() != 1 || !isDataset(a.inputs.front()))
@@ -151,7 +137,7 @@ int runDescribe(const DescribeArgs& a) {
     }
   }
   if (a.out.empty() || a.out == "-") std::cout << csv.str();
-  else writeAtomically(a.out, csv.str());
+  else writeFileDurably(a.out, csv.str());
   const std::size_t failed = n - good + list.errors.size();
   if (!a.quiet)
     std::cerr << "keyturn describe: " << good << " of " << n << " views described"

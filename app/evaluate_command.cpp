@@ -16,7 +16,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/learning/evaluation.h"
 #include "keyturn/learning/protocols.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/ui/confusion_plot.h"
 #include "keyturn/ui/line_chart.h"
 #include "learning_options.h"
@@ -63,7 +63,7 @@ std::string safeName(std::string s) {
   return s;
 }
 
-void writeText(const fs::path& path, const std::string& text) { rig::writeFileDurably(path.string(), text); }
+void writeText(const fs::path& path, const std::string& text) { writeFileDurably(path.string(), text); }
 
 // Mean ± 1 sd of a block's PDF over each class's views.
 void plotClassPdfs(const FeatureTable& t, const learning::Labels& labels, const std::string& block, const fs::path& dir) {

@@ -68,5 +68,6 @@ class Dataset {
 };
 
 std::string manifestHeader();
+std::string sha256File(const std::string& path);  // lowercase hex; throws keyturn::Error
 
 }  // namespace keyturn::rig
