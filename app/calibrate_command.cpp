@@ -11,7 +11,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/dataset.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -40,7 +40,7 @@ int runCalibrate(const CalibrateArgs& a) {
   double radius = 0;
   Progress progress("calibrate", views.size(), true);
   for (const auto& v : views) {
-    const std::string pcd = a.dataset + "/" + v.files.front();
+    const std::string pcd = a.dataset + "/" + v.pcd();
     try {
       const SphereTargetObservation obs = observeSphereTarget(loadCloud(pcd));
       centres.push_back(obs.sphere.centre);
@@ -69,7 +69,7 @@ int runCalibrate(const CalibrateArgs& a) {
                       {"reported_angles_clockwise", cal.reported_angles_clockwise},
                       {"views", cal.views},
                       {"source", a.dataset}};
-  rig::writeFileDurably(a.out, j.dump(2) + "\n");
+  writeFileDurably(a.out, j.dump(2) + "\n");
   std::printf("axis (camera frame) %.4f %.4f %.4f through %.4f %.4f %.4f m; target circle r = %.1f mm; "
               "circle rms %.2f mm, angle rms %.2f° over %d views → %s\n",
               cal.axis.x(), cal.axis.y(), cal.axis.z(), cal.origin.x(), cal.origin.y(), cal.origin.z(),

@@ -6,15 +6,14 @@
 #include <fstream>
 #include <iostream>
 
-#include "camera_choice.h"
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/rig/devices.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/rig/sidecars.h"
-#include "pose_choice.h"
-#include "sim_rig.h"
+#include "keyturn/rig/simulated_rig.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -42,26 +41,26 @@ struct CaptureArgs {
 int runCapture(const CaptureArgs& a) {
   rig::Dataset dataset(a.out);
   rig::CaptureOptions o;
-  SimRig simrig;                                 // owns the simulated devices, when used
+  rig::SimulatedRig simrig;                         // owns the simulated devices, when used
   std::unique_ptr<drivers::TofCamera> real_camera;  // or the real ones
-  PoseChoice real_pose;
+  std::unique_ptr<drivers::PoseSource> real_pose;
   drivers::TofCamera* camera = nullptr;
   drivers::PoseSource* pose = nullptr;
   if (a.camera == "sim") {
-    SimRigOptions so;
-    so.dataset_root = a.out;
-    so.mesh = a.mesh;
-    so.elevation_deg = a.elevation;
-    so.distance = a.distance;
-    so.seed = a.seed;
+    rig::SimulatedRigOptions so;
+    so.dir = a.out + "/.sim";
+    so.camera.mesh = a.mesh;
+    so.camera.elevation_deg = a.elevation;
+    so.camera.distance = a.distance;
+    so.camera.seed = a.seed;
+    so.camera.fault_rate = a.sim_faults;
     so.simulated_pose = a.pose == "sim";
     so.world = a.world;
-    so.fault_rate = a.sim_faults;
-    simrig = openSimRig(so);
+    simrig = rig::openSimulatedRig(so);
     camera = simrig.camera.get();
     o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
   } else {
-    real_camera = openCamera(a.camera, "");
+    real_camera = rig::openCamera(a.camera, "");
     camera = real_camera.get();
   }
   if (!a.calibration.empty()) {
@@ -69,11 +68,11 @@ int runCapture(const CaptureArgs& a) {
     o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
   }
   if (a.pose == "sim") {
-    if (!simrig.pose.source) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
-    pose = simrig.pose.source.get();
+    if (!simrig.turntable) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
+    pose = simrig.turntable.get();
   } else {
-    real_pose = openPoseSource(a.pose, a.profile);
-    pose = real_pose.source.get();
+    real_pose = rig::openPoseSource(a.pose, a.profile);
+    pose = real_pose.get();
   }
 
   o.cls = a.cls;
@@ -99,9 +98,9 @@ int runCapture(const CaptureArgs& a) {
   progress.finish();
   std::cerr << "keyturn capture: " << rep.written << " views written, " << rep.skipped << " already there"
             << (rep.redos ? ", " + std::to_string(rep.redos) + " redone (table moved)" : "") << " → " << a.out << "\n";
-  if (simrig.pose.simulator)
-    std::cerr << "keyturn capture: simulated turntable: " << simrig.pose.simulator->requests() << " requests, "
-              << simrig.pose.simulator->faultsInjected() << " faults injected\n";
+  if (simrig.turntable)
+    std::cerr << "keyturn capture: simulated turntable: " << simrig.turntable->server().requests() << " requests, "
+              << simrig.turntable->server().faultsInjected() << " faults injected\n";
   if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(camera))
     std::cerr << "keyturn capture: camera reopened " << sr->reconnects() << " times\n";
   if (rep.stopped) {

@@ -10,9 +10,10 @@
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "descriptor_options.h"
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/ui/line_chart.h"
 
 namespace keyturn::app {
@@ -46,8 +47,7 @@ int runConsistency(const ConsistencyArgs& a) {
   const auto slash = a.object.find('/');
   if (slash == std::string::npos) throw Error("--object " + a.object + ": expected CLASS/INSTANCE");
   const std::string cls = a.object.substr(0, slash), inst = a.object.substr(slash + 1);
-  CacheRequest req{a.dataset, a.flags, a.jobs, a.quiet};
-  const learning::FeatureTable t = loadOrDescribeDataset(req);
+  const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
   const Dissimilarity measure = parseDissimilarity(a.measure);
   std::vector<std::string> functions;
   std::stringstream ss(a.functions);
@@ -91,7 +91,7 @@ int runConsistency(const ConsistencyArgs& a) {
     ui::saveChartPng(chart, (fs::path(a.out) / ("consistency_e" + elev + ".png")).string());
   }
   const std::string csv_path = (fs::path(a.out) / "consistency.csv").string();
-  rig::writeFileDurably(csv_path, csv.str());
+  writeFileDurably(csv_path, csv.str());
   if (!a.quiet) std::cerr << "keyturn consistency: " << a.object << " → " << csv_path << " and consistency_e*.png\n";
   return 0;
 }

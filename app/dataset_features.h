@@ -1,38 +1,35 @@
 #pragma once
-// The feature cache of a dataset (docs/results.md): every view described once
-// per parameter set by every block evaluate, train and consistency use —
-// ISS keypoint functions, the same on random keypoints (u_*), Osada's
-// D2/D3/A3 and the peers ESF, VFH and OUR-CVFH — kept in
-// DATASET/.keyturn/features-<hash>.csv. Shards (--shard I/N) are written
-// beside it and merged when all are present.
-#include <map>
+// A dataset's feature cache as the commands use it: the views of its manifest
+// (rig) described by learning's feature cache, progress and notes on stderr.
+#include <memory>
 #include <string>
+#include <vector>
 
-#include "descriptor_options.h"
-#include "keyturn/learning/feature_table.h"
+#include "keyturn/core/descriptor.h"
+#include "keyturn/learning/feature_cache.h"
+#include "progress.h"
 
 namespace keyturn::app {
 
-struct CacheRequest {
-  std::string dataset;
-  DescriptorFlags flags;
-  int jobs = 0;
-  bool quiet = false;
-  int shard = 0, shards = 1;  // this process describes views i with i % shards == shard
+// Throws keyturn::Error for a folder without a manifest or views; skipped rows are reported.
+std::vector<learning::LabelledView> datasetViews(const std::string& dataset);
+
+// stderr: a progress line (unless quiet), notes (unless quiet) and warnings.
+class DescribeProgressLine final : public learning::DescribeProgress {
+ public:
+  explicit DescribeProgressLine(bool quiet) : quiet_(quiet) {}
+  void begin(std::size_t views) override;
+  void viewDone() override;
+  void end() override;
+  void note(const std::string& line) override;
+  void warning(const std::string& line) override;
+
+ private:
+  bool quiet_;
+  std::unique_ptr<Progress> bar_;
 };
 
-// Every parameter that shapes the cached features, as stored in the cache and in models.
-std::map<std::string, std::string> featureSpec(const DescriptorFlags& flags);
-std::string cachePath(const std::string& dataset, const DescriptorFlags& flags, int shard = 0, int shards = 1);
-
-// Describes the request's views (its shard) and writes the cache or shard file; returns its path.
-std::string describeDatasetShard(const CacheRequest& request);
-// The whole dataset's features: the cache if it is there, else merged shards
-// if all are there, else described now (progress on stderr) and cached.
-learning::FeatureTable loadOrDescribeDataset(const CacheRequest& request);
-
-// Describes loose view files (classify): the same blocks, rows without labels.
-learning::FeatureTable describeFiles(const std::vector<std::string>& files, const DescriptorFlags& flags, int jobs,
-                                     bool quiet, std::vector<std::string>* errors);
+learning::FeatureTable datasetFeatures(const std::string& dataset, const DescriptorOptions& options, int jobs,
+                                       bool quiet);
 
 }  // namespace keyturn::app

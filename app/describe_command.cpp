@@ -5,7 +5,6 @@
 #include <atomic>
 #include <cstdio>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 #include <optional>
 #include <sstream>
@@ -15,6 +14,7 @@
 #include "dataset_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "progress.h"
 #include "view_files.h"
@@ -39,21 +39,19 @@ bool isDataset(const std::string& path) {
 
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
-  CacheRequest r;
-  r.dataset = a.inputs.front();
-  r.flags = a.flags;
-  r.jobs = a.jobs;
-  r.quiet = a.quiet;
+  int shard = 0, shards = 1;
   if (!a.shard.empty()) {
-    int i = 0, n = 0;
     char slash = 0;
     std::istringstream in(a.shard);
-    if (!(in >> i >> slash >> n) || slash != '/' || !in.eof())
+    if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
       throw Error("--shard " + a.shard + ": expected I/N, e.g. 3/16");
-    r.shard = i - 1;
-    r.shards = n;
+    --shard;
   }
-  const std::string path = r.shards > 1 ? describeDatasetShard(r) : (loadOrDescribeDataset(r), cachePath(r.dataset, r.flags));
+  const std::string& dataset = a.inputs.front();
+  DescribeProgressLine progress(a.quiet);
+  const learning::FeatureCache cache{dataset, datasetViews(dataset), a.flags.options, a.jobs, &progress};
+  const std::string path = shards > 1 ? learning::describeCacheShard(cache, shard, shards)
+                                      : (learning::loadOrDescribeCache(cache), learning::featureCachePath(dataset, cache.options));
   if (!a.quiet) std::cerr << "keyturn describe: feature cache → " << path << "\n";
   return 0;
 }
@@ -129,20 +127,6 @@ std::string explanation(const std::string& file, const ViewDescriptor& d) {
   return e.str();
 }
 
-void writeAtomically(const std::string& path, const std::string& text) {
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::trunc);
-    if (!f) throw Error(path + ": cannot open for writing");
-    f << text;
-    f.flush();
-    if (!f) throw Error(path + ": write failed");
-  }
-  std::error_code ec;
-  std::filesystem::rename(tmp, path, ec);
-  if (ec) throw Error(path + ": cannot move written file into place: " + ec.message());
-}
-
 int runDescribe(const DescribeArgs& a) {
   if (a.cache || !a.shard.empty()) {
     if (a.inputs.size() != 1 || !isDataset(a.inputs.front()))
@@ -206,7 +190,7 @@ int runDescribe(const DescribeArgs& a) {
     }
   }
   if (a.out.empty() || a.out == "-") std::cout << csv.str();
-  else writeAtomically(a.out, csv.str());
+  else writeFileDurably(a.out, csv.str());
   const std::size_t failed = n - good + list.errors.size();
   if (!a.quiet)
     std::cerr << "keyturn describe: " << good << " of " << n << " views described"

@@ -4,19 +4,19 @@
 #include <chrono>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <iomanip>
 #include <iostream>
 #include <map>
 #include <nlohmann/json.hpp>
-#include <set>
 #include <sstream>
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "descriptor_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/learning/evaluation.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/learning/protocols.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/ui/confusion_plot.h"
 #include "keyturn/ui/line_chart.h"
 #include "learning_options.h"
@@ -42,12 +42,7 @@ struct EvaluateArgs {
   learning::ClassifierParams params;
 };
 
-struct Protocol {
-  std::string name, label_kind;  // label_kind: instance | category
-  std::vector<learning::Fold> folds;
-  std::vector<int> labels;
-  std::vector<std::string> label_names;
-};
+using learning::Protocol;
 
 struct Row {
   int bins = 0;
@@ -55,60 +50,6 @@ struct Row {
   const Protocol* proto = nullptr;
   learning::Evaluation ev;
 };
-
-void labelBy(const FeatureTable& t, bool category, Protocol& p) {
-  std::set<std::string> names;
-  for (const auto& r : t.rows) names.insert(category ? r.cls : r.instance);
-  p.label_names.assign(names.begin(), names.end());
-  for (const auto& r : t.rows)
-    p.labels.push_back(static_cast<int>(
-        std::lower_bound(p.label_names.begin(), p.label_names.end(), category ? r.cls : r.instance) -
-        p.label_names.begin()));
-  p.label_kind = category ? "category" : "instance";
-}
-
-Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint64_t seed) {
-  Protocol p;
-  p.name = name;
-  std::vector<std::string> ids, elevations, categories, instances;
-  for (const auto& r : t.rows) {
-    ids.push_back(r.id);
-    elevations.push_back(r.elevation);
-    categories.push_back(r.cls);
-    instances.push_back(r.instance);
-  }
-  if (name.rfind("kfold", 0) == 0) {
-    int k = 0;
-    try {
-      k = std::stoi(name.substr(5));
-    } catch (const std::exception&) {
-      throw Error("protocol '" + name + "': expected kfoldN, e.g. kfold10");
-    }
-    p.folds = learning::kFold(t.rows.size(), k, seed);
-    labelBy(t, false, p);
-  } else if (name == "leave-elevation") {
-    p.folds = learning::leaveOneGroupOut(elevations, "elevation");
-    labelBy(t, false, p);
-  } else if (name == "leave-instance") {
-    p.folds = learning::leaveOneInstanceOut(categories, instances);
-    labelBy(t, true, p);
-  } else if (name.rfind("fixed:", 0) == 0) {
-    const std::string file = name.substr(6);
-    std::ifstream in(file);
-    if (!in) throw Error(file + ": cannot read the list of test views");
-    std::vector<std::string> test;
-    for (std::string line; std::getline(in, line);) {
-      while (!line.empty() && (line.back() == '\r' || line.back() == ' ')) line.pop_back();
-      if (line.size() > 4 && line.compare(line.size() - 4, 4, ".pcd") == 0) line.resize(line.size() - 4);
-      if (!line.empty() && line[0] != '#') test.push_back(line);
-    }
-    p.folds = {learning::fixedSplit(ids, test)};
-    labelBy(t, false, p);
-  } else {
-    throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, fixed:FILE)");
-  }
-  return p;
-}
 
 std::string pct(double v) {
   std::ostringstream s;
@@ -122,68 +63,26 @@ std::string safeName(std::string s) {
   return s;
 }
 
-void writeText(const fs::path& path, const std::string& text) { rig::writeFileDurably(path.string(), text); }
+void writeText(const fs::path& path, const std::string& text) { writeFileDurably(path.string(), text); }
 
 // Mean ± 1 sd of a block's PDF over each class's views.
-void plotClassPdfs(const FeatureTable& t, const Protocol& p, const std::string& block, const fs::path& dir) {
-  const int o = t.offset(block);
-  if (o < 0) return;
-  const int bins = t.blockSize(block);
-  for (std::size_t c = 0; c < p.label_names.size(); ++c) {
-    std::vector<double> sum(bins, 0), sq(bins, 0);
-    int n = 0;
-    for (std::size_t r = 0; r < t.rows.size(); ++r) {
-      if (p.labels[r] != static_cast<int>(c) || std::isnan(t.rows[r].values[static_cast<std::size_t>(o)])) continue;
-      ++n;
-      for (int b = 0; b < bins; ++b) {
-        const double v = t.rows[r].values[static_cast<std::size_t>(o + b)];
-        sum[b] += v;
-        sq[b] += v * v;
-      }
-    }
-    if (n == 0) continue;
+void plotClassPdfs(const FeatureTable& t, const learning::Labels& labels, const std::string& block, const fs::path& dir) {
+  for (const auto& c : learning::classPdfs(t, labels, block)) {
     ui::LineChart chart;
-    chart.title = block + " of " + p.label_names[c] + " (" + std::to_string(n) + " views): mean ± 1 sd";
+    chart.title = block + " of " + c.label + " (" + std::to_string(c.views) + " views): mean ± 1 sd";
     chart.x_label = "bin";
     chart.y_label = "probability";
     ui::Series mean{"mean", {}, {}}, hi{"+1 sd", {}, {}}, lo{"-1 sd", {}, {}};
-    for (int b = 0; b < bins; ++b) {
-      const double m = sum[b] / n, sd = std::sqrt(std::max(0.0, sq[b] / n - m * m));
-      for (auto* s : {&mean, &hi, &lo}) s->x.push_back(b);
-      mean.y.push_back(m);
-      hi.y.push_back(m + sd);
-      lo.y.push_back(std::max(0.0, m - sd));
+    for (std::size_t b = 0; b < c.mean.size(); ++b) {
+      for (auto* s : {&mean, &hi, &lo}) s->x.push_back(static_cast<double>(b));
+      mean.y.push_back(c.mean[b]);
+      hi.y.push_back(c.mean[b] + c.sd[b]);
+      lo.y.push_back(std::max(0.0, c.mean[b] - c.sd[b]));
     }
     chart.series = {mean, hi, lo};
     chart.y_min = 0;
-    ui::saveChartPng(chart, (dir / (safeName(block + "_" + p.label_names[c]) + ".png")).string(), 640, 400);
+    ui::saveChartPng(chart, (dir / (safeName(block + "_" + c.label) + ".png")).string(), 640, 400);
   }
-}
-
-struct DataSummary {
-  std::size_t views = 0, low = 0, failed = 0;
-  int k_min = 0, k_median = 0, k_max = 0;
-  std::map<std::string, std::size_t> missing;  // block → views without it
-};
-
-DataSummary summarise(const FeatureTable& t, int low_keypoints) {
-  DataSummary s;
-  s.views = t.rows.size();
-  std::vector<int> ks;
-  for (const auto& r : t.rows) {
-    if (r.keypoints >= 0) ks.push_back(r.keypoints);
-    else ++s.failed;
-    if (r.keypoints >= 0 && r.keypoints < low_keypoints) ++s.low;
-    for (std::size_t b = 0; b < t.blocks.size(); ++b)
-      if (std::isnan(r.values[static_cast<std::size_t>(t.offset(t.blocks[b]))])) ++s.missing[t.blocks[b]];
-  }
-  std::sort(ks.begin(), ks.end());
-  if (!ks.empty()) {
-    s.k_min = ks.front();
-    s.k_max = ks.back();
-    s.k_median = ks[ks.size() / 2];
-  }
-  return s;
 }
 
 int runEvaluate(const EvaluateArgs& a) {
@@ -193,7 +92,7 @@ int runEvaluate(const EvaluateArgs& a) {
   const auto protocol_names = splitList(a.protocols);
   std::vector<int> bins_list;
   for (const auto& b : splitList(a.bins)) bins_list.push_back(std::stoi(b));
-  if (bins_list.empty()) bins_list.push_back(a.flags.bins);
+  if (bins_list.empty()) bins_list.push_back(a.flags.options.histogram.bins);
   if (sets.empty() || classifiers.empty() || protocol_names.empty())
     throw Error("evaluate needs at least one feature set, classifier and protocol");
   for (const auto& c : classifiers) {
@@ -210,21 +109,17 @@ int runEvaluate(const EvaluateArgs& a) {
   std::map<int, FeatureTable> tables;
   std::map<int, double> describe_s;
   for (int bins : bins_list) {
-    CacheRequest req;
-    req.dataset = a.dataset;
-    req.flags = a.flags;
-    req.flags.bins = bins;
-    req.jobs = a.jobs;
-    req.quiet = a.quiet;
+    DescriptorOptions options = a.flags.options;
+    options.histogram.bins = bins;
     const auto t0 = std::chrono::steady_clock::now();
-    tables[bins] = loadOrDescribeDataset(req);
+    tables[bins] = datasetFeatures(a.dataset, options, a.jobs, a.quiet);
     describe_s[bins] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const FeatureTable& t = tables[bins];
     for (const auto& set : sets)
       for (const auto& b : featureSetBlocks(set))
         if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
     for (const auto& pn : protocol_names) {
-      protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, a.split_seed)));
+      protocols.push_back(std::make_unique<Protocol>(learning::makeProtocol(pn, t, a.split_seed)));
       for (const auto& set : sets)
         for (const auto& c : classifiers) rows.push_back({bins, pn, set, c, protocols.back().get(), {}});
     }
@@ -235,8 +130,8 @@ int runEvaluate(const EvaluateArgs& a) {
   for (auto& r : rows) {
     learning::ClassifierParams p = a.params;
     p.kind = r.classifier;
-    r.ev = learning::evaluateFolds(tables[r.bins], featureSetBlocks(r.features), r.proto->labels,
-                                   static_cast<int>(r.proto->label_names.size()), r.proto->folds, p, a.jobs,
+    r.ev = learning::evaluateFolds(tables[r.bins], featureSetBlocks(r.features), r.proto->labels.of_row,
+                                   static_cast<int>(r.proto->labels.names.size()), r.proto->folds, p, a.jobs,
                                    [&] { progress.advance(); });
   }
   progress.finish();
@@ -257,10 +152,10 @@ int runEvaluate(const EvaluateArgs& a) {
       folds.push_back({{"name", f.name}, {"accuracy", f.accuracy()}, {"train_views", f.train_views},
                        {"test_views", f.test_views}});
     }
-    csv << r.bins << ',' << r.protocol << ',' << r.proto->label_kind << ',' << r.features << ',' << r.classifier
+    csv << r.bins << ',' << r.protocol << ',' << r.proto->labels.kindName() << ',' << r.features << ',' << r.classifier
         << ',' << r.ev.folds.size() << ',' << tested << ',' << r.ev.mean() << ',' << r.ev.stddev() << ','
         << r.ev.trainMsPerView() << ',' << r.ev.predictMsPerView() << '\n';
-    js["rows"].push_back({{"bins", r.bins}, {"protocol", r.protocol}, {"label", r.proto->label_kind},
+    js["rows"].push_back({{"bins", r.bins}, {"protocol", r.protocol}, {"label", r.proto->labels.kindName()},
                           {"features", r.features}, {"classifier", r.classifier}, {"accuracy_mean", r.ev.mean()},
                           {"accuracy_std", r.ev.stddev()}, {"train_ms_per_view", r.ev.trainMsPerView()},
                           {"predict_ms_per_view", r.ev.predictMsPerView()}, {"folds", folds}});
@@ -273,10 +168,10 @@ int runEvaluate(const EvaluateArgs& a) {
   md << "# keyturn evaluate: " << a.dataset << "\n\n";
   for (int bins : bins_list) {
     const FeatureTable& t = tables[bins];
-    const DataSummary s = summarise(t, a.flags.low_keypoints);
+    const learning::TableSummary s = learning::summarise(t, a.flags.options.low_keypoints);
     md << "## " << bins << " bins\n\n"
        << s.views << " views; ISS keypoints K per view: median " << s.k_median << " (" << s.k_min << "–" << s.k_max
-       << "), " << s.low << " views with K < " << a.flags.low_keypoints << ", " << s.failed
+       << "), " << s.low << " views with K < " << a.flags.options.low_keypoints << ", " << s.failed
        << " views without keypoint features. Features described in " << std::fixed << std::setprecision(1)
        << describe_s[bins] << " s (" << std::setprecision(1) << 1000.0 * describe_s[bins] / std::max<std::size_t>(1, s.views)
        << " ms/view wall; 0 when cached).\n\n";
@@ -326,7 +221,7 @@ int runEvaluate(const EvaluateArgs& a) {
       if (!best) continue;
       const std::string file = "confusion/" + safeName(pn + "_" + std::to_string(bins) + "bins") + ".png";
       ui::saveConfusionPng({pn + ": " + best->features + ", " + best->classifier + " (" + pct(best->ev.mean()) + "%)",
-                            best->proto->label_names, best->ev.confusion},
+                            best->proto->labels.names, best->ev.confusion},
                            (out / file).string());
       md << "- " << pn << ", " << bins << " bins: " << best->features << " with " << best->classifier << " → ["
          << file << "](" << file << ")\n";
@@ -334,8 +229,7 @@ int runEvaluate(const EvaluateArgs& a) {
 
   // Per-class PDFs (instances) of the paper's main functions and a baseline.
   const FeatureTable& t0 = tables[bins_list.front()];
-  Protocol by_instance;
-  labelBy(t0, false, by_instance);
+  const learning::Labels by_instance = learning::labelRows(t0, learning::LabelKind::Instance);
   for (const std::string block : {"kpd2", "gkpd2", "kpa3", "d2"}) plotClassPdfs(t0, by_instance, block, out / "pdfs");
   md << "\nPer-class PDFs (mean ± 1 sd over each instance's views): `pdfs/`.\n";
 

@@ -3,8 +3,8 @@
 #include <cmath>
 #include <iostream>
 
-#include "camera_choice.h"
 #include "commands.h"
+#include "keyturn/rig/devices.h"
 #include "keyturn/rig/frame_files.h"
 #include "keyturn/core/error.h"
 #include "progress.h"
@@ -34,7 +34,7 @@ int modulationIndex(double mhz) {
 }
 
 int runGrab(const GrabArgs& a) {
-  auto cam = openCamera(a.camera, a.sim_config, a.library);
+  auto cam = rig::openCamera(a.camera, a.sim_config, a.library);
   drivers::TofSettings s = cam->settings();
   if (a.integration_time >= 0) s.integration_time = static_cast<std::uint8_t>(a.integration_time);
   s.auto_exposure.enabled = !a.no_auto_exposure && a.integration_time < 0;

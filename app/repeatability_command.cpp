@@ -21,7 +21,7 @@
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/repeatability.h"
 #include "keyturn/rig/dataset.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/rig/sidecars.h"
 #include "keyturn/ui/line_chart.h"
 #include "progress.h"
@@ -73,12 +73,12 @@ std::vector<View> viewsFromDataset(const std::string& root) {
   std::vector<View> out;
   for (const auto& r : rig::Dataset::readManifest(root)) {
     View v;
-    v.file = root + "/" + r.files.front();
+    v.file = root + "/" + r.pcd();
     v.group = r.key.cls + "/" + r.key.instance + "/e" + r.key.elevation;
     v.angle_deg = r.measured_deg;
-    const auto T = rig::readViewTransform(root + "/" + r.files.back());
+    const auto T = rig::readViewTransform(root + "/" + r.sidecar());
     if (!T)
-      throw Error(root + ": " + r.files.back() +
+      throw Error(root + ": " + r.sidecar() +
                   " has no camera_from_turntable: capture with --calibration (keyturn calibrate-axis), or give a pose list");
     // The sidecar's camera ← turntable at this view's angle maps the object's own
     // (table-fixed) coordinates into this camera: the object frame is the common frame.
@@ -204,7 +204,7 @@ int runRepeatability(const RepArgs& a) {
     prog.advance();
   }
   prog.finish();
-  rig::writeFileDurably(a.out + "/repeatability.csv", csv.str());
+  writeFileDurably(a.out + "/repeatability.csv", csv.str());
 
   // Summary, JSON, charts.
   double mean_res = 0;
@@ -250,8 +250,8 @@ int runRepeatability(const RepArgs& a) {
   }
   md << "\nPlots: `absolute_vs_eps.png`, `relative_vs_eps.png`, `relative_vs_rotation.png`; every pair and ε in "
         "`repeatability.csv`.\n";
-  rig::writeFileDurably(a.out + "/summary.md", md.str());
-  rig::writeFileDurably(a.out + "/summary.json", j.dump(2) + "\n");
+  writeFileDurably(a.out + "/summary.md", md.str());
+  writeFileDurably(a.out + "/summary.json", j.dump(2) + "\n");
   ui::saveChartPng(abs_chart, a.out + "/absolute_vs_eps.png");
   ui::saveChartPng(rel_chart, a.out + "/relative_vs_eps.png");
   ui::saveChartPng(rot_chart, a.out + "/relative_vs_rotation.png");

@@ -11,11 +11,11 @@
 #include <sstream>
 
 #include "commands.h"
-#include "object_list.h"
 #include "keyturn/core/error.h"
 #include "keyturn/rig/capture.h"
+#include "keyturn/rig/object_list.h"
+#include "keyturn/rig/simulated_rig.h"
 #include "progress.h"
-#include "sim_rig.h"
 
 namespace fs = std::filesystem;
 
@@ -48,7 +48,7 @@ std::vector<double> parseList(const std::string& text, const char* what) {
 }
 
 int runSimulate(const SimulateArgs& a) {
-  const auto objects = readObjectList(a.objects);
+  const auto objects = rig::readObjectList(a.objects);
   const auto elevations = parseList(a.elevations, "--elevations");
   for (const auto& o : objects)
     if (!fs::exists(o.mesh)) throw Error(a.objects + ": " + o.cls + "/" + o.instance + ": no mesh at " + o.mesh);
@@ -69,20 +69,20 @@ int runSimulate(const SimulateArgs& a) {
   for (const auto& obj : objects) {
     for (double el : elevations) {
       if (g_stop) break;
-      SimRigOptions so;
-      so.dataset_root = a.out;
-      so.mesh = obj.mesh;
-      so.elevation_deg = el;
-      so.seed = a.seed;
+      rig::SimulatedRigOptions so;
+      so.dir = a.out + "/.sim";
+      so.camera.mesh = obj.mesh;
+      so.camera.elevation_deg = el;
+      so.camera.seed = a.seed;
       so.fast = true;
-      SimRig simrig = openSimRig(so);
+      rig::SimulatedRig simrig = rig::openSimulatedRig(so);
       rig::CaptureOptions o = base;
       o.cls = obj.cls;
       o.instance = obj.instance;
       o.elevation_deg = el;
       o.elevation_label = std::to_string(static_cast<int>(std::lround(el)));
       o.camera_from_turntable_zero = simrig.camera_from_turntable;
-      const auto rep = rig::runCapture(*simrig.camera, *simrig.pose.source, dataset, o,
+      const auto rep = rig::runCapture(*simrig.camera, *simrig.turntable, dataset, o,
                                        [&](const rig::CaptureProgress&) { progress.advance(); });
       written += rep.written;
       skipped += rep.skipped;

@@ -13,7 +13,7 @@
 #include <iostream>
 
 #include "keyturn/studio/studio_window.h"
-#include "studio_rig_factory.h"
+#include "keyturn/studio/studio_rig_factory.h"
 
 #ifndef KEYTURN_DATA_DIR
 #define KEYTURN_DATA_DIR "data"
@@ -59,7 +59,7 @@ int main(int argc, char** argv) {
   }
   QApplication app(argc, argv);
   const std::string data = KEYTURN_DATA_DIR;
-  keyturn::app::StudioRigFactory factory(data + "/objects/objects.csv");
+  keyturn::studio::StudioRigFactory factory(data + "/objects/objects.csv");
   keyturn::studio::StudioOptions o;
   o.simulated = a.simulated;
   o.sim_object = a.object;

@@ -1,6 +1,7 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
+#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
@@ -10,8 +11,11 @@
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "descriptor_options.h"
 #include "keyturn/core/error.h"
+#include "keyturn/learning/feature_spec.h"
 #include "keyturn/learning/model_file.h"
+#include "keyturn/learning/protocols.h"
 #include "learning_options.h"
 #include "view_files.h"
 
@@ -27,24 +31,18 @@ struct TrainArgs {
 };
 
 int runTrain(const TrainArgs& a) {
-  if (a.label != "instance" && a.label != "category") throw Error("--label " + a.label + ": expected instance or category");
-  CacheRequest req{a.dataset, a.flags, a.jobs, a.quiet};
-  const learning::FeatureTable t = loadOrDescribeDataset(req);
+  const learning::LabelKind kind = learning::parseLabelKind(a.label);
+  const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
+  const learning::Labels labels = learning::labelRows(t, kind);
   learning::Model m;
   m.info.params = a.params;
   m.info.params.kind = a.classifier;
   m.info.blocks = featureSetBlocks(a.features);
   m.info.spec = t.spec;
-  std::set<std::string> names;
-  for (const auto& r : t.rows) names.insert(a.label == "category" ? r.cls : r.instance);
-  m.info.classes.assign(names.begin(), names.end());
-  std::vector<int> y;
-  std::vector<std::size_t> all;
-  for (std::size_t i = 0; i < t.rows.size(); ++i) {
-    const auto& key = a.label == "category" ? t.rows[i].cls : t.rows[i].instance;
-    y.push_back(static_cast<int>(std::lower_bound(m.info.classes.begin(), m.info.classes.end(), key) - m.info.classes.begin()));
-    all.push_back(i);
-  }
+  m.info.classes = labels.names;
+  const std::vector<int>& y = labels.of_row;
+  std::vector<std::size_t> all(t.rows.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   const learning::Matrix x = t.select(m.info.blocks, all);
   m.info.inputs = static_cast<int>(x.cols());
   m.info.class_means = learning::classMeans(x, y, static_cast<int>(m.info.classes.size()));
@@ -64,7 +62,6 @@ struct ClassifyArgs {
   std::vector<std::string> inputs;
   bool json = false, quiet = false;
   int jobs = 0;
-  DescriptorFlags flags;
 };
 
 int runClassify(const ClassifyArgs& a) {
@@ -76,8 +73,18 @@ int runClassify(const ClassifyArgs& a) {
   } else {
     ViewFileList list = collectViewFiles(a.inputs);
     errors = list.errors;
-    t = describeFiles(list.files, a.flags, a.jobs, a.quiet, &errors);
-    t.spec = featureSpec(a.flags);
+    std::vector<learning::LabelledView> views;
+    for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
+    // The model's own parameters, and only its blocks.
+    const DescriptorOptions options = learning::descriptorOptionsFromSpec(m.info.spec, a.model + "/model.json");
+    std::vector<std::string> blocks;
+    for (const auto& b : m.info.blocks)
+      if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
+    DescribeProgressLine progress(a.quiet || views.size() < 2);
+    t = learning::featureLayout(blocks, options);
+    t.rows = learning::describeViews(views, options, t, a.jobs, &progress);
+    for (const auto& row : t.rows)
+      if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
   }
   const auto diff = learning::specDifferences(m.info.spec, t.spec);
   if (!diff.empty()) {
@@ -129,13 +136,12 @@ Command addTrainCommand(CLI::App& app) {
 
 Command addClassifyCommand(CLI::App& app) {
   auto a = std::make_shared<ClassifyArgs>();
-  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, folders, or a feature cache CSV) with a model");
+  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, folders, or a feature cache CSV) with a model, described with the model's own parameters");
   cmd->add_option("model", a->model, "Model folder (from keyturn train)")->required();
   cmd->add_option("views", a->inputs, "PCD/PLY files or folders, or one feature cache .csv")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views");
   cmd->add_flag("--json", a->json, "Class and probabilities per view as JSON");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
-  a->flags.add(*cmd, false);
   return {cmd, [a] { return runClassify(*a); }};
 }
 

@@ -16,6 +16,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/ply_reader.h"
 
@@ -266,14 +267,6 @@ Cloud loadPly(const std::string& path) {
   return cloud;
 }
 
-void syncFile(const std::string& path) {
-  const int fd = ::open(path.c_str(), O_RDONLY);
-  if (fd >= 0) {
-    ::fsync(fd);
-    ::close(fd);
-  }
-}
-
 }  // namespace
 
 Cloud loadCloud(const std::string& path) {
@@ -347,10 +340,7 @@ void saveCloud(const std::string& path, const Cloud& cloud, PcdEncoding encoding
     fs::remove(tmp, ec);
     fail(path, "could not write the point cloud");
   }
-  syncFile(tmp);
-  std::error_code ec;
-  fs::rename(tmp, target, ec);
-  if (ec) fail(path, "could not move the written file into place: " + ec.message());
+  commitFile(tmp, path);
 }
 
 }  // namespace keyturn

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/drivers/retry.h"
 
 namespace keyturn::drivers {
 namespace {
@@ -85,14 +86,15 @@ std::string CanOpenPoseSource::describe() const {
 
 std::uint32_t CanOpenPoseSource::sdoUpload(int node, std::uint16_t index, std::uint8_t sub) {
   const std::string what = "reading " + hex(index, 4) + ":" + hex(sub, 2).substr(2) + " from node " + std::to_string(node);
-  for (int attempt = 0; attempt <= o_.retries; ++attempt) {
-    CanFrame req;
-    req.id = 0x600 + node;
-    req.dlc = 8;
-    req.data[0] = 0x40;
-    req.data[1] = index & 0xFF;
-    req.data[2] = index >> 8;
-    req.data[3] = sub;
+  CanFrame req;
+  req.id = 0x600 + node;
+  req.dlc = 8;
+  req.data[0] = 0x40;
+  req.data[1] = index & 0xFF;
+  req.data[2] = index >> 8;
+  req.data[3] = sub;
+  // A lost request or reply is sent again at once (no bus to reconnect); an abort is the node's answer.
+  const auto attempt = [&]() -> std::uint32_t {
     bus_->send(req);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(o_.sdo_timeout_ms);
     while (std::chrono::steady_clock::now() < deadline) {
@@ -104,18 +106,24 @@ std::uint32_t CanOpenPoseSource::sdoUpload(int node, std::uint16_t index, std::u
       const std::uint16_t idx = f->data[1] | (f->data[2] << 8);
       if (idx != index || f->data[3] != sub) continue;  // a reply to someone else's request
       if (f->data[0] == 0x80)
-        throw Error(describe() + ": " + what + ": SDO abort " + hex(le32(f->data + 4), 8) + " (" +
-                    sdoAbortText(le32(f->data + 4)) + ")");
-      if ((f->data[0] & 0xE0) != 0x40) throw Error(describe() + ": " + what + ": unexpected SDO reply " + hex(f->data[0], 2));
+        throw DeviceRefused(describe() + ": " + what + ": SDO abort " + hex(le32(f->data + 4), 8) + " (" +
+                            sdoAbortText(le32(f->data + 4)) + ")");
+      if ((f->data[0] & 0xE0) != 0x40)
+        throw DeviceRefused(describe() + ": " + what + ": unexpected SDO reply " + hex(f->data[0], 2));
       // Expedited: bits 2..3 give the number of unused bytes when bit 0 (size indicated) is set.
       const int unused = (f->data[0] & 0x01) ? (f->data[0] >> 2) & 3 : 0;
       std::uint32_t v = le32(f->data + 4);
       if (unused > 0) v &= 0xFFFFFFFFu >> (8 * unused);
       return v;
     }
-  }
-  throw Error(describe() + ": " + what + ": no SDO reply within " + std::to_string(o_.sdo_timeout_ms) + " ms (" +
-              std::to_string(o_.retries + 1) + " tries); is the node powered and its id right?");
+    throw Error("no reply");
+  };
+  return withRetries(
+      RetryPolicy{o_.retries, 0}, attempt, [] {}, [](int, int, const std::string&) {},
+      [&](const std::string&) {
+        return Error(describe() + ": " + what + ": no SDO reply within " + std::to_string(o_.sdo_timeout_ms) + " ms (" +
+                     std::to_string(o_.retries + 1) + " tries); is the node powered and its id right?");
+      });
 }
 
 void CanOpenPoseSource::sdoDownload(int node, std::uint16_t index, std::uint8_t sub, std::uint32_t value, int bytes) {
@@ -128,19 +136,24 @@ void CanOpenPoseSource::sdoDownload(int node, std::uint16_t index, std::uint8_t 
   req.data[2] = index >> 8;
   req.data[3] = sub;
   for (int i = 0; i < 4; ++i) req.data[4 + i] = static_cast<std::uint8_t>(value >> (8 * i));
-  for (int attempt = 0; attempt <= o_.retries; ++attempt) {
+  const auto attempt = [&] {
     bus_->send(req);
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::milliseconds(o_.sdo_timeout_ms);
     while (std::chrono::steady_clock::now() < deadline) {
       const auto f = bus_->receive(std::chrono::milliseconds(5));
       if (!f || f->id != 0x580u + static_cast<unsigned>(node)) continue;
       if (f->data[0] == 0x80)
-        throw Error(describe() + ": " + what + ": SDO abort " + hex(le32(f->data + 4), 8) + " (" +
-                    sdoAbortText(le32(f->data + 4)) + ")");
+        throw DeviceRefused(describe() + ": " + what + ": SDO abort " + hex(le32(f->data + 4), 8) + " (" +
+                            sdoAbortText(le32(f->data + 4)) + ")");
       if (f->data[0] == 0x60) return;
     }
-  }
-  throw Error(describe() + ": " + what + ": no SDO reply within " + std::to_string(o_.sdo_timeout_ms) + " ms");
+    throw Error("no reply");
+  };
+  withRetries(RetryPolicy{o_.retries, 0}, attempt, [] {}, [](int, int, const std::string&) {},
+              [&](const std::string&) {
+                return Error(describe() + ": " + what + ": no SDO reply within " + std::to_string(o_.sdo_timeout_ms) +
+                             " ms");
+              });
 }
 
 void CanOpenPoseSource::startTpdo() {

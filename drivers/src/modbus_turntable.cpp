@@ -8,6 +8,7 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "keyturn/drivers/retry.h"
 
 namespace keyturn::drivers {
 
@@ -25,10 +26,6 @@ namespace {
 
 // A device's "no" (a Modbus exception) will not change on retry; anything else may.
 bool isModbusException(int err) { return err > MODBUS_ENOBASE && err <= MODBUS_ENOBASE + 11; }
-
-struct DeviceError : Error {
-  using Error::Error;
-};
 
 }  // namespace
 
@@ -117,33 +114,25 @@ void ModbusTurntable::disconnect() { ctx_.reset(); }
 
 template <typename F>
 auto ModbusTurntable::withRetry(const char* what, F&& f) -> decltype(f()) {
-  std::string last;
-  for (int attempt = 0; attempt <= options_.retries; ++attempt) {
-    if (attempt > 0) {
-      const int wait = options_.backoff_initial_ms << (attempt - 1);
-      if (options_.log)
-        options_.log(describe() + ": " + what + ": " + last + "; retrying in " + std::to_string(wait) +
-                     " ms (attempt " + std::to_string(attempt) + " of " + std::to_string(options_.retries) + ")");
-      std::this_thread::sleep_for(std::chrono::milliseconds(wait));
-      disconnect();
-      try {
+  return withRetries(
+      RetryPolicy{options_.retries, options_.backoff_initial_ms},
+      [&] {
+        if (!ctx_) throw Error("not connected");  // the last reconnect failed
+        return f();
+      },
+      [&] {
+        disconnect();
         connect();
         ++reconnects_;
-      } catch (const Error& e) {
-        last = e.what();
-        continue;
-      }
-    }
-    if (!ctx_) continue;
-    try {
-      return f();
-    } catch (const DeviceError&) {
-      throw;
-    } catch (const Error& e) {
-      last = e.what();
-    }
-  }
-  throw Error(describe() + ": " + what + " failed after " + std::to_string(options_.retries) + " retries: " + last);
+      },
+      [&](int k, int wait, const std::string& last) {
+        if (options_.log)
+          options_.log(describe() + ": " + what + ": " + last + "; retrying in " + std::to_string(wait) + " ms (attempt " +
+                       std::to_string(k) + " of " + std::to_string(options_.retries) + ")");
+      },
+      [&](const std::string& last) {
+        return Error(describe() + ": " + what + " failed after " + std::to_string(options_.retries) + " retries: " + last);
+      });
 }
 
 void ModbusTurntable::readBlock(ModbusRegister::Function function, int address, int n, std::uint16_t* regs) {
@@ -152,7 +141,7 @@ void ModbusTurntable::readBlock(ModbusRegister::Function function, int address, 
   if (rc != n) {
     const int err = errno;
     const std::string msg = "reading register " + std::to_string(address) + ": " + modbusErrorText(err);
-    if (isModbusException(err)) throw DeviceError(describe() + ": " + msg);
+    if (isModbusException(err)) throw DeviceRefused(describe() + ": " + msg);
     throw Error(msg);
   }
 }
@@ -183,7 +172,7 @@ void ModbusTurntable::writeRaw(const ModbusRegister& r, std::int64_t value) {
   if (rc != 1) {
     const int err = errno;
     const std::string msg = "writing register " + std::to_string(r.address) + ": " + modbusErrorText(err);
-    if (isModbusException(err)) throw DeviceError(describe() + ": " + msg);
+    if (isModbusException(err)) throw DeviceRefused(describe() + ": " + msg);
     throw Error(msg);
   }
 }

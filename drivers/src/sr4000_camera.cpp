@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "keyturn/drivers/retry.h"
 
 namespace keyturn::drivers {
 
@@ -166,33 +167,27 @@ TofFrame Sr4000Camera::acquireOnce() {
 }
 
 TofFrame Sr4000Camera::acquire() {
-  std::string last;
-  for (int attempt = 0; attempt <= options_.reconnect_attempts; ++attempt) {
-    if (attempt > 0) {
-      const int wait = options_.backoff_initial_ms << (attempt - 1);
-      if (options_.log)
-        options_.log(connection_.describe() + ": " + last + "; reopening in " + std::to_string(wait) +
-                     " ms (attempt " + std::to_string(attempt) + " of " +
-                     std::to_string(options_.reconnect_attempts) + ")");
-      std::this_thread::sleep_for(std::chrono::milliseconds(wait));
-      close();
-      try {
+  return withRetries(
+      RetryPolicy{options_.reconnect_attempts, options_.backoff_initial_ms},
+      [&] {
+        if (!cam_) throw Error("not open");  // the last reopen failed
+        return acquireOnce();
+      },
+      [&] {
+        close();
         open();
         configure(wanted_);
         ++reconnects_;
-      } catch (const Error& e) {
-        last = e.what();
-        continue;
-      }
-    }
-    if (!cam_) continue;
-    try {
-      return acquireOnce();
-    } catch (const Error& e) {
-      last = e.what();
-    }
-  }
-  fail("giving up after " + std::to_string(options_.reconnect_attempts) + " reopen attempts: " + last);
+      },
+      [&](int k, int wait, const std::string& last) {
+        if (options_.log)
+          options_.log(connection_.describe() + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " +
+                       std::to_string(k) + " of " + std::to_string(options_.reconnect_attempts) + ")");
+      },
+      [&](const std::string& last) {
+        return Error(connection_.describe() + " (" + lib_->path + "): giving up after " +
+                     std::to_string(options_.reconnect_attempts) + " reopen attempts: " + last);
+      });
 }
 
 }  // namespace keyturn::drivers

@@ -1,18 +1,21 @@
 #include "keyturn/rig/dataset.h"
 
+#include <openssl/evp.h>
+
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/tof_camera.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/rig/frame_files.h"
 
 #ifndef KEYTURN_VERSION
@@ -83,7 +86,36 @@ void repairInterruptedAppend(const std::string& manifest) {
   writeFileDurably(manifest, keep == std::string::npos ? manifestHeader() + "\n" : text.substr(0, keep + 1));
 }
 
+std::string fileEndingIn(const std::vector<std::string>& files, const std::string& suffix) {
+  for (const auto& f : files)
+    if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0) return f;
+  return "";
+}
+
 }  // namespace
+
+std::string sha256File(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw Error(path + ": cannot read to checksum");
+  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
+  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
+  char buf[65536];
+  while (in.read(buf, sizeof buf) || in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buf, static_cast<std::size_t>(in.gcount()));
+  unsigned char md[EVP_MAX_MD_SIZE];
+  unsigned len = 0;
+  EVP_DigestFinal_ex(ctx.get(), md, &len);
+  static const char* hex = "0123456789abcdef";
+  std::string out;
+  for (unsigned i = 0; i < len; ++i) {
+    out += hex[md[i] >> 4];
+    out += hex[md[i] & 15];
+  }
+  return out;
+}
+
+
+std::string ViewRecord::pcd() const { return fileEndingIn(files, ".pcd"); }
+std::string ViewRecord::sidecar() const { return fileEndingIn(files, ".json"); }
 
 bool ViewKey::operator==(const ViewKey& o) const {
   return cls == o.cls && instance == o.instance && elevation == o.elevation &&

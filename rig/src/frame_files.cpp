@@ -6,7 +6,7 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 
 namespace fs = std::filesystem;
 

@@ -7,7 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 
 namespace keyturn::rig {
 namespace {

@@ -63,11 +63,20 @@ check "classify exits 0" test $? -eq 0
 check "classify names both views" test "$(grep -c '"view"' "$work/classify.json")" -eq 2
 check "a training view is classified as itself" \
   grep -A1 -E '"class": "ycb_005_tomato_soup_can"' "$work/classify.json" -q
-"$KT" classify "$work/model" "$work/ds/can/ycb_005_tomato_soup_can/e30/a0.0.pcd" --bins 16 -q 2> "$work/mismatch.err"
-check "features with other bins are refused" test $? -ne 0
-check "the mismatch names the parameter" grep -q "bins: model 32, features 16" "$work/mismatch.err"
 "$KT" classify "$work/model" "$cache" -q > "$work/classify_cache.txt"
 check "classify a feature cache: one line per view" test "$(wc -l < "$work/classify_cache.txt")" -eq 96
+# classify describes a view with the model's own parameters, computing only its blocks:
+# the same class and probability as the model gives the view's row in the cache.
+"$KT" classify "$work/model" "$work/ds/bottle/ycb_006_mustard_bottle/e60/a90.0.pcd" -q > "$work/classify_one.txt"
+check "a view and its cached row classify alike" test \
+  "$(cut -f2,3 "$work/classify_one.txt")" = \
+  "$(grep '^bottle/ycb_006_mustard_bottle/e60/a90.0	' "$work/classify_cache.txt" | cut -f2,3)"
+"$KT" classify "$work/model" "$work/ds/can/ycb_005_tomato_soup_can/e30/a0.0.pcd" --bins 16 -q 2> "$work/flags.err"
+check "classify takes no feature flags (the model has them)" grep -q "bins" "$work/flags.err"
+sed 's/^# bins=32$/# bins=16/' "$cache" > "$work/bins16.csv"
+"$KT" classify "$work/model" "$work/bins16.csv" -q 2> "$work/mismatch.err"
+check "features with other bins are refused" test $? -ne 0
+check "the mismatch names the parameter" grep -q "bins: model 32, features 16" "$work/mismatch.err"
 
 "$KT" consistency "$work/ds" --object can/ycb_002_master_chef_can --out "$work/cons" -q
 check "consistency writes CSV and one plot per elevation" test -s "$work/cons/consistency.csv" -a -s "$work/cons/consistency_e30.png" -a -s "$work/cons/consistency_e60.png"

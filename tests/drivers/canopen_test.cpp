@@ -3,9 +3,11 @@
 // build machines, which have no CAN support at all, not even vcan).
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <thread>
 
 #include "keyturn/core/error.h"
@@ -55,13 +57,19 @@ TEST(CanOpen, ReadsFromTpdoAfterSettingTheEventTimer) {
   o.event_timer_ms = 5;
   CanOpenPoseSource robot(hub->endpoint("keyturn"), robotAxes(), o);
   EXPECT_EQ(nx.eventTimerMs(), 5);  // 0x1800:05 written by SDO download
-  for (int i = 0; i < 50 && !(nx.operational() && ny.operational() && nz.operational()); ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  // Wait for each condition (bounded), never a fixed time: a loaded machine runs the nodes late.
+  const auto waitFor = [](const std::function<bool()>& done) {
+    const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+    while (!done() && std::chrono::steady_clock::now() < deadline) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+  };
+  waitFor([&] { return nx.operational() && ny.operational() && nz.operational(); });
   EXPECT_TRUE(nz.operational());  // NMT start
   EXPECT_NEAR(robot.read().position.z(), 0.003, 1e-12);
   nz.setPosition(7000);
-  std::this_thread::sleep_for(std::chrono::milliseconds(15));
-  EXPECT_NEAR(robot.read().position.z(), 0.007, 1e-12);
+  // The next TPDO (every 5 ms) carries the new position.
+  double z = 0;
+  waitFor([&] { return std::abs((z = robot.read().position.z()) - 0.007) < 1e-12; });
+  EXPECT_NEAR(z, 0.007, 1e-12);
 }
 
 TEST(CanOpen, SdoAbortsAreNamed) {

@@ -13,9 +13,9 @@ namespace {
 
 Model untrainedModel(const std::vector<std::string>& blocks, int bins = 32) {
   Model m;
-  FeatureParams p;
-  p.bins = bins;
-  m.info.spec = featureSpec(p);
+  DescriptorOptions o;
+  o.histogram.bins = bins;
+  m.info.spec = featureSpec(o);
   m.info.blocks = blocks;
   m.info.inputs = bins * static_cast<int>(blocks.size());
   m.info.classes = {"mug", "sphere-target"};
@@ -92,25 +92,36 @@ TEST(Recognizer, ABadCloudIsAnErrorNotACrash) {
 }
 
 TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
-  FeatureParams p;
-  p.bins = 48;
-  p.extent = 0.4;
-  p.plane_removal = false;
-  p.graph_radius = 4.5;
-  const FeatureParams q = featureParamsFromSpec(featureSpec(p), "x");
+  DescriptorOptions p;
+  p.histogram.bins = 48;
+  p.histogram.extent = 0.4;
+  p.filter_options.remove_plane = false;
+  p.graph.radius = 4.5;
+  const DescriptorOptions q = descriptorOptionsFromSpec(featureSpec(p), "x");
   EXPECT_EQ(featureSpec(q), featureSpec(p));
-  EXPECT_EQ(q.bins, 48);
-  EXPECT_FALSE(q.plane_removal);
+  EXPECT_EQ(q.histogram.bins, 48);
+  EXPECT_FALSE(q.filter_options.remove_plane);
   auto spec = featureSpec(p);
   spec["iss_nms"] = "four";
   try {
-    featureParamsFromSpec(spec, "model.json");
+    descriptorOptionsFromSpec(spec, "model.json");
     FAIL();
   } catch (const Error& e) {
     EXPECT_STREQ(e.what(), "model.json: feature spec 'iss_nms' is not a number: 'four'");
   }
   spec.erase("iss_nms");
-  EXPECT_THROW(featureParamsFromSpec(spec, "model.json"), Error);
+  EXPECT_THROW(descriptorOptionsFromSpec(spec, "model.json"), Error);
+  spec = featureSpec(p);
+  spec["keypoints"] = "harris";
+  EXPECT_THROW(descriptorOptionsFromSpec(spec, "model.json"), Error);
+  // The text of the default parameters, as every cache and model of version 3 holds it.
+  const std::map<std::string, std::string> expected = {
+      {"working_samples_across", "30"}, {"max_keypoints", "64"},
+      {"bins", "32"},           {"cache_version", "3"},  {"extent_m", "0.35"},      {"filter", "on"},
+      {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "4"},
+      {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},
+      {"osada_samples", "20000"}, {"plane_removal", "on"}, {"range", "fixed"},      {"seed", "7"}};
+  EXPECT_EQ(featureSpec(DescriptorOptions()), expected);
 }
 
 TEST(ClassMeans, IgnoreMissingValues) {

@@ -20,7 +20,7 @@
 #include "keyturn/rig/sidecars.h"
 #include "keyturn/studio/studio_window.h"
 #include "stability.h"
-#include "studio_rig_factory.h"
+#include "keyturn/studio/studio_rig_factory.h"
 
 using namespace keyturn;
 using namespace keyturn::studio;
@@ -62,7 +62,7 @@ class StudioTest : public QObject {
   Q_OBJECT
 
  private:
-  std::unique_ptr<app::StudioRigFactory> factory_;
+  std::unique_ptr<StudioRigFactory> factory_;
   QTemporaryDir dir_;
 
   StudioOptions simulated(const std::string& object) {
@@ -75,7 +75,7 @@ class StudioTest : public QObject {
   }
 
  private slots:
-  void init() { factory_ = std::make_unique<app::StudioRigFactory>(std::string(KEYTURN_DATA_DIR) + "/objects/objects.csv"); }
+  void init() { factory_ = std::make_unique<StudioRigFactory>(std::string(KEYTURN_DATA_DIR) + "/objects/objects.csv"); }
   void cleanup() { factory_.reset(); }
 
   void connectsAndShowsLiveFramesAndTheirCloud() {

@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "atomic_write.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::learning {
@@ -105,7 +105,7 @@ void saveFeatureTable(const std::string& path, const FeatureTable& t) {
     }
     out << "\n";
   }
-  writeFileAtomically(path, out.str());
+  writeFileDurably(path, out.str());
 }
 
 FeatureTable loadFeatureTable(const std::string& path) {

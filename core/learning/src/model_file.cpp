@@ -6,7 +6,7 @@
 #include <iterator>
 #include <nlohmann/json.hpp>
 
-#include "atomic_write.h"
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::learning {
@@ -113,11 +113,14 @@ void saveModel(const std::string& dir, const Model& model) {
   fs::remove_all(tmp, ec);
   fs::create_directories(tmp, ec);
   if (ec) throw Error(tmp.string() + ": cannot create (" + ec.message() + ")");
-  model.classifier->save((tmp / weightsName(model.info.params.kind)).string());
-  writeFileAtomically((tmp / "model.json").string(), toJson(model.info).dump(2) + "\n");
+  const std::string weights = (tmp / weightsName(model.info.params.kind)).string();
+  model.classifier->save(weights);
+  syncFile(weights);
+  writeFileDurably((tmp / "model.json").string(), toJson(model.info).dump(2) + "\n");  // syncs the folder too
   fs::remove_all(target, ec);
   fs::rename(tmp, target, ec);
   if (ec) throw Error(dir + ": cannot move the model into place (" + ec.message() + ")");
+  syncDirectory(target.has_parent_path() ? target.parent_path().string() : ".");
 }
 
 Model loadModel(const std::string& dir) {

@@ -26,15 +26,15 @@ Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model
                   "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, a3)");
     }
   }
-  options_ = descriptorOptions(featureParamsFromSpec(model_.info.spec, source_), features);
+  options_ = descriptorOptionsFromSpec(model_.info.spec, source_);
+  options_.features = features;
   if (options_.histogram.bins * static_cast<int>(features.size()) != model_.info.inputs)
     throw Error(source_ + ": " + std::to_string(features.size()) + " blocks of " +
                 std::to_string(options_.histogram.bins) + " bins do not make the model's " +
                 std::to_string(model_.info.inputs) + " inputs");
 }
 
-Recognizer::Recognizer(const FeatureParams& params, const std::vector<Feature>& features)
-    : source_("(no model)"), options_(descriptorOptions(params, features)) {}
+Recognizer::Recognizer(DescriptorOptions options) : source_("(no model)"), options_(std::move(options)) {}
 
 Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadModel(dir), dir); }
 

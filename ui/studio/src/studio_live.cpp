@@ -5,13 +5,13 @@
 #include <QStatusBar>
 
 #include "keyturn/core/features.h"
-#include "keyturn/learning/feature_spec.h"
 
 namespace keyturn::studio {
 
 std::shared_ptr<const learning::Recognizer> describeOnly() {
-  return std::make_shared<learning::Recognizer>(learning::FeatureParams(),
-                                                std::vector<Feature>{Feature::KPD2, Feature::KPA3, Feature::GKPD2});
+  DescriptorOptions o;
+  o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2};
+  return std::make_shared<learning::Recognizer>(o);
 }
 
 void StudioWindow::Impl::showFrame(const FramePtr& frame) {

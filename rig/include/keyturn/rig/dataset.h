@@ -29,6 +29,9 @@ struct ViewRecord {
   std::string captured_at;                  // ISO 8601 UTC
   std::vector<std::string> files;           // relative to the dataset root: pcd, pngs, json
   std::vector<std::string> sha256;          // one per file
+  // The view's files by kind (relative to the root, "" when the row lists none).
+  std::string pcd() const;
+  std::string sidecar() const;              // the .json metadata
 };
 
 struct ViewMetadata {
@@ -65,5 +68,6 @@ class Dataset {
 };
 
 std::string manifestHeader();
+std::string sha256File(const std::string& path);  // lowercase hex; throws keyturn::Error
 
 }  // namespace keyturn::rig

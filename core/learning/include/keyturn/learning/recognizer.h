@@ -30,7 +30,7 @@ class Recognizer {
   explicit Recognizer(Model model, std::string source = "model");
   static Recognizer load(const std::string& dir);
   // Describes views without a model (no classes, recognize() only describes).
-  Recognizer(const struct FeatureParams& params, const std::vector<Feature>& features);
+  explicit Recognizer(DescriptorOptions options);
 
   bool hasModel() const { return model_.classifier != nullptr; }
   const ModelInfo& info() const { return model_.info; }

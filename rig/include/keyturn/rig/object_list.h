@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::app {
+namespace keyturn::rig {
 
 struct ObjectRow {
   std::string cls, instance, mesh;
@@ -13,4 +13,4 @@ struct ObjectRow {
 // Throws keyturn::Error naming the file and line for a missing column or file.
 std::vector<ObjectRow> readObjectList(const std::string& path);
 
-}  // namespace keyturn::app
+}  // namespace keyturn::rig

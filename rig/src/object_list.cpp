@@ -1,4 +1,4 @@
-#include "object_list.h"
+#include "keyturn/rig/object_list.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -8,7 +8,7 @@
 
 namespace fs = std::filesystem;
 
-namespace keyturn::app {
+namespace keyturn::rig {
 
 namespace {
 
@@ -65,4 +65,4 @@ std::vector<ObjectRow> readObjectList(const std::string& path) {
   return out;
 }
 
-}  // namespace keyturn::app
+}  // namespace keyturn::rig

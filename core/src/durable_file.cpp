@@ -1,20 +1,18 @@
-#include "keyturn/rig/durable_file.h"
+#include "keyturn/core/durable_file.h"
 
 #include <fcntl.h>
-#include <openssl/evp.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-#include <memory>
 
 #include "keyturn/core/error.h"
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn {
 namespace {
 
 void syncPath(const std::string& path, int flags) {
@@ -42,14 +40,17 @@ void commitFile(const std::string& tmp, const std::string& path) {
 
 void syncDirectory(const std::string& dir) { syncPath(dir, O_RDONLY | O_DIRECTORY); }
 
+void syncFile(const std::string& path) { syncPath(path, O_RDONLY); }
+
 void writeFileDurably(const std::string& path, const std::string& bytes) {
   fs::create_directories(parentOf(path));
   const std::string tmp = path + ".tmp";
   {
     std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
+    if (!f) throw Error(path + ": cannot open for writing (" + std::strerror(errno) + ")");
     f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     f.flush();
-    if (!f) throw Error(path + ": write failed");
+    if (!f) throw Error(path + ": write failed (" + std::strerror(errno) + ")");
   }
   commitFile(tmp, path);
 }
@@ -64,23 +65,4 @@ void appendLineDurably(const std::string& path, const std::string& line) {
   if (n != static_cast<ssize_t>(text.size()) || rc != 0) throw Error(path + ": append failed: " + std::strerror(errno));
 }
 
-std::string sha256File(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw Error(path + ": cannot read to checksum");
-  std::unique_ptr<EVP_MD_CTX, decltype(&EVP_MD_CTX_free)> ctx(EVP_MD_CTX_new(), EVP_MD_CTX_free);
-  EVP_DigestInit_ex(ctx.get(), EVP_sha256(), nullptr);
-  char buf[65536];
-  while (in.read(buf, sizeof buf) || in.gcount() > 0) EVP_DigestUpdate(ctx.get(), buf, static_cast<std::size_t>(in.gcount()));
-  unsigned char md[EVP_MAX_MD_SIZE];
-  unsigned len = 0;
-  EVP_DigestFinal_ex(ctx.get(), md, &len);
-  static const char* hex = "0123456789abcdef";
-  std::string out;
-  for (unsigned i = 0; i < len; ++i) {
-    out += hex[md[i] >> 4];
-    out += hex[md[i] & 15];
-  }
-  return out;
-}
-
-}  // namespace keyturn::rig
+}  // namespace keyturn

@@ -1,0 +1,62 @@
+#pragma once
+// The feature cache of a dataset (docs/results.md): every view described once
+// per parameter set by every block evaluate, train and consistency use — ISS
+// keypoint functions, the same on random keypoints (u_*), Osada's D2/D3/A3 and
+// the peers ESF, VFH and OUR-CVFH — kept in DATASET/.keyturn/features-<hash>.csv,
+// the hash being of the feature specification (feature_spec.h). Shards (views
+// i ≡ I mod N) are written beside it and merged when all are present.
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "keyturn/core/descriptor.h"
+#include "keyturn/learning/feature_table.h"
+
+namespace keyturn::learning {
+
+// One view to describe: its file and its labels.
+struct LabelledView {
+  std::string id;    // the row id: the view's stem relative to the dataset root (or the file for loose views)
+  std::string path;  // the PCD/PLY file
+  std::string cls, instance, elevation;
+};
+
+// How a long describe run reports. view_done is called from the worker threads.
+class DescribeProgress {
+ public:
+  virtual ~DescribeProgress() = default;
+  virtual void begin(std::size_t views) = 0;
+  virtual void viewDone() = 0;
+  virtual void end() = 0;
+  virtual void note(const std::string& line) = 0;     // what the cache did ("merged 4 feature shards")
+  virtual void warning(const std::string& line) = 0;  // what went wrong and was recovered from
+};
+
+// Every block of the cache, in its column order.
+const std::vector<std::string>& cacheBlocks();
+// An empty table of these blocks (sizes from the options' bins) carrying the options' specification.
+FeatureTable featureLayout(const std::vector<std::string>& blocks, const DescriptorOptions& options);
+// DATASET/.keyturn/features-<hash>[.shard-I-of-N].csv; shard counts from 0.
+std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard = 0,
+                             int shards = 1);
+
+// Describes views for the layout's blocks only, in parallel (jobs 0: all cores). A block that cannot
+// be computed stays NaN and the row says why; an unreadable view has keypoints -1.
+std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, const DescriptorOptions& options,
+                                      const FeatureTable& layout, int jobs, DescribeProgress* progress);
+
+struct FeatureCache {
+  std::string dataset;                // the cache lives in DATASET/.keyturn/
+  std::vector<LabelledView> views;    // the dataset's views, manifest order
+  DescriptorOptions options;          // the parameters (features are the cache's, whatever is set here)
+  int jobs = 0;
+  DescribeProgress* progress = nullptr;
+};
+
+// Describes the shard's views (i % shards == shard) into their shard file; returns its path.
+std::string describeCacheShard(const FeatureCache& cache, int shard, int shards);
+// The whole dataset's features: the cache if it is there, else merged shards if all are there,
+// else described now and cached. Views no longer in the list are dropped, new ones described.
+FeatureTable loadOrDescribeCache(const FeatureCache& cache);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,257 @@
+#include "keyturn/learning/feature_cache.h"
+
+#include <algorithm>
+#include <atomic>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <regex>
+#include <thread>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/filter.h"
+#include "keyturn/core/pcl_baselines.h"
+#include "keyturn/learning/feature_spec.h"
+
+namespace keyturn::learning {
+
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::vector<Feature> kKeypointBlocks = {Feature::KPD2, Feature::KPD3, Feature::KPA3,
+                                              Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};
+const std::vector<Feature> kShapeBlocks = {Feature::D2, Feature::D3, Feature::A3};
+const std::map<std::string, int> kPeerSizes = {{"esf", 640}, {"vfh", 308}, {"ourcvfh", 308}};
+const std::string kRandom = "u_";  // a keypoint block on random keypoints
+
+std::uint64_t fnv1a(const std::string& s) {
+  std::uint64_t h = 1469598103934665603ull;
+  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
+  return h;
+}
+
+bool has(const FeatureTable& t, const std::string& block) { return t.offset(block) >= 0; }
+
+void put(FeatureRow& row, const FeatureTable& t, const std::string& block, const std::vector<double>& v) {
+  const int o = t.offset(block);
+  if (o < 0) return;
+  for (std::size_t k = 0; k < v.size(); ++k) row.values[static_cast<std::size_t>(o) + k] = static_cast<float>(v[k]);
+}
+
+void note(FeatureRow& row, const std::string& what) { row.problem += (row.problem.empty() ? "" : "; ") + what; }
+
+// The descriptor options that compute the layout's keypoint and shape blocks: a u_ block needs its
+// keypoint function and the random-keypoint twin. Filtering is the caller's (the peers share it).
+DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions& options) {
+  DescriptorOptions o = options;
+  o.features.clear();
+  o.random_keypoints_twin = false;
+  o.random_seed = options.osada.seed;
+  o.filter = false;
+  for (Feature f : allFeatures()) {
+    const bool random = isKeypointFeature(f) && has(layout, kRandom + featureName(f));
+    if (has(layout, featureName(f)) || random) o.features.push_back(f);
+    o.random_keypoints_twin = o.random_keypoints_twin || random;
+  }
+  return o;
+}
+
+FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const FeatureTable& layout) {
+  FeatureRow row;
+  row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
+  row.keypoints = -1;
+  const DescriptorOptions o = optionsFor(layout, options);
+  // The keypoint blocks through the one view path (filter, working resolution), as describe and the
+  // recogniser see a view; the peers (ESF, VFH, OUR-CVFH) on the filtered points at the sensor's own
+  // density, as their users run them.
+  if (!o.features.empty()) {
+    try {
+      const ViewDescriptor d = describeView(cloud, o);
+      row.keypoints = d.keypointCount();
+      for (std::size_t f = 0; f < o.features.size(); ++f) {
+        put(row, layout, featureName(o.features[f]), d.pdfs[f]);
+        if (!d.random_keypoint_pdfs.empty() && isKeypointFeature(o.features[f]))
+          put(row, layout, kRandom + featureName(o.features[f]), d.random_keypoint_pdfs[f]);
+      }
+      if (d.low_keypoints) note(row, "only " + std::to_string(row.keypoints) + " keypoints");
+    } catch (const Error& e) {
+      note(row, e.what());
+    }
+  }
+  const bool peers = has(layout, "esf") || has(layout, "vfh") || has(layout, "ourcvfh");
+  if (!peers) return row;
+  const PointSet set = PointSet::fromCloud(options.filter ? filterCloud(cloud, options.filter_options) : cloud);
+  if (set.size() < 10) {
+    note(row, "peers skipped: " + std::to_string(set.size()) + " points");
+    return row;
+  }
+  const auto copy = [&](const std::string& block, const std::function<std::vector<float>()>& compute) {
+    if (!has(layout, block)) return;
+    try {
+      const std::vector<float> v = compute();
+      if (v.empty()) return note(row, block + " found nothing");
+      put(row, layout, block, std::vector<double>(v.begin(), v.end()));
+    } catch (const Error& e) {
+      note(row, block + ": " + e.what());
+    }
+  };
+  copy("esf", [&] { return pclEsfSeeded(set, static_cast<unsigned>(options.osada.seed)); });
+  copy("vfh", [&] { return pclVfh(set, kNormalRadius); });
+  copy("ourcvfh", [&] { return pclOurCvfh(set, kNormalRadius); });
+  return row;
+}
+
+std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, const std::vector<std::size_t>& which,
+                                     const DescriptorOptions& options, const FeatureTable& layout, int jobs,
+                                     DescribeProgress* progress) {
+  std::vector<FeatureRow> rows(which.size());
+  if (progress) progress->begin(which.size());
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t k = next++; k < which.size(); k = next++) {
+      const LabelledView& v = views[which[k]];
+      try {
+        rows[k] = describeCloud(loadCloud(v.path), options, layout);
+      } catch (const Error& e) {
+        rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
+        rows[k].keypoints = -1;
+        rows[k].problem = e.what();
+      }
+      rows[k].id = v.id;
+      rows[k].cls = v.cls;
+      rows[k].instance = v.instance;
+      rows[k].elevation = v.elevation;
+      if (progress) progress->viewDone();
+    }
+  };
+  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
+  const unsigned n = jobs > 0 ? static_cast<unsigned>(jobs) : hw;
+  std::vector<std::thread> pool;
+  for (unsigned t = 1; t < std::min<std::size_t>(n, which.size()); ++t) pool.emplace_back(worker);
+  worker();
+  for (auto& t : pool) t.join();
+  if (progress) progress->end();
+  return rows;
+}
+
+void save(const std::string& path, const FeatureTable& t) {
+  fs::create_directories(fs::path(path).parent_path());
+  saveFeatureTable(path, t);
+}
+
+// The merged rows of a complete set of shard files of the cache at `path`, if there is one.
+bool mergeShards(const std::string& path, FeatureTable& out, DescribeProgress* progress) {
+  const std::string stem = fs::path(path).stem().string();
+  std::map<int, std::vector<std::string>> sets;
+  const std::regex shard_re(stem + R"(\.shard-(\d+)-of-(\d+)\.csv)");
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path(), ec)) {
+    std::smatch m;
+    const std::string name = e.path().filename().string();
+    if (std::regex_match(name, m, shard_re)) sets[std::stoi(m[2])].push_back(e.path().string());
+  }
+  for (auto& [n, files] : sets) {
+    if (static_cast<int>(files.size()) != n) continue;
+    std::sort(files.begin(), files.end());
+    std::vector<FeatureTable> shards;
+    for (const auto& f : files) shards.push_back(loadFeatureTable(f));
+    out = mergeFeatureTables(shards, files);
+    if (progress) progress->note("merged " + std::to_string(n) + " feature shards");
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+const std::vector<std::string>& cacheBlocks() {
+  static const std::vector<std::string> blocks = [] {
+    std::vector<std::string> b;
+    for (Feature f : kKeypointBlocks) b.push_back(featureName(f));
+    for (Feature f : kShapeBlocks) b.push_back(featureName(f));
+    for (Feature f : kKeypointBlocks) b.push_back(kRandom + featureName(f));
+    for (const char* p : {"esf", "vfh", "ourcvfh"}) b.push_back(p);
+    return b;
+  }();
+  return blocks;
+}
+
+FeatureTable featureLayout(const std::vector<std::string>& blocks, const DescriptorOptions& options) {
+  FeatureTable t;
+  for (const auto& b : blocks) {
+    const auto peer = kPeerSizes.find(b);
+    if (peer == kPeerSizes.end()) parseFeature(b.rfind(kRandom, 0) == 0 ? b.substr(kRandom.size()) : b);
+    t.blocks.push_back(b);
+    t.sizes.push_back(peer != kPeerSizes.end() ? peer->second : options.histogram.bins);
+  }
+  t.spec = featureSpec(options);
+  return t;
+}
+
+std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard, int shards) {
+  std::string key;
+  for (const auto& [k, v] : featureSpec(options)) key += k + "=" + v + "\n";
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+  std::string name = std::string("features-") + hash;
+  if (shards > 1) name += ".shard-" + std::to_string(shard + 1) + "-of-" + std::to_string(shards);
+  return (fs::path(dataset) / ".keyturn" / (name + ".csv")).string();
+}
+
+std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, const DescriptorOptions& options,
+                                      const FeatureTable& layout, int jobs, DescribeProgress* progress) {
+  std::vector<std::size_t> all(views.size());
+  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
+  return describeSome(views, all, options, layout, jobs, progress);
+}
+
+std::string describeCacheShard(const FeatureCache& c, int shard, int shards) {
+  if (shards < 1 || shard < 0 || shard >= shards)
+    throw Error("--shard " + std::to_string(shard + 1) + "/" + std::to_string(shards) +
+                ": expected I/N with 1 <= I <= N");
+  std::vector<std::size_t> mine;
+  for (std::size_t i = 0; i < c.views.size(); ++i)
+    if (static_cast<int>(i % static_cast<std::size_t>(shards)) == shard) mine.push_back(i);
+  FeatureTable t = featureLayout(cacheBlocks(), c.options);
+  t.rows = describeSome(c.views, mine, c.options, t, c.jobs, c.progress);
+  const std::string path = featureCachePath(c.dataset, c.options, shard, shards);
+  save(path, t);
+  return path;
+}
+
+FeatureTable loadOrDescribeCache(const FeatureCache& c) {
+  const std::string path = featureCachePath(c.dataset, c.options);
+  const FeatureTable layout = featureLayout(cacheBlocks(), c.options);
+  FeatureTable t = layout;
+  std::error_code ec;
+  const bool cached = fs::exists(path, ec);
+  if (cached) {
+    try {
+      t = loadFeatureTable(path);
+    } catch (const Error& e) {
+      if (c.progress) c.progress->warning(std::string(e.what()) + " — describing the views again");
+      t = layout;
+    }
+  } else {
+    mergeShards(path, t, c.progress);
+  }
+  if (t.blocks != layout.blocks || t.spec != layout.spec) t = layout;
+  // Keep cached rows of views still listed; describe the rest.
+  std::map<std::string, FeatureRow> have;
+  for (auto& row : t.rows) have[row.id] = std::move(row);
+  std::vector<std::size_t> missing;
+  for (std::size_t i = 0; i < c.views.size(); ++i)
+    if (!have.count(c.views[i].id)) missing.push_back(i);
+  if (!missing.empty())
+    for (auto& row : describeSome(c.views, missing, c.options, t, c.jobs, c.progress)) have[row.id] = std::move(row);
+  t.rows.clear();
+  for (const auto& v : c.views) t.rows.push_back(std::move(have[v.id]));
+  if (!missing.empty() || !cached) save(path, t);
+  return t;
+}
+
+}  // namespace keyturn::learning

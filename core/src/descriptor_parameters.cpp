@@ -1,0 +1,184 @@
+#include "keyturn/core/descriptor_parameters.h"
+
+#include <cerrno>
+#include <cstdio>
+#include <cstdlib>
+#include <limits>
+#include <type_traits>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn {
+namespace {
+
+using Kind = DescriptorParameter::Kind;
+
+// %g: the form feature caches and sidecars have always used (the cache hash depends on it).
+std::string numberText(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%g", v);
+  return b;
+}
+
+double parseNumber(const std::string& t) {
+  char* end = nullptr;
+  errno = 0;
+  const double v = std::strtod(t.c_str(), &end);
+  if (t.empty() || *end != '\0' || errno == ERANGE) throw Error("is not a number: '" + t + "'");
+  return v;
+}
+
+template <typename T>
+T parseWhole(const std::string& t) {
+  char* end = nullptr;
+  errno = 0;
+  const bool negative = t.find('-') != std::string::npos;
+  const auto v = std::is_unsigned_v<T> ? static_cast<long double>(std::strtoull(t.c_str(), &end, 10))
+                                       : static_cast<long double>(std::strtoll(t.c_str(), &end, 10));
+  if (t.empty() || *end != '\0' || errno == ERANGE || (std::is_unsigned_v<T> && negative) ||
+      v < static_cast<long double>(std::numeric_limits<T>::min()) ||
+      v > static_cast<long double>(std::numeric_limits<T>::max()))
+    throw Error("is not a whole number: '" + t + "'");
+  return static_cast<T>(v);
+}
+
+// `field` is a generic lambda returning a reference to the field in a DescriptorOptions.
+template <typename Field>
+DescriptorParameter whole(std::string key, std::string flag, std::string help, Field field, long long lo,
+                          long long hi = std::numeric_limits<long long>::max()) {
+  using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
+  return {std::move(key), std::move(flag), std::move(help), Kind::Integer,
+          [field](const DescriptorOptions& o) { return std::to_string(field(o)); },
+          [field, lo, hi](DescriptorOptions& o, const std::string& t) {
+            const T v = parseWhole<T>(t);
+            if (static_cast<long double>(v) < lo ||
+                (hi != std::numeric_limits<long long>::max() && static_cast<long double>(v) > hi))
+              throw Error(hi == std::numeric_limits<long long>::max()
+                              ? "must be at least " + std::to_string(lo) + ", not '" + t + "'"
+                              : "must be within " + std::to_string(lo) + ".." + std::to_string(hi) + ", not '" + t + "'");
+            field(o) = v;
+          }};
+}
+
+enum class Sign { Any, Positive };
+
+template <typename Field>
+DescriptorParameter number(std::string key, std::string flag, std::string help, Field field, Sign sign) {
+  using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
+  return {std::move(key), std::move(flag), std::move(help), Kind::Number,
+          [field](const DescriptorOptions& o) { return numberText(static_cast<double>(field(o))); },
+          [field, sign](DescriptorOptions& o, const std::string& t) {
+            const double v = parseNumber(t);
+            if (sign == Sign::Positive && !(v > 0)) throw Error("must be positive, not '" + t + "'");
+            field(o) = static_cast<T>(v);
+          }};
+}
+
+// Radii of the chain are multiples of the cloud resolution.
+template <typename Field>
+DescriptorParameter radius(std::string key, std::string flag, std::string help, Field field) {
+  return number(std::move(key), std::move(flag), std::move(help) + " (× resolution)", field, Sign::Positive);
+}
+
+template <typename Field>
+DescriptorParameter onOff(std::string key, std::string flag, std::string help, Field field) {
+  return {std::move(key), std::move(flag), std::move(help), Kind::Switch,
+          [field](const DescriptorOptions& o) -> std::string { return field(o) ? "on" : "off"; },
+          [field](DescriptorOptions& o, const std::string& t) {
+            if (t != "on" && t != "off") throw Error("must be on or off, not '" + t + "'");
+            field(o) = t == "on";
+          }};
+}
+
+std::vector<DescriptorParameter> makeTable() {
+  std::vector<DescriptorParameter> t;
+  t.push_back(whole("bins", "--bins", "Histogram bins per feature", [](auto& o) -> auto& { return o.histogram.bins; },
+                    2, 4096));
+  t.push_back({"range", "--range", "Histogram range rule: fixed (metric, from --extent) or per-view", Kind::Choice,
+               [](const DescriptorOptions& o) -> std::string {
+                 return o.histogram.mode == RangeMode::Fixed ? "fixed" : "per-view";
+               },
+               [](DescriptorOptions& o, const std::string& t) {
+                 if (t != "fixed" && t != "per-view") throw Error("must be fixed or per-view, not '" + t + "'");
+                 o.histogram.mode = t == "fixed" ? RangeMode::Fixed : RangeMode::PerView;
+               }});
+  t.push_back(number("extent_m", "--extent", "Object extent E in metres for fixed ranges (distances span [0,E])",
+                     [](auto& o) -> auto& { return o.histogram.extent; }, Sign::Positive));
+  t.push_back(onOff("filter", "--no-filter", "Use the cloud as it is (already segmented)",
+                    [](auto& o) -> auto& { return o.filter; }));
+  t.push_back(onOff("plane_removal", "--no-plane", "Keep the dominant plane",
+                    [](auto& o) -> auto& { return o.filter_options.remove_plane; }));
+  t.push_back(number("max_range_m", "--max-range", "Drop points farther than this from the camera (m)",
+                     [](auto& o) -> auto& { return o.filter_options.max_range; }, Sign::Any));
+  // One number for two fields: 0 turns the step off.
+  t.push_back({"jump_edge_deg", "--jump-edge-angle",
+               "Remove pixels whose segment to a neighbour is within this angle of the viewing ray (degrees, 0 = off)",
+               Kind::Number,
+               [](const DescriptorOptions& o) {
+                 return numberText(o.filter_options.jump_edge ? o.filter_options.jump_edge_angle_deg : 0.0);
+               },
+               [](DescriptorOptions& o, const std::string& t) {
+                 const double v = parseNumber(t);
+                 if (v < 0) throw Error("must be 0 (off) or positive, not '" + t + "'");
+                 o.filter_options.jump_edge = v > 0;
+                 o.filter_options.jump_edge_angle_deg = static_cast<float>(v);
+               }});
+  t.push_back(radius("iss_frame", "--iss-frame", "ISS scatter radius r_frame",
+                     [](auto& o) -> auto& { return o.iss.frame_radius; }));
+  t.push_back(radius("iss_nms", "--iss-nms", "ISS non-maximum radius", [](auto& o) -> auto& { return o.iss.nms_radius; }));
+  t.push_back(radius("iss_density", "--iss-density", "ISS density radius",
+                     [](auto& o) -> auto& { return o.iss.density_radius; }));
+  t.push_back(radius("graph_radius", "--graph-radius", "Local complete graph radius",
+                     [](auto& o) -> auto& { return o.graph.radius; }));
+  // One number for two fields: 0 describes at the sensor's own spacing.
+  t.push_back({"working_samples_across", "--samples-across",
+               "Working resolution: describe at spacing (view extent / this); 0 = the sensor's own spacing",
+               Kind::Number,
+               [](const DescriptorOptions& o) { return numberText(o.working.enabled ? o.working.samples_across : 0.0); },
+               [](DescriptorOptions& o, const std::string& t) {
+                 const double v = parseNumber(t);
+                 if (!(v >= 0) || v > 1e6) throw Error("must be 0 (off) or a positive count up to 1e6, not '" + t + "'");
+                 o.working.enabled = v > 0;
+                 if (v > 0) o.working.samples_across = v;
+               }});
+  t.push_back(whole("max_keypoints", "--max-keypoints", "Keypoint budget: keep the K most salient ISS keypoints (0 = all)",
+                    [](auto& o) -> auto& { return o.iss.max_keypoints; }, 0));
+  t.push_back(whole("osada_samples", "--osada-samples", "Samples per Osada shape distribution",
+                    [](auto& o) -> auto& { return o.osada.samples; }, 1));
+  t.push_back(whole("seed", "--seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",
+                    [](auto& o) -> auto& { return o.osada.seed; }, 0));
+  t.push_back(whole("", "--low-keypoints", "Flag views with fewer keypoints than this",
+                    [](auto& o) -> auto& { return o.low_keypoints; }, 0));
+  return t;
+}
+
+}  // namespace
+
+const std::vector<DescriptorParameter>& descriptorParameters() {
+  static const std::vector<DescriptorParameter> table = makeTable();
+  return table;
+}
+
+std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options) {
+  std::map<std::string, std::string> spec;
+  for (const auto& p : descriptorParameters())
+    if (!p.key.empty()) spec[p.key] = p.get(options);
+  return spec;
+}
+
+DescriptorOptions optionsFromParameterSpec(const std::map<std::string, std::string>& spec, const std::string& source) {
+  DescriptorOptions o;
+  for (const auto& p : descriptorParameters()) {
+    if (p.key.empty()) continue;
+    const auto it = spec.find(p.key);
+    if (it == spec.end()) throw Error(source + ": feature spec has no '" + p.key + "'");
+    try {
+      p.set(o, it->second);
+    } catch (const Error& e) {
+      throw Error(source + ": feature spec '" + p.key + "' " + e.what());
+    }
+  }
+  return o;
+}
+
+}  // namespace keyturn

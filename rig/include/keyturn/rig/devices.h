@@ -1,0 +1,31 @@
+#pragma once
+// Opening the rig's devices by name, for the CLI and the studio:
+//   camera  sim|usb[:SERIAL]|eth:IP → a TofCamera. "sim" loads libmesasr-sim (the
+//           build's, or $KEYTURN_MESASR_SIM) and opens its first USB camera; the
+//           others load MESA's libMesaSR ($KEYTURN_MESASR_LIB or the usual sonames).
+//   pose    modbus-tcp:HOST:PORT|modbus-rtu:DEV|can:IFACE → a PoseSource (for can:
+//           the profile names the CANopen axes file). The simulated turntable is
+//           opened with the simulated camera (simulated_rig.h).
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "keyturn/drivers/pose_source.h"
+#include "keyturn/drivers/tof_camera.h"
+
+namespace keyturn::rig {
+
+using DeviceLog = std::function<void(const std::string&)>;
+
+// library: libMesaSR path for usb/eth (empty: $KEYTURN_MESASR_LIB or the usual sonames).
+// sim_config: for "sim", the simulator's configuration file ($MESASR_SIM_CONFIG is set to it;
+// empty: left as it is). log: the driver's retries and reconnects (default: stderr).
+std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
+                                               const std::string& library = "", DeviceLog log = {});
+std::string simulatorLibraryPath();
+
+// log: the driver's retries and reconnects (default: stderr).
+std::unique_ptr<drivers::PoseSource> openPoseSource(const std::string& spec, const std::string& profile,
+                                                    DeviceLog log = {});
+
+}  // namespace keyturn::rig

@@ -1,0 +1,53 @@
+#include "keyturn/rig/devices.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <iostream>
+
+#include "keyturn/core/error.h"
+#include "keyturn/drivers/canopen_pose.h"
+#include "keyturn/drivers/modbus_turntable.h"
+#include "keyturn/drivers/sr4000_camera.h"
+
+#ifndef KEYTURN_MESASR_SIM_DEFAULT
+#define KEYTURN_MESASR_SIM_DEFAULT "libmesasr.so"
+#endif
+
+namespace keyturn::rig {
+
+std::string simulatorLibraryPath() {
+  const char* env = std::getenv("KEYTURN_MESASR_SIM");
+  return env && *env ? env : KEYTURN_MESASR_SIM_DEFAULT;
+}
+
+std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
+                                               const std::string& library, DeviceLog log) {
+  drivers::Sr4000Options options;
+  options.log = log ? std::move(log) : [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
+  if (spec == "sim") {
+    if (!sim_config.empty()) ::setenv("MESASR_SIM_CONFIG", sim_config.c_str(), 1);
+    return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(simulatorLibraryPath()),
+                                                   drivers::Sr4000Connection::parse("usb"), options);
+  }
+  const auto connection = drivers::Sr4000Connection::parse(spec);  // validate before loading
+  return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(library), connection, options);
+}
+
+std::unique_ptr<drivers::PoseSource> openPoseSource(const std::string& spec, const std::string& profile,
+                                                    DeviceLog log) {
+  drivers::ModbusOptions o;
+  o.log = log ? std::move(log) : [](const std::string& l) { std::fprintf(stderr, "keyturn: turntable: %s\n", l.c_str()); };
+  if (spec.rfind("modbus-", 0) == 0)
+    return std::make_unique<drivers::ModbusTurntable>(drivers::ModbusEndpoint::parse(spec),
+                                                      drivers::ModbusTurntableProfile::load(profile), o);
+  if (spec.rfind("can:", 0) == 0) {
+    // CANopen axes over SocketCAN; the axes file takes the profile's place.
+    if (profile.empty() || profile == "keyturn-sim")
+      throw Error("--pose " + spec + " needs --profile AXES.json (the CANopen nodes: see docs/protocols.md)");
+    return std::make_unique<drivers::CanOpenPoseSource>(std::make_unique<drivers::SocketCanBus>(spec.substr(4)),
+                                                        drivers::CanOpenAxis::loadAll(profile));
+  }
+  throw Error("--pose '" + spec + "': expected sim, modbus-tcp:HOST:PORT, modbus-rtu:DEVICE or can:IFACE");
+}
+
+}  // namespace keyturn::rig

@@ -1,0 +1,89 @@
+#include "keyturn/rig/simulated_rig.h"
+
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+
+#include "keyturn/drivers/modbus_turntable.h"
+#include "keyturn/sim/mesasr_sim_config.h"
+#include "keyturn/sim/mesh.h"
+#include "keyturn/sim/tof_view.h"
+
+namespace fs = std::filesystem;
+
+namespace keyturn::rig {
+
+void useSimulatedCameraConfig(const SimulatedRigFiles& files) {
+  ::setenv("MESASR_SIM_CONFIG", files.cameraConfig().c_str(), 1);
+}
+
+std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles& files, const SimulatedCameraOptions& o,
+                                                        Eigen::Matrix4d* camera_from_turntable, DeviceLog log) {
+  fs::create_directories(files.dir);
+  sim::MesaSrSimConfig c;
+  c.mesh = o.mesh.rfind("builtin:", 0) == 0 ? o.mesh : fs::absolute(o.mesh).string();
+  c.elevation = o.elevation_deg;
+  c.distance = o.distance;
+  c.seed = o.seed;
+  c.faults.random_rate = o.fault_rate;
+  c.frame_rate = o.frame_rate;
+  c.world = o.world.empty() ? "" : fs::absolute(o.world).string();
+  c.unplug_file = o.unplug_file;
+  c.save(files.cameraConfig());
+  if (camera_from_turntable) {
+    sim::SceneView view;
+    view.distance = o.distance;
+    view.elevation_deg = o.elevation_deg;
+    *camera_from_turntable = sim::cameraFromTurntable(sim::loadMeshOrBuiltin(c.mesh), view);
+  }
+  return openCamera("sim", "", "", std::move(log));
+}
+
+SimulatedTurntable::SimulatedTurntable(sim::TurntableServerOptions so, DeviceLog log) {
+  server_ = std::make_unique<sim::TurntableServer>(so);
+  drivers::ModbusOptions mo;
+  mo.log = log ? std::move(log) : [](const std::string& l) { std::fprintf(stderr, "keyturn: turntable: %s\n", l.c_str()); };
+  client_ = std::make_unique<drivers::ModbusTurntable>(drivers::ModbusEndpoint::parse(server_->endpoint()),
+                                                       drivers::ModbusTurntableProfile::load("keyturn-sim"), mo);
+}
+
+SimulatedTurntable::~SimulatedTurntable() {
+  client_.reset();  // the client goes first: it talks to the server
+}
+
+drivers::Pose SimulatedTurntable::read() { return client_->read(); }
+void SimulatedTurntable::moveTo(double deg) { client_->moveTo(deg); }
+void SimulatedTurntable::home() { client_->home(); }
+void SimulatedTurntable::stop() { client_->stop(); }
+std::string SimulatedTurntable::describe() const { return "simulated turntable, " + client_->describe(); }
+
+sim::TurntableMotion captureMotion(bool fast) {
+  sim::TurntableMotion m;
+  m.max_speed_deg_s = fast ? 7200 : 720;
+  m.max_accel_deg_s2 = fast ? 1.44e6 : 14400;
+  m.settle_s = fast ? 0.0 : 0.005;
+  m.jitter_deg = fast ? 0.0 : 0.01;
+  return m;
+}
+
+SimulatedRig openSimulatedRig(const SimulatedRigOptions& o) {
+  const SimulatedRigFiles files{o.dir};
+  fs::create_directories(files.dir);
+  useSimulatedCameraConfig(files);
+  SimulatedCameraOptions camera = o.camera;
+  if (o.simulated_pose) camera.world = fs::absolute(files.world()).string();
+  else camera.world = o.world;
+  SimulatedRig rig;
+  if (o.simulated_pose) {
+    sim::TurntableServerOptions so;
+    so.world_file = camera.world;
+    so.motion = captureMotion(o.fast);
+    so.seed = o.camera.seed;
+    so.faults.random_rate = o.camera.fault_rate;
+    rig.turntable = std::make_unique<SimulatedTurntable>(so);
+  }
+  rig.camera = openSimulatedCamera(files, camera, &rig.camera_from_turntable);
+  return rig;
+}
+
+}  // namespace keyturn::rig

@@ -1,0 +1,123 @@
+// The dataset feature cache: its name for the default parameters (existing caches
+// stay valid), layouts of some blocks computing the same values as the whole cache,
+// and the cache reused, refilled and merged from shards.
+#include "keyturn/learning/feature_cache.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <filesystem>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+#include "keyturn/sim/mesh.h"
+#include "keyturn/sim/tof_view.h"
+
+using namespace keyturn;
+using namespace keyturn::learning;
+namespace fs = std::filesystem;
+
+namespace {
+
+class Counting final : public DescribeProgress {
+ public:
+  void begin(std::size_t views) override { begun += views; }
+  void viewDone() override { ++done; }
+  void end() override {}
+  void note(const std::string& line) override { notes.push_back(line); }
+  void warning(const std::string& line) override { notes.push_back(line); }
+  std::size_t begun = 0;
+  std::atomic<std::size_t> done{0};
+  std::vector<std::string> notes;
+};
+
+// Three simulated views of the mug in a dataset-like folder.
+std::vector<LabelledView> writeViews(const fs::path& root) {
+  fs::create_directories(root / "mug");
+  const sim::TofViewRenderer renderer(sim::loadMeshOrBuiltin("builtin:mug"));
+  std::vector<LabelledView> views;
+  for (int i = 0; i < 3; ++i) {
+    sim::SceneView v;
+    v.turntable_deg = 40.0 * i;
+    v.seed = 3 + i;
+    const std::string id = "mug/a" + std::to_string(40 * i);
+    saveCloud((root / (id + ".pcd")).string(), renderer.render(v));
+    views.push_back({id, (root / (id + ".pcd")).string(), "mug", "builtin", "30"});
+  }
+  return views;
+}
+
+std::vector<float> block(const FeatureTable& t, const FeatureRow& r, const std::string& b) {
+  const int o = t.offset(b);
+  return std::vector<float>(r.values.begin() + o, r.values.begin() + o + t.blockSize(b));
+}
+
+}  // namespace
+
+TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
+  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_blocks";
+  fs::remove_all(root);
+  const auto views = writeViews(root);
+  const DescriptorOptions o;
+  const FeatureTable all = featureLayout(cacheBlocks(), o);
+  const FeatureTable some = featureLayout({"gkpd2", "kpd2", "u_kpa3"}, o);
+  const auto full = describeViews(views, o, all, 2, nullptr);
+  const auto part = describeViews(views, o, some, 2, nullptr);
+  ASSERT_EQ(part.size(), 3u);
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    ASSERT_EQ(part[v].values.size(), 3u * 32u);
+    EXPECT_GT(part[v].keypoints, 5);
+    EXPECT_EQ(part[v].keypoints, full[v].keypoints);
+    for (const std::string b : {"gkpd2", "kpd2", "u_kpa3"}) {
+      EXPECT_EQ(block(some, part[v], b), block(all, full[v], b)) << views[v].id << " " << b;
+      EXPECT_FALSE(std::isnan(block(some, part[v], b).front()));
+    }
+  }
+  EXPECT_FALSE(std::isnan(block(all, full[0], "esf").front())) << "the whole cache holds the peers";
+}
+
+TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
+  // The default parameters keep the name existing caches have.
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-28687a18a63057c8.csv");
+  DescriptorOptions other;
+  other.histogram.bins = 16;
+  EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-28687a18a63057c8.shard-2-of-4.csv");
+  const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
+  EXPECT_EQ(all.width(), 15 * 32 + 640 + 308 + 308);
+  EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);
+
+  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_refill";
+  fs::remove_all(root);
+  auto views = writeViews(root);
+  DescriptorOptions o;
+  o.histogram.bins = 8;
+  Counting first;
+  const std::vector<LabelledView> two(views.begin(), views.begin() + 2);
+  const FeatureTable t2 = loadOrDescribeCache({root.string(), two, o, 2, &first});
+  EXPECT_EQ(first.begun, 2u);
+  EXPECT_EQ(t2.rows.size(), 2u);
+  EXPECT_TRUE(fs::exists(featureCachePath(root.string(), o)));
+  Counting second;
+  const FeatureTable t3 = loadOrDescribeCache({root.string(), views, o, 2, &second});
+  EXPECT_EQ(second.begun, 1u) << "only the new view is described";
+  ASSERT_EQ(t3.rows.size(), 3u);
+  EXPECT_EQ(t3.rows[0].values, t2.rows[0].values);
+  EXPECT_EQ(t3.rows[2].id, views[2].id);
+
+  // Shards of another folder merge into the same table.
+  const fs::path sharded = fs::temp_directory_path() / "keyturn_feature_cache_shards";
+  fs::remove_all(sharded);
+  Counting shards;
+  for (int s = 0; s < 2; ++s) describeCacheShard({sharded.string(), views, o, 1, &shards}, s, 2);
+  EXPECT_EQ(shards.begun, 3u);
+  Counting merge;
+  const FeatureTable merged = loadOrDescribeCache({sharded.string(), views, o, 1, &merge});
+  EXPECT_EQ(merge.begun, 0u);
+  ASSERT_EQ(merge.notes.size(), 1u);
+  EXPECT_EQ(merge.notes[0], "merged 2 feature shards");
+  ASSERT_EQ(merged.rows.size(), 3u);
+  for (std::size_t v = 0; v < 3; ++v) EXPECT_EQ(merged.rows[v].values, t3.rows[v].values);
+  EXPECT_THROW(describeCacheShard({sharded.string(), views, o, 1, nullptr}, 2, 2), Error);
+}
