@@ -115,6 +115,20 @@ TEST(PlyReader, MalformedFilesAreOneClearLine) {
        "bad list length -4"},
       {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
        "promises 99999999999 items"},
+      // List lengths past any integer type: named as written, never cast (was UB in the message).
+      {"hugelist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nend_header\n66666666666666666666666 1\n",
+       "bad list length 6.666666667e+22 in element 'face' item 0"},
+      {"inflist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nend_header\ninf 1\n",
+       "bad list length inf"},
+      {"bigbin.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uint int v\nend_header\n" +
+                         bytesOf<std::uint32_t>(4000000000u, false) + std::string(8, '\0'),
+       "bad list length 4000000000"},
+      // A token is a number only as a whole: strtod stops at a NUL byte, and a 64-character
+      // cap must not split a long one in two.
+      {"nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1") + std::string(2, '\0') + "\n",
+       "bad number '1?" "?'"},
+      {"long.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n" + std::string(70, '6') + "\n",
+       "a number longer than 64 characters ('66666666666666666666...')"},
   };
   for (const auto& c : cases) {
     const std::string path = write(c.name, c.bytes);
