@@ -2,7 +2,9 @@
 
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 
+#include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::learning {
@@ -28,6 +30,17 @@ class SpecReader {
     const double v = std::strtod(t.c_str(), &end);
     if (t.empty() || *end != '\0') throw Error(source_ + ": feature spec '" + key + "' is not a number: '" + t + "'");
     return v;
+  }
+  // Integers are parsed as integers: through a double, a seed past 2^53 loses
+  // digits and 1e30 bins would be cast to int undefined.
+  template <typename T>
+  T integer(const std::string& key, T lo, T hi) const {
+    const std::string& t = text(key);
+    const auto v = parseIntegerIn(t, lo, hi);
+    if (!v)
+      throw Error(source_ + ": feature spec '" + key + "' is not an integer in " + std::to_string(lo) + ".." +
+                  std::to_string(hi) + ": '" + t.substr(0, 40) + "'");
+    return *v;
   }
   bool onOff(const std::string& key) const {
     const std::string& t = text(key);
@@ -68,7 +81,7 @@ FeatureParams featureParamsFromSpec(const std::map<std::string, std::string>& sp
                 std::to_string(kFeatureCacheVersion));
   if (r.text("keypoints") != "iss") throw Error(source + ": keypoints '" + r.text("keypoints") + "' (only iss is known)");
   FeatureParams p;
-  p.bins = static_cast<int>(r.number("bins"));
+  p.bins = r.integer("bins", 2, 4096);
   p.range = r.text("range");
   p.extent = r.number("extent_m");
   p.filter = r.onOff("filter");
@@ -79,9 +92,8 @@ FeatureParams featureParamsFromSpec(const std::map<std::string, std::string>& sp
   p.iss_nms = r.number("iss_nms");
   p.iss_density = r.number("iss_density");
   p.graph_radius = r.number("graph_radius");
-  p.osada_samples = static_cast<int>(r.number("osada_samples"));
-  p.seed = static_cast<unsigned long long>(r.number("seed"));
-  if (p.bins < 2 || p.bins > 4096) throw Error(source + ": feature spec bins " + r.text("bins") + " is outside 2..4096");
+  p.osada_samples = r.integer("osada_samples", 0, std::numeric_limits<int>::max());
+  p.seed = r.integer("seed", 0ull, std::numeric_limits<unsigned long long>::max());
   return p;
 }
 
