@@ -92,6 +92,19 @@ TEST(PlyReader, OrganizedCloudWrittenByKeyturnKeepsItsGrid) {
     if (c.points[i].allFinite()) EXPECT_NEAR((r.points[i] - c.points[i]).norm(), 0.f, 1e-6f);
 }
 
+TEST(PlyReader, AGridWhoseSidesMultiplyToTheCountOnlyModulo2To64IsIgnored) {
+  // 8589934605 × 545761658833005647 = 3 (mod 2^64): multiplied, the check passed and the
+  // cloud became a 13 × 1321528399 "grid" (the sides cut to 32 bits) over 3 points.
+  const std::string path = write("grid.ply",
+                                 "ply\nformat ascii 1.0\nobj_info num_cols 8589934605\nobj_info num_rows 545761658833005647\n"
+                                 "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                                 "0 0 1\n0 1 1\n1 0 1\n");
+  const Cloud c = loadCloud(path);
+  EXPECT_EQ(c.width, 3u);
+  EXPECT_EQ(c.height, 1u);
+  ASSERT_EQ(c.size(), 3u);
+}
+
 TEST(PlyReader, MalformedFilesAreOneClearLine) {
   struct Case {
     const char* name;
