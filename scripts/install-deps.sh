@@ -1,14 +1,17 @@
 #!/usr/bin/env bash
 # Installs every Debian 12 package keyturn needs to build, test and run.
 # Idempotent and quick when everything is already there: it only calls apt-get
-# for packages that dpkg does not report as installed.
+# for packages that dpkg does not report as installed. Then it checks that every
+# command the build, test and demo scripts call is on PATH.
 set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+source "$here/toolchain.sh"
 
 packages=(
   # toolchain
   build-essential cmake ninja-build ccache pkg-config
   # the hardening build: clang with AddressSanitizer, UBSan and libFuzzer
-  clang-14 libclang-rt-14-dev
+  clang-$KEYTURN_CLANG_VERSION libclang-rt-$KEYTURN_CLANG_VERSION-dev
   # point clouds (PCL pulls in Eigen, FLANN, Boost and VTK)
   libpcl-dev libeigen3-dev
   # ray casting for the simulated SR4000 views
@@ -39,6 +42,24 @@ packages=(
   jq
 )
 
+# Commands the scripts and tests call (a package can be installed and still not
+# provide the name a script uses: clang-14 has no 'clang').
+commands=(
+  cc c++ cmake ctest ninja ccache pkg-config "$KEYTURN_CC" "$KEYTURN_CXX"
+  xvfb-run Xvfb xauth mbpoll umockdev-run umockdev-wrapper
+)
+
+check_commands() {
+  local absent=()
+  for c in "${commands[@]}"; do
+    command -v "$c" > /dev/null || absent+=("$c")
+  done
+  if [ ${#absent[@]} -ne 0 ]; then
+    echo "install-deps: commands the scripts call are not on PATH: ${absent[*]}" >&2
+    exit 1
+  fi
+}
+
 missing=()
 for p in "${packages[@]}"; do
   if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
@@ -47,7 +68,8 @@ for p in "${packages[@]}"; do
 done
 
 if [ ${#missing[@]} -eq 0 ]; then
-  echo "install-deps: all ${#packages[@]} packages present"
+  check_commands
+  echo "install-deps: all ${#packages[@]} packages and ${#commands[@]} commands present"
   exit 0
 fi
 
@@ -57,3 +79,5 @@ if [ "$(id -u)" -ne 0 ]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"
+check_commands
+echo "install-deps: installed ${#missing[@]} packages; all ${#commands[@]} commands present"

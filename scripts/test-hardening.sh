@@ -4,9 +4,10 @@
 # reproducible libFuzzer runs of every loader of outside data. Part of scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
+source scripts/toolchain.sh
 B=${HARDENING_BUILD_DIR:-build-hardening}
 if [ ! -f "$B/build.ninja" ]; then
-  CC=clang CXX=clang++ cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKEYTURN_HARDENING=ON
+  CC=$KEYTURN_CC CXX=$KEYTURN_CXX cmake -S . -B "$B" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DKEYTURN_HARDENING=ON
 fi
 cmake --build "$B" --parallel "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1

@@ -229,7 +229,9 @@ void applyGrid(const PlyData& ply, Cloud& cloud) {
     if (key == "num_cols") cols = static_cast<std::size_t>(v);
     if (key == "num_rows") rows = static_cast<std::size_t>(v);
   }
-  if (cols != 0 && rows != 0 && cols * rows == cloud.points.size()) {
+  // Divided, not multiplied: two huge header values can multiply (mod 2^64) to the point count.
+  const std::size_t n = cloud.points.size();
+  if (cols != 0 && rows != 0 && n % cols == 0 && n / cols == rows) {
     cloud.width = static_cast<std::uint32_t>(cols);
     cloud.height = static_cast<std::uint32_t>(rows);
   }

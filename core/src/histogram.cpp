@@ -13,7 +13,10 @@ std::vector<double> histogramPdf(const std::vector<float>& values, int bins, His
   int outside = 0;
   for (float v : values) {
     if (!std::isfinite(v)) continue;
-    int b = width > 0 ? static_cast<int>(std::floor((v - range.lo) / width * bins)) : 0;
+    // The bin is found in double and bounded before it becomes an int: a far
+    // outlier from a file (1e30 m) is far past INT_MAX bins.
+    const double t = width > 0 ? std::floor((v - range.lo) / width * bins) : 0.0;
+    int b = !(t >= 0) ? -1 : t > bins ? bins + 1 : static_cast<int>(t);
     if (b < 0 || b >= bins) {
       // The upper edge itself belongs to the last bin; anything beyond is clamped.
       if (!(b == bins && v <= range.hi)) ++outside;

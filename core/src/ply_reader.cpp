@@ -8,6 +8,7 @@
 #include <iterator>
 #include <sstream>
 
+#include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn {
@@ -49,6 +50,13 @@ double decode(const unsigned char* p, const std::string& t, bool swap) {
   return as(double{});
 }
 
+// A token for a message: control bytes (NUL, ESC…) shown as '?'.
+std::string printable(std::string s) {
+  for (char& c : s)
+    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
+  return s;
+}
+
 bool isIntegerType(const std::string& t) {
   return typeSize(t) != 0 && t != "float" && t != "float32" && t != "double" && t != "float64";
 }
@@ -77,10 +85,14 @@ class Payload {
     std::size_t stop = pos_;
     while (stop < end && !std::isspace(static_cast<unsigned char>(bytes_[stop]))) ++stop;
     const std::string token = bytes_.substr(pos_, stop - pos_);
+    if (stop == end && end < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[end])))
+      fail(path_, "a number longer than 64 characters ('" + printable(token.substr(0, 20)) + "...') in " + what);
     pos_ = stop;
     char* tail = nullptr;
     const double v = std::strtod(token.c_str(), &tail);
-    if (token.empty() || *tail != '\0') fail(path_, "bad number '" + token.substr(0, 20) + "' in " + what);
+    // The whole token must be the number: a NUL byte would end it early for strtod.
+    if (token.empty() || tail != token.c_str() + token.size())
+      fail(path_, "bad number '" + printable(token.substr(0, 20)) + "' in " + what);
     if (isIntegerType(type) && v != std::floor(v)) fail(path_, "non-integer '" + token.substr(0, 20) + "' in " + what);
     return v;
   }
@@ -210,9 +222,9 @@ PlyData readPly(const std::string& path) {
           continue;
         }
         const double n = in.next(p.count_type, what);
-        if (n < 0 || n > static_cast<double>(kMaxListLength))
-          fail(path, "bad list length " + std::to_string(static_cast<long long>(n)) + " in " + what);
-        for (std::size_t k = 0; k < static_cast<std::size_t>(n); ++k) p.values.push_back(in.next(p.value_type, what));
+        const auto len = integerIn<std::size_t>(n, 0, kMaxListLength);
+        if (!len) fail(path, "bad list length " + numberText(n) + " in " + what);
+        for (std::size_t k = 0; k < *len; ++k) p.values.push_back(in.next(p.value_type, what));
         p.offsets.push_back(p.values.size());
       }
     }

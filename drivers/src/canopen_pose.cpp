@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_integer.h"
 #include "keyturn/drivers/retry.h"
 
 namespace keyturn::drivers {
@@ -52,14 +53,13 @@ std::vector<CanOpenAxis> CanOpenAxis::loadAll(const std::string& path) {
     try {
       CanOpenAxis a;
       a.name = j[i].at("name").get<std::string>();
-      a.node_id = j[i].at("node").get<int>();
+      a.node_id = jsonInteger(j[i], "node", 1, 127, where);
       const std::string dev = j[i].value("device", "cia406");
       if (dev == "cia406") a.device = Device::Encoder406;
       else if (dev == "cia402") a.device = Device::Drive402;
       else throw Error(where + ": device must be cia406 or cia402");
       a.scale = j[i].value("scale", 1e-6);
       a.offset = j[i].value("offset", 0.0);
-      if (a.node_id < 1 || a.node_id > 127) throw Error(where + ": node id must be 1..127");
       if (a.name != "x" && a.name != "y" && a.name != "z" && a.name != "turntable")
         throw Error(where + ": name must be x, y, z or turntable");
       out.push_back(a);

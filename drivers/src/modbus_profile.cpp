@@ -2,10 +2,12 @@
 
 #include <cmath>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_integer.h"
 
 namespace keyturn::drivers {
 namespace {
@@ -35,18 +37,26 @@ ModbusRegister parseRegister(const nlohmann::json& j, const std::string& where) 
   if (fn == "holding") r.function = ModbusRegister::Function::Holding;
   else if (fn == "input") r.function = ModbusRegister::Function::Input;
   else throw Error(where + ": function must be holding or input, not '" + fn + "'");
-  r.address = j.at("address").get<int>();
-  r.bits = j.value("bits", 16);
+  r.bits = jsonInteger(j, "bits", 16, 16, 32, where);
   if (r.bits != 16 && r.bits != 32) throw Error(where + ": bits must be 16 or 32");
+  r.address = jsonInteger(j, "address", 0, 65535 - (r.bits / 16 - 1), where);
   const std::string wo = j.value("word_order", "high_first");
   if (wo != "high_first" && wo != "low_first") throw Error(where + ": word_order must be high_first or low_first");
   r.high_word_first = wo == "high_first";
   r.is_signed = j.value("signed", false);
-  if (r.address < 0 || r.address > 65535 - (r.bits / 16 - 1)) throw Error(where + ": address out of 0..65535");
   return r;
 }
 
-ModbusWrite parseWrite(const nlohmann::json& j) { return {j.at("address").get<int>(), j.at("value").get<int>()}; }
+// A register write: address and 16-bit value.
+ModbusWrite parseWrite(const nlohmann::json& j, const std::string& where) {
+  return {jsonInteger(j, "address", 0, 65535, where), jsonInteger(j, "value", 0, 65535, where)};
+}
+
+// Status bits of a 16-bit register: a bit number past 15 would shift out of range.
+ModbusStatus parseStatus(const nlohmann::json& j, const std::string& where) {
+  return {jsonInteger(j, "address", 0, 65535, where), jsonInteger(j, "moving_bit", 0, 0, 15, where),
+          jsonInteger(j, "in_position_bit", 1, 0, 15, where)};
+}
 
 }  // namespace
 
@@ -73,24 +83,24 @@ ModbusTurntableProfile ModbusTurntableProfile::fromJson(const std::string& text,
     p.position = parseRegister(j.at("position"), source + ": position");
     p.counts_per_revolution = j.at("counts_per_revolution").get<double>();
     p.zero_offset_deg = j.value("zero_offset_deg", 0.0);
-    p.direction = j.value("direction", 1);
+    p.direction = jsonInteger(j, "direction", 1, std::numeric_limits<int>::min(), std::numeric_limits<int>::max(), source);
     if (j.contains("commands")) {
       const auto& c = j.at("commands");
       if (c.contains("target")) p.target = parseRegister(c.at("target"), source + ": commands.target");
-      if (c.contains("start")) p.start = parseWrite(c.at("start"));
-      if (c.contains("home")) p.home = parseWrite(c.at("home"));
-      if (c.contains("stop")) p.stop = parseWrite(c.at("stop"));
-      if (c.contains("status")) {
-        const auto& s = c.at("status");
-        p.status = ModbusStatus{s.at("address").get<int>(), s.value("moving_bit", 0), s.value("in_position_bit", 1)};
-      }
+      if (c.contains("start")) p.start = parseWrite(c.at("start"), source + ": commands.start");
+      if (c.contains("home")) p.home = parseWrite(c.at("home"), source + ": commands.home");
+      if (c.contains("stop")) p.stop = parseWrite(c.at("stop"), source + ": commands.stop");
+      if (c.contains("status")) p.status = parseStatus(c.at("status"), source + ": commands.status");
     }
   } catch (const Error&) {
     throw;
   } catch (const std::exception& e) {
     throw Error(source + ": bad Modbus profile: " + e.what());
   }
-  if (!(p.counts_per_revolution > 0)) throw Error(source + ": counts_per_revolution must be positive");
+  // Bounded so that a target in counts fits the 32-bit register it is written to.
+  if (!(p.counts_per_revolution > 0 && p.counts_per_revolution <= 4294967296.0))
+    throw Error(source + ": counts_per_revolution must be in (0, 2^32]");
+  if (!(std::abs(p.zero_offset_deg) <= 360)) throw Error(source + ": zero_offset_deg must be in -360..360");
   if (p.direction != 1 && p.direction != -1) throw Error(source + ": direction must be 1 or -1");
   return p;
 }

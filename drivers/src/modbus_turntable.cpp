@@ -7,6 +7,7 @@
 #include <cmath>
 #include <thread>
 
+#include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/retry.h"
 
@@ -49,16 +50,19 @@ ModbusEndpoint ModbusEndpoint::parse(const std::string& text) {
     throw Error("pose source '" + text + "': expected modbus-tcp:HOST:PORT or modbus-rtu:DEVICE");
   }
   if (const auto at = rest.rfind('@'); at != std::string::npos) {
-    e.unit_id = std::atoi(rest.c_str() + at + 1);
+    // Parsed whole, not with atoi: "@4294967297" must not wrap to unit 1.
+    const auto id = parseIntegerIn(std::string_view(rest).substr(at + 1), 1, 247);
+    if (!id) throw Error("pose source '" + text + "': unit id must be 1..247");
+    e.unit_id = *id;
     rest.resize(at);
-    if (e.unit_id < 1 || e.unit_id > 247) throw Error("pose source '" + text + "': unit id must be 1..247");
   }
   if (e.kind == Kind::Tcp) {
     const auto colon = rest.rfind(':');
     if (colon == std::string::npos) throw Error("pose source '" + text + "': expected HOST:PORT");
     e.host = rest.substr(0, colon);
-    e.port = std::atoi(rest.c_str() + colon + 1);
-    if (e.host.empty() || e.port <= 0 || e.port > 65535) throw Error("pose source '" + text + "': bad host or port");
+    const auto port = parseIntegerIn(std::string_view(rest).substr(colon + 1), 1, 65535);
+    if (e.host.empty() || !port) throw Error("pose source '" + text + "': bad host or port");
+    e.port = *port;
   } else {
     // DEVICE[:BAUD[:8N1]]
     std::vector<std::string> parts;
@@ -68,7 +72,7 @@ ModbusEndpoint ModbusEndpoint::parse(const std::string& text) {
     parts.push_back(rest.substr(start));
     e.device = parts[0];
     if (e.device.empty()) throw Error("pose source '" + text + "': no serial device");
-    if (parts.size() > 1) e.baud = std::atoi(parts[1].c_str());
+    if (parts.size() > 1) e.baud = parseIntegerIn(parts[1], 1, 10000000).value_or(0);
     if (parts.size() > 2) {
       const std::string& f = parts[2];
       if (f.size() != 3 || (f[1] != 'N' && f[1] != 'E' && f[1] != 'O'))

@@ -3,9 +3,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_integer.h"
 
 namespace fs = std::filesystem;
 
@@ -32,17 +34,18 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
     c.elevation = j.value("elevation", c.elevation);
     c.turntable_deg = j.value("turntable_deg", c.turntable_deg);
     c.world = j.value("world", c.world);
-    c.serial = j.value("serial", c.serial);
-    c.seed = j.value("seed", c.seed);
+    c.serial = jsonInteger(j, "serial", c.serial, std::uint32_t{0}, std::numeric_limits<std::uint32_t>::max(), path);
+    c.seed = jsonInteger(j, "seed", c.seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), path);
     c.frame_rate = j.value("frame_rate", c.frame_rate);
     c.unplug_file = j.value("unplug_file", c.unplug_file);
     if (!(c.frame_rate >= 0 && c.frame_rate <= 1000)) throw Error(path + ": frame_rate must be in [0, 1000]");
     if (j.contains("faults")) {
       const auto& f = j.at("faults");
       c.faults.open_fail = f.value("open_fail", false);
-      c.faults.timeout_every = f.value("timeout_every", 0);
-      c.faults.corrupt_every = f.value("corrupt_every", 0);
-      c.faults.disconnect_after = f.value("disconnect_after", 0);
+      const int most = std::numeric_limits<int>::max();
+      c.faults.timeout_every = jsonInteger(f, "timeout_every", 0, 0, most, path + ": faults");
+      c.faults.corrupt_every = jsonInteger(f, "corrupt_every", 0, 0, most, path + ": faults");
+      c.faults.disconnect_after = jsonInteger(f, "disconnect_after", 0, 0, most, path + ": faults");
       c.faults.random_rate = f.value("random_rate", 0.0);
       if (!(c.faults.random_rate >= 0 && c.faults.random_rate <= 1)) throw Error(path + ": random_rate must be in [0, 1]");
     }

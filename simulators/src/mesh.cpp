@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/ply_reader.h"
 
@@ -45,16 +46,21 @@ Mesh loadPly(const std::string& path) {
   const PlyProperty* idx = face->find("vertex_indices");
   if (!idx) idx = face->find("vertex_index");
   if (!idx || !idx->is_list) throw Error(path + ": PLY face element has no vertex_indices list");
-  const double n = static_cast<double>(mesh.vertices.size());
+  const int last = static_cast<int>(mesh.vertices.size()) - 1;
+  std::vector<int> corner;
   for (std::size_t f = 0; f < face->count; ++f) {
     const double* v = idx->values.data() + idx->offsets[f];
     const std::size_t len = idx->offsets[f + 1] - idx->offsets[f];
-    for (std::size_t k = 0; k < len; ++k)
-      if (v[k] < 0 || v[k] >= n)
-        throw Error(path + ": face " + std::to_string(f) + " refers to vertex outside 0.." +
-                    std::to_string(mesh.vertices.size() - 1));
-    for (std::size_t k = 2; k < len; ++k)
-      mesh.triangles.emplace_back(static_cast<int>(v[0]), static_cast<int>(v[k - 1]), static_cast<int>(v[k]));
+    corner.clear();
+    // Checked as doubles: a float-typed list may hold NaN, fractions or 1e30.
+    for (std::size_t k = 0; k < len; ++k) {
+      const auto i = integerIn(v[k], 0, last);
+      if (!i)
+        throw Error(path + ": face " + std::to_string(f) + " refers to vertex " + numberText(v[k]) +
+                    ", not a vertex index in 0.." + std::to_string(last));
+      corner.push_back(*i);
+    }
+    for (std::size_t k = 2; k < len; ++k) mesh.triangles.emplace_back(corner[0], corner[k - 1], corner[k]);
   }
   return mesh;
 }

@@ -27,6 +27,16 @@ TEST(Histogram, OutOfRangeIsClampedAndCountedNaNIgnored) {
   EXPECT_DOUBLE_EQ(pdf[3], 1.0 / 3);
 }
 
+TEST(Histogram, FarOutliersPastIntRangeAreClamped) {
+  // (v - lo) / width * bins is ~1e31 and -1e31 here: bounded before it becomes an int.
+  int clamped = 0;
+  const auto pdf = histogramPdf({1e30f, -1e30f, 0.3f, 3e38f}, 8, {0.0, 0.5}, &clamped);
+  EXPECT_EQ(clamped, 3);
+  EXPECT_DOUBLE_EQ(pdf[0], 1.0 / 4);
+  EXPECT_DOUBLE_EQ(pdf[4], 1.0 / 4);
+  EXPECT_DOUBLE_EQ(pdf[7], 2.0 / 4);
+}
+
 TEST(Histogram, EmptyInputGivesZeros) {
   const auto pdf = histogramPdf({}, 8, {0.0, 1.0});
   ASSERT_EQ(pdf.size(), 8u);

@@ -92,6 +92,19 @@ TEST(PlyReader, OrganizedCloudWrittenByKeyturnKeepsItsGrid) {
     if (c.points[i].allFinite()) EXPECT_NEAR((r.points[i] - c.points[i]).norm(), 0.f, 1e-6f);
 }
 
+TEST(PlyReader, AGridWhoseSidesMultiplyToTheCountOnlyModulo2To64IsIgnored) {
+  // 8589934605 × 545761658833005647 = 3 (mod 2^64): multiplied, the check passed and the
+  // cloud became a 13 × 1321528399 "grid" (the sides cut to 32 bits) over 3 points.
+  const std::string path = write("grid.ply",
+                                 "ply\nformat ascii 1.0\nobj_info num_cols 8589934605\nobj_info num_rows 545761658833005647\n"
+                                 "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
+                                 "0 0 1\n0 1 1\n1 0 1\n");
+  const Cloud c = loadCloud(path);
+  EXPECT_EQ(c.width, 3u);
+  EXPECT_EQ(c.height, 1u);
+  ASSERT_EQ(c.size(), 3u);
+}
+
 TEST(PlyReader, MalformedFilesAreOneClearLine) {
   struct Case {
     const char* name;
@@ -115,6 +128,20 @@ TEST(PlyReader, MalformedFilesAreOneClearLine) {
        "bad list length -4"},
       {"huge.ply", "ply\nformat ascii 1.0\nelement vertex 99999999999\nproperty float x\nend_header\n",
        "promises 99999999999 items"},
+      // List lengths past any integer type: named as written, never cast (was UB in the message).
+      {"hugelist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nend_header\n66666666666666666666666 1\n",
+       "bad list length 6.666666667e+22 in element 'face' item 0"},
+      {"inflist.ply", "ply\nformat ascii 1.0\nelement face 1\nproperty list uchar int v\nend_header\ninf 1\n",
+       "bad list length inf"},
+      {"bigbin.ply", "ply\nformat binary_little_endian 1.0\nelement face 1\nproperty list uint int v\nend_header\n" +
+                         bytesOf<std::uint32_t>(4000000000u, false) + std::string(8, '\0'),
+       "bad list length 4000000000"},
+      // A token is a number only as a whole: strtod stops at a NUL byte, and a 64-character
+      // cap must not split a long one in two.
+      {"nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1") + std::string(2, '\0') + "\n",
+       "bad number '1?" "?'"},
+      {"long.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n" + std::string(70, '6') + "\n",
+       "a number longer than 64 characters ('66666666666666666666...')"},
   };
   for (const auto& c : cases) {
     const std::string path = write(c.name, c.bytes);

@@ -120,7 +120,12 @@ TEST(CanOpen, AxesFileErrorsAreNamed) {
   std::ofstream(p) << R"([{"name": "w", "node": 1}])";
   EXPECT_NE(errorOf([&] { CanOpenAxis::loadAll(p); }).find("axis 0: name must be x, y, z or turntable"), std::string::npos);
   std::ofstream(p) << R"([{"name": "x", "node": 200}])";
-  EXPECT_NE(errorOf([&] { CanOpenAxis::loadAll(p); }).find("node id must be 1..127"), std::string::npos);
+  EXPECT_EQ(errorOf([&] { CanOpenAxis::loadAll(p); }), p + ": axis 0: node must be an integer in 1..127, not 200");
+  // Not cast: 1e30 would be undefined behaviour, 4294967297 would wrap to node 1.
+  std::ofstream(p) << R"([{"name": "x", "node": 1e30}])";
+  EXPECT_EQ(errorOf([&] { CanOpenAxis::loadAll(p); }), p + ": axis 0: node must be an integer in 1..127, not 1e+30");
+  std::ofstream(p) << R"([{"name": "x", "node": 4294967297}])";
+  EXPECT_EQ(errorOf([&] { CanOpenAxis::loadAll(p); }), p + ": axis 0: node must be an integer in 1..127, not 4294967297");
   std::ofstream(p) << R"([{"name": "x", "node": 2, "device": "cia402", "scale": 1e-6}])";
   const auto axes = CanOpenAxis::loadAll(p);
   ASSERT_EQ(axes.size(), 1u);

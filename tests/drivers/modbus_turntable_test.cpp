@@ -82,6 +82,37 @@ TEST(ModbusProfile, BadFilesAreNamed) {
             std::string::npos);
 }
 
+TEST(ModbusProfile, NumbersThatDoNotFitAnIntegerAreNamedNotCast) {
+  // nlohmann's get<int>() would cast 1e30 (undefined behaviour) and wrap 4294967296 to 0.
+  auto err = [](const std::string& json) { return errorOf([&] { ModbusTurntableProfile::fromJson(json, "p.json"); }); };
+  EXPECT_EQ(err(R"({"position":{"address":1e30},"counts_per_revolution":1})"),
+            "p.json: position: address must be an integer in 0..65535, not 1e+30");
+  EXPECT_EQ(err(R"({"position":{"address":4294967296},"counts_per_revolution":1})"),
+            "p.json: position: address must be an integer in 0..65535, not 4294967296");
+  EXPECT_EQ(err(R"({"position":{"address":2.5},"counts_per_revolution":1})"),
+            "p.json: position: address must be an integer in 0..65535, not 2.5");
+  EXPECT_EQ(err(R"({"position":{"address":65535,"bits":32},"counts_per_revolution":1})"),
+            "p.json: position: address must be an integer in 0..65534, not 65535");
+  EXPECT_EQ(err(R"({"position":{"address":0},"counts_per_revolution":1,"direction":-1e300})"),
+            "p.json: direction must be an integer in -2147483648..2147483647, not -1e+300");
+  // A status bit past 15 would shift a 16-bit register out of range; a write value must fit 16 bits.
+  EXPECT_EQ(err(R"({"position":{"address":0},"counts_per_revolution":1,"commands":{"status":{"address":2,"moving_bit":99}}})"),
+            "p.json: commands.status: moving_bit must be an integer in 0..15, not 99");
+  EXPECT_EQ(err(R"({"position":{"address":0},"counts_per_revolution":1,"commands":{"start":{"address":12,"value":-1}}})"),
+            "p.json: commands.start: value must be an integer in 0..65535, not -1");
+  // A target in counts must fit the 32-bit register (llround of 1e300 has no value).
+  EXPECT_EQ(err(R"({"position":{"address":0},"counts_per_revolution":1e300})"),
+            "p.json: counts_per_revolution must be in (0, 2^32]");
+  EXPECT_EQ(err(R"({"position":{"address":0},"counts_per_revolution":1,"zero_offset_deg":1e300})"),
+            "p.json: zero_offset_deg must be in -360..360");
+  const auto ok = ModbusTurntableProfile::fromJson(
+      R"({"position":{"address":65534,"bits":32},"counts_per_revolution":4294967296,"commands":{"status":{"address":3,"moving_bit":15}}})",
+      "p.json");
+  EXPECT_EQ(ok.position.address, 65534);
+  EXPECT_EQ(ok.status->moving_bit, 15);
+  EXPECT_EQ(ok.status->in_position_bit, 1);
+}
+
 TEST(ModbusEndpoint, ParsesTcpAndRtu) {
   const auto t = ModbusEndpoint::parse("modbus-tcp:10.0.0.5:1502@7");
   EXPECT_EQ(t.host, "10.0.0.5");
@@ -93,6 +124,12 @@ TEST(ModbusEndpoint, ParsesTcpAndRtu) {
   EXPECT_EQ(r.parity, 'E');
   EXPECT_EQ(r.unit_id, 3);
   EXPECT_THROW(ModbusEndpoint::parse("modbus-tcp:host"), Error);
+  // Whole numbers in range, not atoi's wrap: unit 4294967297 is not unit 1, port 65536+502 not 502.
+  EXPECT_EQ(errorOf([] { ModbusEndpoint::parse("modbus-tcp:h:502@4294967297"); }),
+            "pose source 'modbus-tcp:h:502@4294967297': unit id must be 1..247");
+  EXPECT_EQ(errorOf([] { ModbusEndpoint::parse("modbus-tcp:h:66038"); }), "pose source 'modbus-tcp:h:66038': bad host or port");
+  EXPECT_EQ(errorOf([] { ModbusEndpoint::parse("modbus-rtu:/dev/ttyS0:9600x"); }),
+            "pose source 'modbus-rtu:/dev/ttyS0:9600x': bad baud rate");
   EXPECT_THROW(ModbusEndpoint::parse("can:can0"), Error);
 }
 

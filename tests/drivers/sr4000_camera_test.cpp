@@ -64,6 +64,24 @@ TEST(MesaSrLibrary, WrongLibraryIsNamed) {
   EXPECT_NE(msg.find("libm.so.6: not a usable libMesaSR (missing SR_OpenUSB"), std::string::npos) << msg;
 }
 
+TEST(MesaSrSimConfig, IntegersThatDoNotFitAreNamedNotCast) {
+  const auto path = (fs::temp_directory_path() / ("keyturn_simcfg_" + std::to_string(::getpid()) + ".json")).string();
+  auto err = [&](const std::string& json) {
+    std::ofstream(path) << json;
+    return errorOf([&] { sim::MesaSrSimConfig::fromFile(path); });
+  };
+  EXPECT_EQ(err(R"({"serial": 1e30})"), path + ": serial must be an integer in 0..4294967295, not 1e+30");
+  EXPECT_EQ(err(R"({"seed": -1})"), path + ": seed must be an integer in 0..18446744073709551615, not -1");
+  EXPECT_EQ(err(R"({"faults": {"timeout_every": 2.5}})"),
+            path + ": faults: timeout_every must be an integer in 0..2147483647, not 2.5");
+  std::ofstream(path) << R"({"serial": 4294967295, "seed": 18446744073709551615, "faults": {"disconnect_after": 7}})";
+  const auto c = sim::MesaSrSimConfig::fromFile(path);
+  EXPECT_EQ(c.serial, 4294967295u);
+  EXPECT_EQ(c.seed, 18446744073709551615ull);  // exact: read as an unsigned integer, not through double
+  EXPECT_EQ(c.faults.disconnect_after, 7);
+  fs::remove(path);
+}
+
 TEST(Sr4000Connection, ParsesUsbAndEthernet) {
   EXPECT_EQ(Sr4000Connection::parse("usb").serial, 0u);
   EXPECT_EQ(Sr4000Connection::parse("usb:4000123").serial, 4000123u);

@@ -51,3 +51,17 @@ TEST(FuzzRegression, PlyMeshWithAGarbledPropertyLineIsNamed) {
             std::string::npos)
       << msg;
 }
+
+TEST(FuzzRegression, PlyMeshWithAHugeAsciiListLengthIsNamedWithoutACast) {
+  // UBSan, fuzz_mesh after 533,140 runs: "6.66667e+22 is outside the range of representable
+  // values of type 'long long'" in the message for a bad list length. That length came from
+  // two more faults in the ASCII reader: an 86-byte run of digits and NUL bytes was cut into
+  // 64-byte tokens, and strtod stopped at the NULs, so "6666…\0\0\0\0666…" read as two numbers.
+  // The run is one token now, refused as too long; the list-length path itself is tested in
+  // PlyReader.MalformedFilesAreOneClearLine (hugelist.ply, inflist.ply).
+  const std::string msg = errorOf([] { keyturn::sim::loadMesh(KEYTURN_REGRESSIONS "/ply_mesh_huge_list_length.ply"); });
+  EXPECT_NE(msg.find("ply_mesh_huge_list_length.ply: a number longer than 64 characters ('66666666666666666666...') "
+                     "in element 'vertex' item 0"),
+            std::string::npos)
+      << msg;
+}

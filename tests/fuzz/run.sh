@@ -1,27 +1,40 @@
 #!/usr/bin/env bash
-# Short, reproducible fuzz runs (fixed seed and run count) of every loader of
-# outside data, from the committed seed corpus. A crash leaves its input in
-# $OUT/crash-* and fails the run: turn it into a regression test.
+# Fuzz runs of every loader of outside data, from the committed seed corpus. By
+# default short and reproducible (fixed seed and run count, as CI runs them);
+# FUZZ_SECONDS gives each harness a time budget instead. A crash leaves its input
+# in the work folder (crash-*) and fails the run: turn it into a regression test.
 # usage: tests/fuzz/run.sh BUILD_DIR [RUNS]
+#   RUNS          runs per harness (default 4000; unlimited when FUZZ_SECONDS is set)
+#   FUZZ_SECONDS  time budget per harness, s (libFuzzer stops at RUNS or this, first)
+#   FUZZ_SEED     libFuzzer seed (default 1)
+#   FUZZ_MAX_LEN  longest input, bytes (default 16384)
+#   FUZZ_TARGETS  harnesses to run (default: all five)
+#   FUZZ_WORK     keep the work folder here (the corpus each run grew, logs, crashes)
 set -u
 build=$(cd "${1:?hardening build folder}" && pwd)
-runs=${2:-4000}
+if [ -n "${FUZZ_SECONDS:-}" ]; then runs=${2:--1}; else runs=${2:-4000}; fi
 here=$(cd "$(dirname "$0")" && pwd)
-out=$(mktemp -d)
+if [ -n "${FUZZ_WORK:-}" ]; then out=$FUZZ_WORK; mkdir -p "$out"; else out=$(mktemp -d); fi
+out=$(cd "$out" && pwd)
+budget=()
+if [ -n "${FUZZ_SECONDS:-}" ]; then budget=(-max_total_time="$FUZZ_SECONDS"); fi
 pass=0; fail=0
-for target in point_cloud mesh dataset configs learning; do
+for target in ${FUZZ_TARGETS:-point_cloud mesh dataset configs learning}; do
   bin="$build/tests/fuzz/fuzz_$target"
   corpus="$out/$target"
   mkdir -p "$corpus"
   cp "$here/corpus/$target"/* "$corpus/"
-  if (cd "$out" && "$bin" -seed=1 -runs="$runs" -max_len=16384 -rss_limit_mb=2048 -timeout=20 \
-        -artifact_prefix="$out/$target-" "$corpus" > "$out/$target.log" 2>&1); then
+  if (cd "$out" && "$bin" -seed="${FUZZ_SEED:-1}" -runs="$runs" "${budget[@]}" -max_len="${FUZZ_MAX_LEN:-16384}" \
+        -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 -artifact_prefix="$out/$target-" "$corpus" \
+        > "$out/$target.log" 2>&1); then
     pass=$((pass + 1))
-    echo "fuzz_$target: $(grep -oE 'cov: [0-9]+' "$out/$target.log" | tail -1), $runs runs, no crash"
+    done_line=$(grep -oE 'Done [0-9]+ runs in [0-9]+ second' "$out/$target.log" | tail -1)
+    echo "fuzz_$target: $(grep -oE 'cov: [0-9]+' "$out/$target.log" | tail -1)," \
+      "${done_line:+$(echo "$done_line" | awk '{print $2 " runs in " $5 " s"}')}, no crash"
   else
     fail=$((fail + 1))
     echo "FAILED: fuzz_$target (log and crash input in $out):"
-    grep -E 'ERROR|SUMMARY|crash-|Test unit written' "$out/$target.log" | head -8
+    grep -E 'ERROR|SUMMARY|runtime error|crash-|Test unit written' "$out/$target.log" | head -8
   fi
 done
 echo "$pass passed, $fail failed"

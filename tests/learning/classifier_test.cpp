@@ -169,6 +169,28 @@ TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
   }
 }
 
+TEST(ModelFile, SidecarIntegersThatDoNotFitAreNamedNotCast) {
+  // A sidecar as saveModel writes it; each case swaps one value.
+  const std::string good = R"({"blocks": ["kpd2"], "classes": ["bottle", "can"], "classifier": "xgboost",
+    "feature_spec": {"bins": "12", "keypoints": "iss"}, "format": "keyturn-model", "inputs": 12,
+    "mlp": {"batch": 64, "dropout": 0.1, "epochs": 30, "hidden": 200, "layers": 1, "learning_rate": 0.001,
+            "sigmoid_output": false},
+    "seed": 7, "version": 1, "weights": "model.xgb.json",
+    "xgboost": {"colsample_bytree": 1.0, "eta": 0.3, "max_depth": 6, "rounds": 20, "subsample": 1.0}})";
+  auto with = [&](const std::string& from, const std::string& to) {
+    std::string t = good;
+    t.replace(t.find(from), from.size(), to);
+    return keyturn::test::errorOf([&] { parseModelSidecar(t, "m.json"); });
+  };
+  EXPECT_EQ(parseModelSidecar(good, "m.json").params.mlp.hidden, 200);
+  EXPECT_EQ(with("\"hidden\": 200", "\"hidden\": 1e30"), "m.json: mlp: hidden must be an integer in 0..2147483647, not 1e+30");
+  EXPECT_EQ(with("\"inputs\": 12", "\"inputs\": 4294967308"),  // get<int>() wrapped this to 12
+            "m.json: inputs must be an integer in 0..2147483647, not 4294967308");
+  EXPECT_EQ(with("\"rounds\": 20", "\"rounds\": 20.5"), "m.json: xgboost: rounds must be an integer in 0..2147483647, not 20.5");
+  EXPECT_EQ(with("\"seed\": 7", "\"seed\": -7"), "m.json: seed must be an integer in 0..18446744073709551615, not -7");
+  EXPECT_EQ(with("\"version\": 1", "\"version\": 1e30"), "m.json: model format version 1e+30 is not supported (expected 1)");
+}
+
 TEST(ModelFile, CorruptSidecarsAreOneClearLine) {
   EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{", "m.json"); }).find("m.json: not valid JSON"),
             std::string::npos);

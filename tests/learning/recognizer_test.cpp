@@ -5,6 +5,7 @@
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
+#include "support/error_of.h"
 
 using namespace keyturn;
 using namespace keyturn::learning;
@@ -122,6 +123,22 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
       {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},
       {"osada_samples", "20000"}, {"plane_removal", "on"}, {"range", "fixed"},      {"seed", "7"}};
   EXPECT_EQ(featureSpec(DescriptorOptions()), expected);
+}
+
+TEST(FeatureSpec, IntegersAreParsedAsIntegersNotCastFromDoubles) {
+  FeatureParams p;
+  p.seed = 18446744073709551557ull;  // past 2^53: a double would lose its last digits
+  EXPECT_EQ(featureParamsFromSpec(featureSpec(p), "x").seed, p.seed);
+  auto err = [&](const std::string& key, const std::string& value) {
+    auto spec = featureSpec(FeatureParams{});
+    spec[key] = value;
+    return keyturn::test::errorOf([&] { featureParamsFromSpec(spec, "features.csv"); });
+  };
+  EXPECT_EQ(err("bins", "1e30"), "features.csv: feature spec 'bins' is not an integer in 2..4096: '1e30'");
+  EXPECT_EQ(err("bins", "4097"), "features.csv: feature spec 'bins' is not an integer in 2..4096: '4097'");
+  EXPECT_EQ(err("osada_samples", "2.5"),
+            "features.csv: feature spec 'osada_samples' is not an integer in 0..2147483647: '2.5'");
+  EXPECT_EQ(err("seed", "-1"), "features.csv: feature spec 'seed' is not an integer in 0..18446744073709551615: '-1'");
 }
 
 TEST(ClassMeans, IgnoreMissingValues) {

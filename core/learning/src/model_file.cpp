@@ -4,10 +4,12 @@
 #include <fstream>
 #include <cmath>
 #include <iterator>
+#include <limits>
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_integer.h"
 
 namespace keyturn::learning {
 
@@ -59,31 +61,32 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
     throw Error(source + ": not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
   }
   ModelInfo m;
+  const int most = std::numeric_limits<int>::max();
   try {
     if (!j.is_object() || j.value("format", "") != kFormat) throw Error(source + ": not a keyturn model sidecar");
-    if (j.at("version").get<int>() != kVersion)
+    if (j.at("version") != kVersion)  // compared as JSON numbers: 1e30 is not cast to int
       throw Error(source + ": model format version " + j.at("version").dump() + " is not supported (expected 1)");
     auto& p = m.params;
     p.kind = j.at("classifier").get<std::string>();
     if (p.kind != "xgboost" && p.kind != "mlp") throw Error(source + ": unknown classifier '" + p.kind + "'");
-    p.seed = j.at("seed").get<std::uint64_t>();
+    p.seed = jsonInteger(j, "seed", std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), source);
     const auto& x = j.at("xgboost");
     p.xgboost.eta = x.at("eta").get<double>();
-    p.xgboost.max_depth = x.at("max_depth").get<int>();
-    p.xgboost.rounds = x.at("rounds").get<int>();
+    p.xgboost.max_depth = jsonInteger(x, "max_depth", 0, most, source + ": xgboost");
+    p.xgboost.rounds = jsonInteger(x, "rounds", 0, most, source + ": xgboost");
     p.xgboost.subsample = x.at("subsample").get<double>();
     p.xgboost.colsample_bytree = x.at("colsample_bytree").get<double>();
     const auto& n = j.at("mlp");
-    p.mlp.hidden = n.at("hidden").get<int>();
-    p.mlp.layers = n.at("layers").get<int>();
+    p.mlp.hidden = jsonInteger(n, "hidden", 0, most, source + ": mlp");
+    p.mlp.layers = jsonInteger(n, "layers", 0, most, source + ": mlp");
     p.mlp.dropout = n.at("dropout").get<double>();
     p.mlp.learning_rate = n.at("learning_rate").get<double>();
-    p.mlp.epochs = n.at("epochs").get<int>();
-    p.mlp.batch = n.at("batch").get<int>();
+    p.mlp.epochs = jsonInteger(n, "epochs", 0, most, source + ": mlp");
+    p.mlp.batch = jsonInteger(n, "batch", 0, most, source + ": mlp");
     p.mlp.sigmoid_output = n.at("sigmoid_output").get<bool>();
     m.classes = j.at("classes").get<std::vector<std::string>>();
     m.blocks = j.at("blocks").get<std::vector<std::string>>();
-    m.inputs = j.at("inputs").get<int>();
+    m.inputs = jsonInteger(j, "inputs", 0, most, source);
     m.spec = j.at("feature_spec").get<std::map<std::string, std::string>>();
     if (j.contains("class_means")) m.class_means = j.at("class_means").get<std::vector<std::vector<float>>>();
   } catch (const json::exception& e) {

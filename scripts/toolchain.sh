@@ -1,0 +1,7 @@
+# The clang that scripts/install-deps.sh installs and scripts/test-hardening.sh
+# builds with, named once. Debian 12's clang-14 package has versioned commands
+# only (clang-14, clang++-14); the unversioned ones come from another package.
+# Sourced, not run.
+KEYTURN_CLANG_VERSION=14
+KEYTURN_CC=clang-$KEYTURN_CLANG_VERSION
+KEYTURN_CXX=clang++-$KEYTURN_CLANG_VERSION
