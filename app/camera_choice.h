@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/drivers/tof_camera.h"
 
 namespace keyturn::app {
@@ -16,5 +17,7 @@ std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const st
                                                const std::string& library = "",
                                                std::function<void(const std::string&)> log = {});
 std::string simulatorLibraryPath();
+// A real camera's spec (usb, usb:SERIAL, eth:IP); anything else is refused naming every choice, sim included.
+drivers::Sr4000Connection parseCameraSpec(const std::string& spec);
 
 }  // namespace keyturn::app

@@ -47,8 +47,12 @@ Sr4000Camera::Sr4000Camera(std::shared_ptr<MesaSrLibrary> lib, Sr4000Connection 
 
 Sr4000Camera::~Sr4000Camera() { close(); }
 
+std::string Sr4000Camera::name() const {
+  return options_.name.empty() ? connection_.describe() : options_.name;
+}
+
 void Sr4000Camera::fail(const std::string& what) const {
-  throw Error(connection_.describe() + " (" + lib_->path + "): " + what);
+  throw Error(name() + " (" + lib_->path + "): " + what);
 }
 
 void Sr4000Camera::open() {
@@ -171,7 +175,7 @@ TofFrame Sr4000Camera::acquire() {
     if (attempt > 0) {
       const int wait = options_.backoff_initial_ms << (attempt - 1);
       if (options_.log)
-        options_.log(connection_.describe() + ": " + last + "; reopening in " + std::to_string(wait) +
+        options_.log(name() + ": " + last + "; reopening in " + std::to_string(wait) +
                      " ms (attempt " + std::to_string(attempt) + " of " +
                      std::to_string(options_.reconnect_attempts) + ")");
       std::this_thread::sleep_for(std::chrono::milliseconds(wait));
