@@ -27,6 +27,7 @@ struct DescribeArgs {
   std::string out;
   int jobs = 0;
   bool quiet = false;
+  bool explain = false;  // each filter step's effect per view, on stderr
   bool cache = false;  // dataset mode: fill the dataset's feature cache
   std::string shard;  // "I/N": dataset mode, this process's share of the views
   DescriptorFlags flags;
@@ -59,7 +60,9 @@ int runDescribeDataset(const DescribeArgs& a) {
 
 std::string csvHeader(const std::vector<Feature>& features, int bins) {
   std::ostringstream h;
-  h << "file,points,keypoints,low_keypoints,unreachable_keypoints,unreachable_pairs,resolution_mm";
+  h << "file,points,keypoints,low_keypoints,unreachable_keypoints,unreachable_pairs,resolution_mm,"
+       "input_kind,input_points,crop_removed,jump_edges_removed,support_plane_removed,cluster_removed,"
+       "outliers_removed,working_spacing_mm,working_removed,filter_flag";
   for (Feature f : features)
     for (int b = 0; b < bins; ++b) h << ',' << featureName(f) << '_' << b;
   return h.str();
@@ -77,9 +80,47 @@ std::string csvRow(const std::string& file, const ViewDescriptor& d) {
   r.precision(6);
   r << csvQuote(file) << ',' << d.points << ',' << d.keypointCount() << ',' << (d.low_keypoints ? 1 : 0)
     << ',' << d.unreachable_keypoints << ',' << d.unreachable_pairs << ',' << d.resolution * 1000.0;
+  r << ',' << (d.filter.steps.empty() ? "unfiltered" : inputKindName(d.filter.kind)) << ',' << d.input_points;
+  for (const char* step : {"crop", "jump-edges", "support-plane", "cluster", "outliers"}) {
+    std::size_t removed = 0;
+    for (const auto& s : d.filter.steps)
+      if (s.name == step) removed = s.removed();
+    r << ',' << removed;
+  }
+  r << ',' << d.working.spacing * 1000.0 << ',' << d.working.before - d.working.after << ','
+    << csvQuote(d.filter.flaggedSummary());
   for (const auto& pdf : d.pdfs)
     for (double v : pdf) r << ',' << v;
   return r.str();
+}
+
+// What each step did to one view, for --explain.
+std::string explanation(const std::string& file, const ViewDescriptor& d) {
+  std::ostringstream e;
+  char line[512];
+  if (d.filter.steps.empty()) {
+    e << file << ": not filtered (--no-filter), " << d.input_points << " valid points\n";
+  } else {
+    e << file << ": " << inputKindName(d.filter.kind) << ", " << d.input_points << " valid points\n";
+    for (const auto& s : d.filter.steps) {
+      if (!s.applied) std::snprintf(line, sizeof line, "  %-18s skipped (%s)\n", s.name.c_str(), s.note.c_str());
+      else
+        std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (-%zu)%s%s%s\n", s.name.c_str(), s.before, s.after,
+                      s.removed(), s.flagged ? "  FLAGGED" : "", s.note.empty() ? "" : "  ", s.note.c_str());
+      e << line;
+    }
+  }
+  const auto& w = d.working;
+  if (w.spacing > 0)
+    std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (spacing %.2f mm = extent %.0f mm / samples across%s)\n",
+                  "working-resolution", w.before, w.after, w.spacing * 1000, w.extent * 1000,
+                  w.subsampled ? "" : "; no denser than that: kept");
+  else std::snprintf(line, sizeof line, "  %-18s off\n", "working-resolution");
+  e << line;
+  std::snprintf(line, sizeof line, "  => %zu points, resolution %.2f mm, K = %d keypoints\n", d.points,
+                d.resolution * 1000, d.keypointCount());
+  e << line;
+  return e.str();
 }
 
 void writeAtomically(const std::string& path, const std::string& text) {
@@ -109,6 +150,7 @@ int runDescribe(const DescribeArgs& a) {
   std::vector<std::optional<std::string>> rows(n);
   std::vector<std::string> errors(n);
   std::vector<int> low(n, 0);
+  std::vector<std::string> flags(n), explained(n);
 
   const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
   const unsigned jobs = static_cast<unsigned>(a.jobs > 0 ? a.jobs : static_cast<int>(hw));
@@ -121,6 +163,8 @@ int runDescribe(const DescribeArgs& a) {
         const ViewDescriptor d = describeView(loadCloud(file), options);
         rows[i] = csvRow(file, d);
         low[i] = d.low_keypoints ? d.keypointCount() : 0;
+        flags[i] = d.filter.flaggedSummary();
+        if (a.explain) explained[i] = explanation(file, d);
       } catch (const Error& e) {
         const std::string msg = e.what();
         errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
@@ -144,7 +188,10 @@ int runDescribe(const DescribeArgs& a) {
       csv << *rows[i] << "\n";
       ++good;
     }
+    if (!explained[i].empty()) std::cerr << explained[i];
     if (!errors[i].empty()) std::cerr << "keyturn describe: " << errors[i] << "\n";
+    if (!flags[i].empty())
+      std::cerr << "keyturn describe: warning: " << list.files[i] << ": " << flags[i] << " (--explain shows why)\n";
     if (low[i]) {
       ++flagged;
       if (!a.quiet)
@@ -171,6 +218,8 @@ Command addDescribeCommand(CLI::App& app) {
   cmd->add_option("--out,-o", args->out, "CSV file to write (default: standard output)");
   cmd->add_option("--jobs,-j", args->jobs, "Parallel files (default: all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress or summary");
+  cmd->add_flag("--explain", args->explain,
+                "Print, per view, the input kind and what each filter step and the working resolution removed");
   cmd->add_flag("--cache", args->cache,
                 "With a dataset folder: fill its feature cache (every block evaluate, train and consistency use)");
   cmd->add_option("--shard", args->shard,

@@ -28,6 +28,11 @@ void DescriptorFlags::add(CLI::App& cmd, bool with_features) {
   cmd.add_option("--iss-density", iss_density, "ISS density radius (× resolution)")->capture_default_str();
   cmd.add_option("--graph-radius", graph_radius, "Local complete graph radius (× resolution)")
       ->capture_default_str();
+  cmd.add_option("--samples-across", samples_across,
+                 "Working resolution: describe at spacing (view extent / this); 0 = the sensor's own spacing")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd.add_option("--max-keypoints", max_keypoints, "Keypoint budget: keep the K most salient ISS keypoints (0 = all)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd.add_option("--osada-samples", osada_samples, "Samples per Osada shape distribution")
       ->capture_default_str();
   cmd.add_option("--seed", seed, "Seed of Osada's random sampling")->capture_default_str();
@@ -48,6 +53,8 @@ learning::FeatureParams DescriptorFlags::params() const {
   p.iss_nms = iss_nms;
   p.iss_density = iss_density;
   p.graph_radius = graph_radius;
+  p.samples_across = samples_across;
+  p.max_keypoints = max_keypoints;
   p.osada_samples = osada_samples;
   p.seed = seed;
   return p;

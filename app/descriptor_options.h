@@ -19,6 +19,8 @@ struct DescriptorFlags {
   double jump_edge_angle = 10.0;
   double iss_frame = 6.0, iss_nms = 4.0, iss_density = 2.0;
   double graph_radius = 3.5;
+  double samples_across = learning::FeatureParams().samples_across;
+  int max_keypoints = learning::FeatureParams().max_keypoints;
   int osada_samples = 20000;
   unsigned long long seed = 7;
   int low_keypoints = 10;

@@ -35,6 +35,8 @@ packages=(
   libcli11-dev nlohmann-json3-dev
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
+  # JSON assertions in the command-line tests
+  jq
   # the docs test (tests/docs: runs the examples in README.md and docs/, standard library only)
   python3
 )

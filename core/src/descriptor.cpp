@@ -49,25 +49,41 @@ std::vector<double> ViewDescriptor::featureVector() const {
   return v;
 }
 
-ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
-  if (o.features.empty()) throw Error("no features requested");
+PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   const auto start = std::chrono::steady_clock::now();
   if (input.points.empty()) throw Error("empty point cloud");
-  const std::size_t valid = input.validCount();
-  if (valid == 0) throw Error("no valid points (all NaN or infinite)");
-  const PointSet set = PointSet::fromCloud(o.filter ? filterCloud(input, o.filter_options) : input);
-  const double filter_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
-  if (set.size() < 3)
-    throw Error("only " + std::to_string(set.size()) + " of " + std::to_string(valid) +
-                " points left after filtering");
-  ViewDescriptor out = describeFilteredPoints(set, o);
-  out.input_points = valid;
-  out.times.filter = filter_ms;
-  out.times.total += filter_ms;
+  PreparedView v;
+  v.input_points = input.validCount();
+  if (v.input_points == 0) throw Error("no valid points (all NaN or infinite)");
+  Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter) : input;
+  const std::size_t filtered = cloud.validCount();
+  if (filtered < 3) {
+    std::string why;
+    for (const auto& s : v.filter.steps)
+      if (s.removed() > 0) why += (why.empty() ? "" : ", ") + s.name + " −" + std::to_string(s.removed());
+    throw Error("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +
+                " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
+                (why.empty() ? "nothing removed" : why) + "; --explain shows each step)");
+  }
+  subsampleToWorkingResolution(cloud, o.working, &v.working);
+  v.points = PointSet::fromCloud(cloud);
+  v.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  return v;
+}
+
+ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
+  if (o.features.empty()) throw Error("no features requested");
+  PreparedView v = prepareView(input, o);
+  ViewDescriptor out = describeFilteredPoints(v.points, o, v.resolutionFloor());
+  out.input_points = v.input_points;
+  out.filter = std::move(v.filter);
+  out.working = v.working;
+  out.times.filter = v.ms;
+  out.times.total += v.ms;
   return out;
 }
 
-ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o) {
+ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o, double min_resolution) {
   if (o.features.empty()) throw Error("no features requested");
   ViewDescriptor out;
   out.features = o.features;
@@ -77,8 +93,11 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   out.points = set.size();
   if (set.size() < 3) throw Error("only " + std::to_string(set.size()) + " points left after filtering");
 
-  const RadiusSearch search(set);
-  out.resolution = cloudResolution(set, search);
+  RadiusSearch search(set);
+  out.resolution = std::max(cloudResolution(set, search), min_resolution);
+  // One search at the largest radius any stage asks for; every later query is a row scan.
+  const double largest = std::max({o.iss.density_radius, o.iss.frame_radius, o.iss.nms_radius, o.graph.radius});
+  search.cacheNeighbourhoods(static_cast<float>(largest * out.resolution));
   out.times.resolution = clock.lap();
 
   std::vector<int> keypoints;

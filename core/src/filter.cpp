@@ -8,8 +8,14 @@
 #include <pcl/sample_consensus/model_types.h>
 #include <pcl/segmentation/sac_segmentation.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <numeric>
+#include <string>
+#include <unordered_map>
+#include <utility>
 
 #include "keyturn/core/radius_search.h"
 
@@ -86,68 +92,174 @@ std::size_t removeJumpEdges(Cloud& cloud, float angle_deg) {
   return n;
 }
 
-bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane) {
+namespace {
+
+// Spread of a set of 2D coordinates: the area between the 5th and 95th percentile in each axis.
+double footprintArea(std::vector<float> u, std::vector<float> v) {
+  if (u.size() < 2) return 0.0;
+  auto span = [](std::vector<float>& x) {
+    const std::size_t lo = x.size() / 20, hi = x.size() - 1 - x.size() / 20;
+    std::nth_element(x.begin(), x.begin() + lo, x.end());
+    const float a = x[lo];
+    std::nth_element(x.begin(), x.begin() + hi, x.end());
+    return static_cast<double>(x[hi] - a);
+  };
+  return span(u) * span(v);
+}
+
+std::string percent(std::size_t part, std::size_t whole) {
+  return std::to_string(whole ? static_cast<int>(std::lround(100.0 * part / whole)) : 0) + "%";
+}
+
+}  // namespace
+
+bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane,
+                         std::string* decision) {
+  auto say = [&](const std::string& why) {
+    if (decision) *decision = why;
+    return false;
+  };
   std::vector<int> index;
   auto pts = validPoints(cloud, index);
-  if (pts->size() < 10) return false;
+  if (pts->size() < 10) return say("too few points for a plane");
+  // RANSAC scores its hypotheses on an even subsample (a full 640 x 480 frame has
+  // 300k points; a plane needs far fewer to be found), then every point is labelled.
+  pcl::PointCloud<pcl::PointXYZ>::Ptr sample = pts;
+  const std::size_t cap = static_cast<std::size_t>(std::max(1000, options.plane_max_samples));
+  if (pts->size() > cap) {
+    sample.reset(new pcl::PointCloud<pcl::PointXYZ>);
+    const double step = static_cast<double>(pts->size()) / static_cast<double>(cap);
+    for (std::size_t k = 0; k < cap; ++k) sample->push_back((*pts)[static_cast<std::size_t>(k * step)]);
+  }
   pcl::SACSegmentation<pcl::PointXYZ> seg(false);  // fixed seed: same cloud, same plane
   seg.setOptimizeCoefficients(true);
   seg.setModelType(pcl::SACMODEL_PLANE);
   seg.setMethodType(pcl::SAC_RANSAC);
   seg.setDistanceThreshold(options.plane_distance);
   seg.setMaxIterations(options.plane_iterations);
-  seg.setInputCloud(pts);
+  seg.setInputCloud(sample);
   pcl::PointIndices inliers;
   pcl::ModelCoefficients coeff;
   seg.segment(inliers, coeff);
-  if (coeff.values.size() != 4 ||
-      inliers.indices.size() < options.plane_min_fraction * static_cast<float>(pts->size()))
-    return false;
+  if (coeff.values.size() != 4) return say("no plane found");
   Eigen::Vector4f pl(coeff.values[0], coeff.values[1], coeff.values[2], coeff.values[3]);
   pl /= pl.head<3>().norm();
   if (pl[3] < 0) pl = -pl;  // the camera (origin) on the positive side
-  // Everything within the band or behind the plane (under the table) goes.
+
+  // Label every point: on the plane, in front of it (camera side) or behind it.
+  const float band = options.plane_distance;
+  std::size_t on = 0, front = 0, behind = 0;
+  std::vector<signed char> side(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) {
-    const auto& p = cloud.points[index[k]];
-    if (pl.head<3>().dot(p) + pl[3] < options.plane_distance) cloud.points[index[k]] = kNaN;
+    const float d = pl.head<3>().dot(cloud.points[index[k]]) + pl[3];
+    side[k] = d >= band ? 1 : (d <= -band ? -1 : 0);
+    (side[k] > 0 ? front : side[k] < 0 ? behind : on)++;
   }
+  const std::string found = "plane with " + percent(on, index.size()) + " of the points, " +
+                            std::to_string(front) + " in front of it, " + std::to_string(behind) + " behind";
+  if (on < options.plane_min_fraction * static_cast<float>(index.size()))
+    return say("largest plane holds " + percent(on, index.size()) + " of the points (< " +
+               percent(static_cast<std::size_t>(options.plane_min_fraction * 1000), 1000) + "): kept");
+  // The support rule. An object standing on a support lies on the camera's side of it;
+  // the rest of an object lies behind any of its own visible faces.
+  if (front < static_cast<std::size_t>(std::max(1, options.support_min_points)) || front < behind)
+    return say(found + ": not a support (the rest lies behind it: a face of the object), kept");
+  // A support spreads at least as wide as what stands on it; a plate's floor does not.
+  const Eigen::Vector3f n = pl.head<3>();
+  const Eigen::Vector3f a = (std::abs(n.x()) < 0.9f ? Eigen::Vector3f::UnitX() : Eigen::Vector3f::UnitY()).cross(n).normalized();
+  const Eigen::Vector3f b = n.cross(a);
+  std::vector<float> pu, pv, ou, ov;
+  for (std::size_t k = 0; k < index.size(); ++k) {
+    if (side[k] < 0) continue;
+    const Eigen::Vector3f& p = cloud.points[index[k]];
+    (side[k] == 0 ? pu : ou).push_back(a.dot(p));
+    (side[k] == 0 ? pv : ov).push_back(b.dot(p));
+  }
+  const double plane_area = footprintArea(pu, pv), object_area = footprintArea(ou, ov);
+  if (plane_area < object_area)
+    return say(found + ": not a support (narrower than what lies in front of it), kept");
+  // Everything within the band or behind the plane (under the table) goes.
+  for (std::size_t k = 0; k < index.size(); ++k)
+    if (side[k] <= 0) cloud.points[index[k]] = kNaN;
   if (plane) *plane = pl;
+  if (decision) *decision = found + ": a support, removed with what lies behind it";
   return true;
 }
 
 void keepLargestCluster(Cloud& cloud, float tolerance) {
-  // Connected components of the tolerance-ball graph, by breadth-first search
-  // over the project's radius search (pixel grid for organized views).
-  const PointSet set = PointSet::fromCloud(cloud);
-  if (set.size() < 2) return;
-  const RadiusSearch search(set);
-  std::vector<int> label(set.size(), -1), queue, nb;
-  int best_label = -1;
-  std::size_t best_size = 0;
-  for (std::size_t s = 0; s < set.size(); ++s) {
-    if (label[s] >= 0) continue;
-    const int id = static_cast<int>(s);
-    queue.assign(1, id);
-    label[s] = id;
-    for (std::size_t head = 0; head < queue.size(); ++head) {
-      search.radius(queue[head], tolerance, nb);
-      for (int j : nb)
-        if (label[j] < 0) {
-          label[j] = id;
-          queue.push_back(j);
+  // Connected components of the tolerance-ball graph (points closer than `tolerance`
+  // are joined), exactly, without a radius search per point: points share a voxel of
+  // side t/sqrt(3) only when closer than t, so each voxel is one piece from the start;
+  // neighbouring voxels (up to 2 cells away) are joined, by union-find, as soon as one
+  // pair of their points is closer than t.
+  std::vector<int> index;
+  for (std::size_t i = 0; i < cloud.points.size(); ++i)
+    if (Cloud::isValid(cloud.points[i])) index.push_back(static_cast<int>(i));
+  if (index.size() < 2 || !(tolerance > 0.f)) return;
+  const double side = tolerance / std::sqrt(3.0) * 0.999;
+  auto cellOf = [&](const Eigen::Vector3f& p) {
+    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / side)), static_cast<int>(std::floor(p.y() / side)),
+                           static_cast<int>(std::floor(p.z() / side)));
+  };
+  auto key = [](const Eigen::Vector3i& c) {
+    return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
+           (static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21 |
+           (static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42;
+  };
+  std::vector<std::pair<std::uint64_t, int>> order(index.size());
+  for (std::size_t k = 0; k < index.size(); ++k) order[k] = {key(cellOf(cloud.points[index[k]])), index[k]};
+  std::sort(order.begin(), order.end());
+  struct Voxel { int begin, end; Eigen::Vector3i cell; };
+  std::vector<Voxel> voxels;
+  std::unordered_map<std::uint64_t, int> voxel_of;
+  for (std::size_t b = 0; b < order.size();) {
+    std::size_t e = b;
+    while (e < order.size() && order[e].first == order[b].first) ++e;
+    voxel_of.emplace(order[b].first, static_cast<int>(voxels.size()));
+    voxels.push_back({static_cast<int>(b), static_cast<int>(e), cellOf(cloud.points[order[b].second])});
+    b = e;
+  }
+  std::vector<int> parent(voxels.size());
+  std::iota(parent.begin(), parent.end(), 0);
+  auto find = [&](int v) {
+    while (parent[v] != v) v = parent[v] = parent[parent[v]];
+    return v;
+  };
+  const float t2 = tolerance * tolerance;
+  for (std::size_t v = 0; v < voxels.size(); ++v) {
+    const Voxel& a = voxels[v];
+    for (int dx = -2; dx <= 2; ++dx)
+      for (int dy = -2; dy <= 2; ++dy)
+        for (int dz = -2; dz <= 2; ++dz) {
+          const auto it = voxel_of.find(key(a.cell + Eigen::Vector3i(dx, dy, dz)));
+          if (it == voxel_of.end() || it->second <= static_cast<int>(v)) continue;  // each pair once
+          const int ra = find(static_cast<int>(v)), rb = find(it->second);
+          if (ra == rb) continue;
+          const Voxel& b = voxels[it->second];
+          bool joined = false;
+          for (int i = a.begin; i < a.end && !joined; ++i)
+            for (int j = b.begin; j < b.end && !joined; ++j)
+              joined = (cloud.points[order[i].second] - cloud.points[order[j].second]).squaredNorm() < t2;
+          if (joined) parent[ra] = rb;
         }
-    }
-    if (queue.size() > best_size) {
-      best_size = queue.size();
-      best_label = id;
-    }
   }
-  // Map compact indices back to cloud indices.
-  std::size_t k = 0;
-  for (auto& p : cloud.points) {
-    if (!Cloud::isValid(p)) continue;
-    if (label[k++] != best_label) p = kNaN;
+  std::vector<std::size_t> size(voxels.size(), 0);
+  for (std::size_t v = 0; v < voxels.size(); ++v) size[find(static_cast<int>(v))] += voxels[v].end - voxels[v].begin;
+  // The largest component; a tie goes to the one holding the lowest point index.
+  int best = -1;
+  std::vector<int> lowest(voxels.size(), std::numeric_limits<int>::max());
+  for (std::size_t v = 0; v < voxels.size(); ++v) {
+    const int root = find(static_cast<int>(v));
+    for (int i = voxels[v].begin; i < voxels[v].end; ++i) lowest[root] = std::min(lowest[root], order[i].second);
   }
+  for (std::size_t v = 0; v < voxels.size(); ++v) {
+    const int root = find(static_cast<int>(v));
+    if (best < 0 || size[root] > size[best] || (size[root] == size[best] && lowest[root] < lowest[best])) best = root;
+  }
+  const Eigen::Vector3f nan = kNaN;
+  for (std::size_t v = 0; v < voxels.size(); ++v)
+    if (find(static_cast<int>(v)) != best)
+      for (int i = voxels[v].begin; i < voxels[v].end; ++i) cloud.points[order[i].second] = nan;
 }
 
 void removeStatisticalOutliers(Cloud& cloud, int k, float std_mul) {
@@ -166,22 +278,75 @@ void removeStatisticalOutliers(Cloud& cloud, int k, float std_mul) {
     if (!keep[j]) cloud.points[index[j]] = kNaN;
 }
 
+const char* inputKindName(InputKind kind) {
+  switch (kind) {
+    case InputKind::Frame: return "frame";
+    case InputKind::MaskedFrame: return "masked-frame";
+    default: return "segmented-cloud";
+  }
+}
+
+InputKind classifyInput(const Cloud& cloud) {
+  if (!cloud.organized()) return InputKind::SegmentedCloud;
+  const double valid = static_cast<double>(cloud.validCount()) / static_cast<double>(cloud.size());
+  return valid < kMaskedFrameMaxValidFraction ? InputKind::MaskedFrame : InputKind::Frame;
+}
+
+bool FilterReport::anyFlagged() const {
+  return std::any_of(steps.begin(), steps.end(), [](const FilterStep& s) { return s.flagged; });
+}
+
+std::string FilterReport::flaggedSummary() const {
+  std::string out;
+  for (const auto& s : steps) {
+    if (!s.flagged) continue;
+    if (!out.empty()) out += "; ";
+    out += s.name + " removed " + percent(s.removed(), s.before) + " (" + std::to_string(s.removed()) + " of " +
+           std::to_string(s.before) + ")";
+  }
+  return out;
+}
+
 Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report) {
   Cloud cloud = input;
   FilterReport r;
+  r.kind = classifyInput(input);
   r.input_valid = cloud.validCount();
-  if (o.crop_range) cropRange(cloud, o.min_range, o.max_range);
-  if (o.crop_box) cropBox(cloud, o.box_min, o.box_max);
-  r.after_crop = cloud.validCount();
-  if (o.jump_edge) removeJumpEdges(cloud, o.jump_edge_angle_deg);
-  r.after_jump_edge = cloud.validCount();
-  if (o.remove_plane) r.plane_found = removeDominantPlane(cloud, o, &r.plane);
-  r.after_plane = cloud.validCount();
-  if (o.largest_cluster) keepLargestCluster(cloud, o.cluster_tolerance);
-  r.after_cluster = cloud.validCount();
-  if (o.outlier_removal) removeStatisticalOutliers(cloud, o.sor_k, o.sor_std_mul);
-  r.after_outliers = cloud.validCount();
-  if (report) *report = r;
+  const bool camera_frame = r.kind != InputKind::SegmentedCloud;
+  std::size_t count = r.input_valid;
+  // Runs one step and records it. On a frame with a support, the plane and cluster
+  // steps segment the object out of a scene: removing most of the frame is their
+  // job. Any other step that removes more than half of what it was given is flagged.
+  auto step = [&](const char* name, bool wanted, const std::string& skip_note, auto&& run) {
+    FilterStep s;
+    s.name = name;
+    s.before = count;
+    s.applied = wanted;
+    if (wanted) run(s);
+    else s.note = skip_note;
+    s.after = count = cloud.validCount();
+    const bool segmenting = r.plane_found && (s.name == "support-plane" || s.name == "cluster");
+    s.flagged = s.applied && !segmenting && s.before > 0 && 2 * s.removed() > s.before;
+    r.steps.push_back(std::move(s));
+  };
+  step("crop", camera_frame && (o.crop_range || o.crop_box), camera_frame ? "off" : "not a camera frame", [&](FilterStep&) {
+    if (o.crop_range) cropRange(cloud, o.min_range, o.max_range);
+    if (o.crop_box) cropBox(cloud, o.box_min, o.box_max);
+  });
+  r.after_crop = count;
+  step("jump-edges", cloud.organized() && o.jump_edge, cloud.organized() ? "off" : "not organized",
+       [&](FilterStep&) { removeJumpEdges(cloud, o.jump_edge_angle_deg); });
+  r.after_jump_edge = count;
+  step("support-plane", o.remove_plane, "off", [&](FilterStep& s) {
+    r.plane_found = removeDominantPlane(cloud, o, &r.plane, &s.note);
+  });
+  r.after_plane = count;
+  step("cluster", o.largest_cluster, "off", [&](FilterStep&) { keepLargestCluster(cloud, o.cluster_tolerance); });
+  r.after_cluster = count;
+  step("outliers", o.outlier_removal, "off",
+       [&](FilterStep&) { removeStatisticalOutliers(cloud, o.sor_k, o.sor_std_mul); });
+  r.after_outliers = count;
+  if (report) *report = std::move(r);
   return cloud;
 }
 

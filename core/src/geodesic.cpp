@@ -167,13 +167,17 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
   const float r = static_cast<float>(options.radius * resolution);
   LocalCompleteGraph g;
 
-  // r-ball neighbourhoods N(i), without i, in CSR form.
+  // r-ball neighbourhoods N(i), without i, in CSR form, with their lengths.
   std::vector<int> nb_off(n + 1, 0), nb;
+  std::vector<float> nb_len;
   std::vector<int> tmp;
   for (int i = 0; i < n; ++i) {
     search.radius(i, r, tmp);
     for (int j : tmp)
-      if (j != i) nb.push_back(j);
+      if (j != i) {
+        nb.push_back(j);
+        nb_len.push_back((set.points[j] - set.points[i]).norm());
+      }
     nb_off[i + 1] = static_cast<int>(nb.size());
   }
 
@@ -183,25 +187,47 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
     for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
   }
 
-  // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph.
+  // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph. A 2-hop edge j–k
+  // comes with its common neighbours i; the shortest j–i–k through them is kept in `via`.
   g.offsets.assign(n + 1, 0);
-  // |adj| ≈ 4 |N| on a surface (the 2r ball): reserve once instead of regrowing.
-  const std::size_t expect = 4 * nb.size() + 16;
+  const std::size_t expect = 2 * nb.size() + 16;
   g.targets.reserve(expect);
   g.length.reserve(expect);
   if (weights) g.curved.reserve(expect);
   std::vector<int> mark(n, -1);
+  std::vector<float> via(n, kInf);
+  std::vector<int> seen;
+  const float stretch = static_cast<float>(1.0 + std::max(0.0, options.shortcut_tolerance));
+  const bool exact = !(options.shortcut_tolerance > 0.0);
   const float eps = static_cast<float>(options.curvature_epsilon);
   for (int j = 0; j < n; ++j) {
-    mark[j] = j;
     const Eigen::Vector3f& pj = set.points[j];
-    auto add = [&](int k) {
-      if (mark[k] == j) return;
-      mark[k] = j;
+    seen.clear();
+    mark[j] = j;
+    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {  // N(j): direct edges, never left out
+      mark[nb[a]] = j;
+      via[nb[a]] = -1.f;
+      seen.push_back(nb[a]);
+    }
+    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
+      const int i = nb[a];
+      const float ji = nb_len[a];
+      for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) {
+        const int k = nb[b];
+        if (mark[k] != j) {
+          mark[k] = j;
+          via[k] = kInf;
+          seen.push_back(k);
+        }
+        if (via[k] >= 0.f) via[k] = std::min(via[k], ji + nb_len[b]);
+      }
+    }
+    for (int k : seen) {
       const float len = (set.points[k] - pj).norm();
+      if (!exact && via[k] >= 0.f && via[k] <= stretch * len) continue;  // a 2-path nearly as short
       g.targets.push_back(k);
       g.length.push_back(len);
-      if (!weights) return;
+      if (!weights) continue;
       const Eigen::Vector3f& nj = g.normals[j];
       const Eigen::Vector3f& nk = g.normals[k];
       float c = 1.f;  // no normal: treat as maximally curved
@@ -210,11 +236,6 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
         c = std::sqrt(1.f - d * d);  // sin(arccos(n_j·n_k))
       }
       g.curved.push_back(std::max(c, eps) * len);
-    };
-    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
-      const int i = nb[a];
-      add(i);
-      for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) add(nb[b]);
     }
     g.offsets[j + 1] = static_cast<int>(g.targets.size());
   }

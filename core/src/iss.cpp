@@ -1,6 +1,7 @@
 #include "keyturn/core/iss.h"
 
 #include <Eigen/Eigenvalues>
+#include <algorithm>
 #include <cmath>
 
 namespace keyturn {
@@ -64,6 +65,12 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
       }
     }
     if (is_max) result.keypoints.push_back(i);
+  }
+  if (o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) > o.max_keypoints) {
+    auto& kp = result.keypoints;
+    std::stable_sort(kp.begin(), kp.end(), [&](int a, int b) { return result.saliency[a] > result.saliency[b]; });
+    kp.resize(static_cast<std::size_t>(o.max_keypoints));
+    std::sort(kp.begin(), kp.end());
   }
   return result;
 }

@@ -10,7 +10,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
+#include <unordered_map>
+#include <utility>
 
 #include "keyturn/core/error.h"
 
@@ -143,7 +146,7 @@ double minimumRayAngle(const PointSet& set) {
 
 }  // namespace
 
-RadiusSearch::RadiusSearch(const PointSet& set) {
+RadiusSearch::RadiusSearch(const PointSet& set) : set_(&set) {
   const double angle = set.organized() ? minimumRayAngle(set) : 0.0;
   if (angle > 1e-6) impl_ = std::make_unique<GridSearch>(set, angle);
   else impl_ = std::make_unique<KdTreeSearch>(set);
@@ -154,11 +157,108 @@ RadiusSearch::~RadiusSearch() = default;
 std::unique_ptr<RadiusSearch> RadiusSearch::kdTree(const PointSet& set) {
   std::unique_ptr<RadiusSearch> s(new RadiusSearch());
   s->impl_ = std::make_unique<KdTreeSearch>(set);
+  s->set_ = &set;
   return s;
 }
 
-void RadiusSearch::radius(int i, float r, std::vector<int>& out) const { impl_->radius(i, r, out); }
-float RadiusSearch::nearestDistance(int i) const { return impl_->nearest(i); }
+void RadiusSearch::radius(int i, float r, std::vector<int>& out) const {
+  if (r > table_radius_) return impl_->radius(i, r, out);
+  out.clear();
+  const float r2 = r * r;
+  for (int k = row_offset_[i], end = row_offset_[i + 1]; k < end; ++k)
+    if (row_d2_[k] < r2) out.push_back(row_index_[k]);
+}
+
+float RadiusSearch::nearestDistance(int i) const {
+  if (table_radius_ > 0.f) {
+    float best = std::numeric_limits<float>::infinity();
+    for (int k = row_offset_[i], end = row_offset_[i + 1]; k < end; ++k)
+      if (row_index_[k] != i) best = std::min(best, row_d2_[k]);
+    if (std::isfinite(best)) return std::sqrt(best);
+  }
+  return impl_->nearest(i);
+}
+
+namespace {
+
+// Neighbours within r of every point of an unorganized set: points bucketed into
+// cubes of side r, each point's 27 surrounding cubes scanned.
+void hashGridRows(const PointSet& set, float r, std::vector<int>& offset, std::vector<int>& index,
+                  std::vector<float>& d2) {
+  const int n = static_cast<int>(set.size());
+  const double inv = 1.0 / r;
+  auto cell = [&](const Eigen::Vector3f& p, int axis) { return static_cast<std::int64_t>(std::floor(p[axis] * inv)); };
+  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
+    return (static_cast<std::uint64_t>(x + (1 << 20)) & 0x1FFFFF) |
+           (static_cast<std::uint64_t>(y + (1 << 20)) & 0x1FFFFF) << 21 |
+           (static_cast<std::uint64_t>(z + (1 << 20)) & 0x1FFFFF) << 42;
+  };
+  std::vector<std::pair<std::uint64_t, int>> order(n);
+  for (int i = 0; i < n; ++i) {
+    const auto& p = set.points[i];
+    order[i] = {key(cell(p, 0), cell(p, 1), cell(p, 2)), i};
+  }
+  std::sort(order.begin(), order.end());
+  std::unordered_map<std::uint64_t, std::pair<int, int>> buckets;  // key -> [begin, end) in order
+  buckets.reserve(order.size());
+  for (int b = 0; b < n;) {
+    int e = b;
+    while (e < n && order[e].first == order[b].first) ++e;
+    buckets.emplace(order[b].first, std::make_pair(b, e));
+    b = e;
+  }
+  const float r2 = r * r;
+  std::vector<std::pair<int, float>> row;
+  offset.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) {
+    const auto& p = set.points[i];
+    const std::int64_t cx = cell(p, 0), cy = cell(p, 1), cz = cell(p, 2);
+    row.clear();
+    for (std::int64_t dx = -1; dx <= 1; ++dx)
+      for (std::int64_t dy = -1; dy <= 1; ++dy)
+        for (std::int64_t dz = -1; dz <= 1; ++dz) {
+          const auto it = buckets.find(key(cx + dx, cy + dy, cz + dz));
+          if (it == buckets.end()) continue;
+          for (int k = it->second.first; k < it->second.second; ++k) {
+            const int j = order[k].second;
+            const float dd = (set.points[j] - p).squaredNorm();
+            if (dd < r2) row.emplace_back(j, dd);
+          }
+        }
+    std::sort(row.begin(), row.end());
+    for (const auto& [j, dd] : row) {
+      index.push_back(j);
+      d2.push_back(dd);
+    }
+    offset[i + 1] = static_cast<int>(index.size());
+  }
+}
+
+}  // namespace
+
+void RadiusSearch::cacheNeighbourhoods(float radius) {
+  row_offset_.clear();
+  row_index_.clear();
+  row_d2_.clear();
+  table_radius_ = 0.f;
+  if (!(radius > 0.f) || !set_) return;
+  const int n = static_cast<int>(set_->size());
+  if (impl_->grid()) {
+    std::vector<int> nb;
+    row_offset_.assign(n + 1, 0);
+    for (int i = 0; i < n; ++i) {
+      impl_->radius(i, radius, nb);
+      for (int j : nb) {
+        row_index_.push_back(j);
+        row_d2_.push_back((set_->points[j] - set_->points[i]).squaredNorm());
+      }
+      row_offset_[i + 1] = static_cast<int>(row_index_.size());
+    }
+  } else {
+    hashGridRows(*set_, radius, row_offset_, row_index_, row_d2_);
+  }
+  table_radius_ = radius;
+}
 bool RadiusSearch::usesGrid() const { return impl_->grid(); }
 
 double cloudResolution(const PointSet& set, const RadiusSearch& search) {

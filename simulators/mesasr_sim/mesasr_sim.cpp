@@ -25,6 +25,10 @@
 using keyturn::Cloud;
 using keyturn::sim::MesaSrSimConfig;
 
+// The mode libMesaSR sets on an SR4000 it opens: fix-pattern correction, grey
+// amplitude and the hardware filter, no confidence map (so two images).
+constexpr int kPowerOnMode = AM_COR_FIX_PTRN | AM_CONV_GRAY | AM_DENOISE_ANF;
+
 struct CMesaDevice {
   MesaSrSimConfig config;
   std::unique_ptr<keyturn::sim::TofViewRenderer> renderer;
@@ -34,7 +38,7 @@ struct CMesaDevice {
   // Image buffers; SR_SetMode reallocates them, as libMesaSR does.
   std::unique_ptr<std::uint16_t[]> distance_img, amplitude_img, confidence_img;
   ImgEntry entries[3] = {};
-  int mode = static_cast<int>(keyturn::drivers::kSr4000DefaultMode);
+  int mode = kPowerOnMode;
   unsigned char int_time = 30;
   unsigned char ae[4] = {1, 150, 5, 70};
   ModulationFrq mf = MF_30MHz;
@@ -149,14 +153,15 @@ double rawToMetres(const CMesaDevice& d, unsigned short raw) {
   return (static_cast<double>(raw) - d.dist_offset) / 65535.0 * range;
 }
 
+// A null output is skipped, as in libMesaSR (a caller may want z alone).
 template <typename T>
 void put(void* base, int pitch, int i, T value) {
-  std::memcpy(static_cast<char*>(base) + static_cast<std::ptrdiff_t>(pitch) * i, &value, sizeof(T));
+  if (base) std::memcpy(static_cast<char*>(base) + static_cast<std::ptrdiff_t>(pitch) * i, &value, sizeof(T));
 }
 
 template <typename T, typename Z>
 int coordTrf(SRCAM cam, T* x, T* y, Z* z, int px, int py, int pz, double scale) {
-  if (!cam || cam->unplugged || !x || !y || !z) return -1;
+  if (!cam || cam->unplugged) return -1;
   const auto& k = cam->renderer->intrinsics();
   for (int i = 0; i < kPixels; ++i) {
     double r[3];
@@ -173,15 +178,15 @@ int coordTrf(SRCAM cam, T* x, T* y, Z* z, int px, int py, int pz, double scale) 
 template <typename T, typename Z>
 int coordTrfPnt(SRCAM cam, const unsigned char* ix, const unsigned char* iy, const unsigned short* idst,
                 T* ox, T* oy, Z* oz, int num, double scale) {
-  if (!cam || cam->unplugged || !ix || !iy || !idst || !ox || !oy || !oz || num < 0) return -1;
+  if (!cam || cam->unplugged || !ix || !iy || !idst || num < 0) return -1;
   const auto& k = cam->renderer->intrinsics();
   for (int i = 0; i < num; ++i) {
     double r[3];
     pixelRay(k, ix[i], iy[i], r);
     const double m = idst[i] == 0 ? 0.0 : rawToMetres(*cam, idst[i]) * scale;
-    ox[i] = static_cast<T>(m * r[0]);
-    oy[i] = static_cast<T>(m * r[1]);
-    oz[i] = static_cast<Z>(m * r[2]);
+    if (ox) ox[i] = static_cast<T>(m * r[0]);
+    if (oy) oy[i] = static_cast<T>(m * r[1]);
+    if (oz) oz[i] = static_cast<Z>(m * r[2]);
   }
   return 0;
 }
@@ -267,6 +272,7 @@ SIM_EXPORT unsigned int SR_GetCols(SRCAM cam) { return cam ? kCols : 0; }
 
 SIM_EXPORT int SR_SetMode(SRCAM cam, int mode) {
   if (!alive(cam)) return -1;
+  if (mode == cam->mode) return 0;  // nothing changes: the buffers stay, no messages
   notify(cam, CM_CHANGING, static_cast<unsigned>(mode));
   cam->mode = mode;
   allocateImages(*cam);  // old pointers are now invalid: drivers must fetch the list again
@@ -278,7 +284,7 @@ SIM_EXPORT int SR_GetMode(SRCAM cam) { return alive(cam) ? cam->mode : -1; }
 SIM_EXPORT int SR_SetIntegrationTime(SRCAM cam, unsigned char t) {
   if (!alive(cam)) return -1;
   cam->int_time = t;
-  return 0;
+  return 2;  // like the Set* below, libMesaSR's count of bytes written to the camera's registers
 }
 SIM_EXPORT unsigned char SR_GetIntegrationTime(SRCAM cam) { return cam ? cam->int_time : 0; }
 
@@ -292,7 +298,7 @@ SIM_EXPORT ModulationFrq SR_GetModulationFrequency(SRCAM cam) { return cam ? cam
 SIM_EXPORT int SR_SetAmplitudeThreshold(SRCAM cam, unsigned short v) {
   if (!alive(cam)) return -1;
   cam->amp_threshold = v;
-  return 0;
+  return 4;  // a 16-bit value: two registers
 }
 SIM_EXPORT unsigned short SR_GetAmplitudeThreshold(SRCAM cam) { return cam ? cam->amp_threshold : 0; }
 
@@ -309,7 +315,7 @@ SIM_EXPORT int SR_SetAutoExposure(SRCAM cam, unsigned char mn, unsigned char mx,
 SIM_EXPORT int SR_SetDistanceOffset(SRCAM cam, unsigned short ofs) {
   if (!alive(cam)) return -1;
   cam->dist_offset = ofs;
-  return 0;
+  return 4;
 }
 SIM_EXPORT unsigned short SR_GetDistanceOffset(SRCAM cam) { return cam ? cam->dist_offset : 0; }
 
@@ -328,12 +334,15 @@ SIM_EXPORT int SR_GetDeviceString(SRCAM cam, char* buf, int buflen) {
 
 SIM_EXPORT unsigned int SR_ReadSerial(SRCAM cam) { return cam ? cam->config.serial : 0; }
 
+// The release whose interface (and soname, libmesasr.so.1.0.14) the simulator
+// implements, stored as MESA's library stores "1.0.14.706": version[3] is the
+// major number, version[0] the build.
 SIM_EXPORT int SR_GetVersion(unsigned short version[4]) {
   if (!version) return -1;
-  version[0] = 1;
-  version[1] = 0;
-  version[2] = 14;
-  version[3] = 747;
+  version[3] = 1;
+  version[2] = 0;
+  version[1] = 14;
+  version[0] = 706;
   return 0;
 }
 
@@ -341,7 +350,7 @@ SIM_EXPORT unsigned char SR_GetReg(SRCAM cam, unsigned char reg) { return cam ? 
 SIM_EXPORT int SR_SetReg(SRCAM cam, unsigned char reg, unsigned char val) {
   if (!alive(cam)) return -1;
   cam->regs[reg] = val;
-  return 0;
+  return 2;  // register and value
 }
 
 SIM_EXPORT SR_FuncCB* SR_SetCallback(SR_FuncCB* cb) {

@@ -3,7 +3,10 @@
 // per view; this suite adds micro-benchmarks such as grid vs k-d tree search.
 #include <benchmark/benchmark.h>
 
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/cloud_resample.h"
 #include "keyturn/core/descriptor.h"
+#include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/geodesic.h"
 #include "keyturn/core/iss.h"
@@ -147,5 +150,53 @@ static void BM_RecognizeLive(benchmark::State& s) {
   for (auto _ : s) benchmark::DoNotOptimize(recognizer.recognize(frame));
 }
 BENCHMARK(BM_RecognizeLive)->Unit(benchmark::kMillisecond);
+
+// The real 640 × 480 Kinect frame at the sizes of `keyturn bench --scaling` and by the
+// same rule (docs/benchmarks.md, "Scaling"): the object the filter cuts from the full
+// frame, as seeded random subsets, up to its size; the frame resampled to N pixels above.
+namespace {
+struct RealFrame {
+  Cloud frame = loadCloud(KEYTURN_DATA_DIR "/frames/mosd_learn0.pcd");
+  Cloud object = filterCloud(frame, FilterOptions());
+  Cloud input(std::size_t n) const {
+    return n <= object.validCount() ? randomSubset(object, n, 7) : resampleOrganized(frame, n);
+  }
+};
+const RealFrame& realFrame() {
+  static const RealFrame f;
+  return f;
+}
+}  // namespace
+
+static void BM_DescribeRealScaling(benchmark::State& s) {
+  const Cloud in = realFrame().input(static_cast<std::size_t>(s.range(0)));
+  const DescriptorOptions o;
+  ViewDescriptor d;
+  try {
+    d = describeView(in, o);
+  } catch (const Error& e) {
+    s.SkipWithError(e.what());
+    return;
+  }
+  for (auto _ : s) benchmark::DoNotOptimize(describeView(in, o));
+  s.counters["K"] = d.keypointCount();
+  s.counters["points"] = static_cast<double>(d.points);
+}
+BENCHMARK(BM_DescribeRealScaling)->Arg(1000)->Arg(3000)->Arg(10000)->Arg(30000)->Arg(100000)->Arg(307200)
+    ->Unit(benchmark::kMillisecond);
+
+// PCL's ESF on the points the chain keeps from the same inputs.
+static void BM_PclEsfRealScaling(benchmark::State& s) {
+  const PointSet set =
+      PointSet::fromCloud(filterCloud(realFrame().input(static_cast<std::size_t>(s.range(0))), FilterOptions()));
+  if (set.size() == 0) {
+    s.SkipWithError("the filter leaves no points");
+    return;
+  }
+  for (auto _ : s) benchmark::DoNotOptimize(pclEsf(set));
+  s.counters["points"] = static_cast<double>(set.size());
+}
+BENCHMARK(BM_PclEsfRealScaling)->Arg(1000)->Arg(3000)->Arg(10000)->Arg(30000)->Arg(100000)->Arg(307200)
+    ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();

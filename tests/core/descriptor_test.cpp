@@ -1,8 +1,11 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <filesystem>
 #include <numeric>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
@@ -82,8 +85,9 @@ TEST(Descriptor, FilteredPointsGiveTheSameDescriptorAsTheWholeChain) {
   o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2, Feature::D2};
   const Cloud c = mugView(40);
   const ViewDescriptor whole = describeView(c, o);
-  const PointSet filtered = PointSet::fromCloud(filterCloud(c, o.filter_options));
-  const ViewDescriptor part = describeFilteredPoints(filtered, o);
+  const PreparedView prepared = prepareView(c, o);
+  const PointSet& filtered = prepared.points;
+  const ViewDescriptor part = describeFilteredPoints(filtered, o, prepared.resolutionFloor());
   EXPECT_EQ(part.points, whole.points);
   EXPECT_EQ(part.input_points, filtered.size());  // only the filtered points were seen
   EXPECT_GT(whole.input_points, whole.points);
@@ -132,4 +136,48 @@ TEST(Descriptor, PerViewRangeIsScaleInvariant) {
   // With the fixed metric range the doubled cube moves mass to longer bins.
   o.histogram.mode = RangeMode::Fixed;
   EXPECT_NE(describeView(test::unorganized(cube), o).pdfs[0], describeView(test::unorganized(big), o).pdfs[0]);
+}
+
+// The working resolution: the mug seen by the SR4000 at 0.35, 0.5 and 0.7 m (pixel spacing
+// 1.5 to 3 mm, twice as many points per metre at the nearest) is described at one spacing, so
+// K stays in a narrow band instead of growing with the density.
+TEST(WorkingResolution, KeypointCountIsComparableAcrossDensities) {
+  sim::TofViewRenderer r(sim::makeMugMesh());
+  std::vector<int> k;
+  std::vector<std::size_t> valid;
+  for (double distance : {0.35, 0.5, 0.7}) {
+    sim::SceneView v;
+    v.turntable_deg = 30.0;
+    v.distance = distance;
+    const Cloud c = r.render(v);
+    const ViewDescriptor d = describeView(c, DescriptorOptions());
+    k.push_back(d.keypointCount());
+    valid.push_back(prepareView(c, [] { DescriptorOptions o; o.working.enabled = false; return o; }()).points.size());
+  }
+  EXPECT_GT(valid[0], 3 * valid[2]);  // the nearest view is far denser
+  const auto [lo, hi] = std::minmax_element(k.begin(), k.end());
+  EXPECT_GE(*lo, 15);
+  EXPECT_LE(*hi, DescriptorOptions().iss.max_keypoints);
+  EXPECT_LE(*hi, 2 * *lo) << k[0] << " " << k[1] << " " << k[2];
+}
+
+// Real Kinect data (mOSD cuts, tests/data/real/mosd): with the default options every object
+// is described as a full frame, a masked frame and an unorganized crop, with K in the
+// documented band and no step flagged.
+TEST(RealData, EveryShippedKinectCutIsDescribedByDefault) {
+  int described = 0;
+  for (const char* kind : {"full", "masked", "crop"})
+    for (const auto& e : std::filesystem::directory_iterator(std::string(KEYTURN_REAL_DATA) + "/" + kind)) {
+      const ViewDescriptor d = describeView(loadCloud(e.path().string()), DescriptorOptions());
+      EXPECT_GE(d.keypointCount(), 5) << e.path();  // measured 6–34 (docs/filtering.md)
+      EXPECT_LE(d.keypointCount(), 64) << e.path();
+      EXPECT_FALSE(d.filter.anyFlagged()) << e.path() << ": " << d.filter.flaggedSummary();
+      EXPECT_EQ(d.filter.kind, std::string(kind) == "full"     ? InputKind::Frame
+                               : std::string(kind) == "masked" ? InputKind::MaskedFrame
+                                                               : InputKind::SegmentedCloud)
+          << e.path();
+      EXPECT_LT(d.points, 3000u) << e.path();  // the working resolution bounds N
+      ++described;
+    }
+  EXPECT_EQ(described, 2 + 5 + 38);
 }

@@ -76,3 +76,123 @@ TEST(CropRange, DropsPointsOutsideTheRange) {
   EXPECT_EQ(c.validCount(), 1u);
   EXPECT_TRUE(Cloud::isValid(c.points[1]));
 }
+
+namespace {
+
+// The faces of a box (centre c, half sizes h) that a camera at the origin sees.
+std::vector<Eigen::Vector3f> visibleBoxFaces(const Eigen::Vector3f& c, const Eigen::Vector3f& h, float step) {
+  std::vector<Eigen::Vector3f> pts;
+  for (int axis = 0; axis < 3; ++axis)
+    for (int sign = -1; sign <= 1; sign += 2) {
+      Eigen::Vector3f n = Eigen::Vector3f::Zero();
+      n[axis] = static_cast<float>(sign);
+      const Eigen::Vector3f centre = c + n.cwiseProduct(h);
+      if (n.dot(-centre) <= 0.f) continue;  // faces away from the camera
+      const int a = (axis + 1) % 3, b = (axis + 2) % 3;
+      for (float u = -h[a]; u <= h[a]; u += step)
+        for (float v = -h[b]; v <= h[b]; v += step) {
+          Eigen::Vector3f p = centre;
+          p[a] += u;
+          p[b] += v;
+          pts.push_back(p);
+        }
+    }
+  return pts;
+}
+
+}  // namespace
+
+// A segmented box (no table): its largest face is the dominant plane, but the rest of
+// the box lies behind that face, so it is not a support and stays.
+TEST(SupportRule, KeepsTheLargestFaceOfASegmentedBox) {
+  // Seen from above and the side: front (z-), top (y-) and left (x-) faces visible.
+  const auto pts = visibleBoxFaces({0.15f, 0.12f, 0.9f}, {0.12f, 0.04f, 0.08f}, 0.003f);
+  Cloud c = test::unorganized(pts);
+  FilterOptions o;
+  std::string why;
+  EXPECT_FALSE(removeDominantPlane(c, o, nullptr, &why));
+  EXPECT_EQ(c.validCount(), pts.size());
+  EXPECT_NE(why.find("behind"), std::string::npos) << why;
+  // Through the whole filter: every step keeps (nearly) the whole box, nothing is flagged.
+  FilterReport r;
+  const Cloud out = filterCloud(test::unorganized(pts), o, &r);
+  EXPECT_EQ(r.kind, InputKind::SegmentedCloud);
+  EXPECT_FALSE(r.plane_found);
+  EXPECT_GT(out.validCount(), pts.size() * 95 / 100);
+  EXPECT_FALSE(r.anyFlagged()) << r.flaggedSummary();
+}
+
+// The same box standing on a table: the table is a support and goes, the box stays.
+TEST(SupportRule, RemovesTheTableUnderTheBox) {
+  const Eigen::Vector3f c(0.f, 0.16f, 0.9f), h(0.06f, 0.04f, 0.05f);  // y down: the table is y = 0.2
+  auto pts = visibleBoxFaces(c, h, 0.003f);
+  const std::size_t box = pts.size();
+  for (float x = -0.3f; x <= 0.3f; x += 0.005f)
+    for (float z = 0.6f; z <= 1.2f; z += 0.005f)
+      if (std::abs(x) > h.x() || std::abs(z - c.z()) > h.z()) pts.emplace_back(x, 0.2f, z);
+  Cloud cloud = test::unorganized(pts);
+  std::string why;
+  ASSERT_TRUE(removeDominantPlane(cloud, FilterOptions(), nullptr, &why)) << why;
+  EXPECT_GT(cloud.validCount(), box * 85 / 100);  // the bottom strip of the faces is within the band
+  EXPECT_LE(cloud.validCount(), box);
+}
+
+// A plate's flat floor with its rim rising towards the camera: in front of the plane,
+// but spread wider than it, so the floor is the object, not a support.
+TEST(SupportRule, KeepsAPlatesFloor) {
+  std::vector<Eigen::Vector3f> pts;
+  for (float x = -0.08f; x <= 0.08f; x += 0.003f)
+    for (float z = -0.08f; z <= 0.08f; z += 0.003f) {
+      const float r = std::hypot(x, z);
+      if (r > 0.12f) continue;
+      pts.emplace_back(x, 0.2f, 0.9f + z);  // floor, radius 8 cm (square-ish patch)
+    }
+  for (float a = 0.f; a < 6.283f; a += 0.02f)
+    for (float r = 0.09f; r <= 0.12f; r += 0.003f)
+      pts.emplace_back(r * std::cos(a), 0.2f - 0.8f * (r - 0.085f), 0.9f + r * std::sin(a));  // rim, rising
+  Cloud c = test::unorganized(pts);
+  std::string why;
+  EXPECT_FALSE(removeDominantPlane(c, FilterOptions(), nullptr, &why)) << why;
+  EXPECT_NE(why.find("narrower"), std::string::npos) << why;
+}
+
+TEST(FilterReport, NamesTheInputKindAndCountsEveryStep) {
+  Cloud frame = test::organizedPlanes(60, 40, 50.f, 1.5f, 1.0f, 20, 40, 10, 30);
+  FilterReport r;
+  filterCloud(frame, FilterOptions(), &r);
+  EXPECT_EQ(r.kind, InputKind::Frame);
+  ASSERT_EQ(r.steps.size(), 5u);
+  EXPECT_EQ(r.steps[0].name, "crop");
+  EXPECT_EQ(r.steps[0].before, 2400u);
+  for (std::size_t k = 1; k < r.steps.size(); ++k) EXPECT_EQ(r.steps[k].before, r.steps[k - 1].after);
+  // Masked: only the front rectangle valid (400 of 2400 pixels < 30 %).
+  Cloud masked = frame;
+  for (std::size_t i = 0; i < masked.size(); ++i)
+    if (masked.points[i].z() > 1.2f) masked.points[i].setConstant(std::nanf(""));
+  EXPECT_EQ(classifyInput(masked), InputKind::MaskedFrame);
+  EXPECT_EQ(classifyInput(test::unorganized({{0, 0, 1}, {0, 0.1f, 1}})), InputKind::SegmentedCloud);
+}
+
+// An unorganized cloud's frame is unknown: the range crop (metres from the camera) is not applied,
+// so an object cloud centred on the origin survives.
+TEST(FilterReport, DoesNotRangeCropASegmentedCloud) {
+  const auto pts = test::cubeSurface(0.1f, 12, Eigen::Vector3f(0, 0, 0));
+  FilterReport r;
+  const Cloud out = filterCloud(test::unorganized(pts), FilterOptions(), &r);
+  EXPECT_FALSE(r.steps[0].applied);
+  EXPECT_GT(out.validCount(), pts.size() * 9 / 10);
+}
+
+// A step that removes more than half of what it was given, where that is not its job, is flagged.
+TEST(FilterReport, FlagsAStepThatRemovesMostOfTheView) {
+  Cloud frame = test::organizedPlanes(60, 40, 50.f, 1.5f, 1.0f, 20, 40, 10, 30);
+  FilterOptions o;
+  o.max_range = 1.2f;  // the back plane (5/6 of the pixels) lies beyond
+  FilterReport r;
+  filterCloud(frame, o, &r);
+  EXPECT_TRUE(r.steps[0].flagged);
+  EXPECT_NE(r.flaggedSummary().find("crop removed 83%"), std::string::npos) << r.flaggedSummary();
+  o.max_range = 3.f;
+  filterCloud(frame, o, &r);
+  EXPECT_FALSE(r.steps[0].flagged);
+}

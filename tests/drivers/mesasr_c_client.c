@@ -19,5 +19,6 @@ int main(void) {
   printf("%s: %d bytes, %d images, %ux%u, %d pixels with a distance\n", dev, bytes, n,
          SR_GetCols(cam), SR_GetRows(cam), nonzero);
   SR_Close(cam);
-  return bytes == 2 * 176 * 144 * 2 && n == 3 && nonzero > 20000 ? 0 : 1;
+  /* Two images: libMesaSR opens an SR4000 without the confidence map. */
+  return bytes == 2 * 176 * 144 * 2 && n == 2 && nonzero > 20000 ? 0 : 1;
 }

@@ -188,12 +188,17 @@ TEST_F(Sr4000SimTest, ImageListIsReallocatedBySetModeAndTheDriverFollows) {
   SRCAM cam = nullptr;
   ASSERT_EQ(lib_->SR_OpenUSB(&cam, 0), 1);
   ImgEntry* before = nullptr;
-  ASSERT_EQ(lib_->SR_GetImageList(cam, &before), 3);
+  // Opened in libMesaSR's SR4000 mode: no confidence map.
+  ASSERT_EQ(lib_->SR_GetMode(cam), AM_COR_FIX_PTRN | AM_CONV_GRAY | AM_DENOISE_ANF);
+  ASSERT_EQ(lib_->SR_GetImageList(cam, &before), 2);
   void* old_distance = before[0].data;
-  ASSERT_EQ(lib_->SR_SetMode(cam, AM_COR_FIX_PTRN), 0);
+  ASSERT_EQ(lib_->SR_SetMode(cam, AM_COR_FIX_PTRN | AM_CONF_MAP), 0);
   ImgEntry* after = nullptr;
-  EXPECT_EQ(lib_->SR_GetImageList(cam, &after), 2);  // no confidence map without AM_CONF_MAP
+  EXPECT_EQ(lib_->SR_GetImageList(cam, &after), 3);
+  EXPECT_EQ(after[2].imgType, IT_CONF_MAP);
   EXPECT_NE(after[0].data, old_distance);
+  ASSERT_EQ(lib_->SR_SetMode(cam, AM_COR_FIX_PTRN), 0);
+  EXPECT_EQ(lib_->SR_GetImageList(cam, &after), 2);  // no confidence map without AM_CONF_MAP
   lib_->SR_Close(cam);
 
   auto drv = open();

@@ -6,6 +6,7 @@
 #include <QPainter>
 #include <QtCharts/QChart>
 #include <QtCharts/QLineSeries>
+#include <QtCharts/QLogValueAxis>
 #include <QtCharts/QScatterSeries>
 #include <QtCharts/QValueAxis>
 #include <algorithm>
@@ -17,15 +18,43 @@
 #include "keyturn/core/error.h"
 
 namespace keyturn::ui {
+namespace {
+QtCharts::QAbstractAxis* makeAxis(bool log, const std::string& title) {
+  QtCharts::QAbstractAxis* axis;
+  if (log) {
+    auto* a = new QtCharts::QLogValueAxis();
+    a->setBase(10.0);
+    a->setMinorTickCount(8);  // 2…9 between decades
+    a->setLabelFormat("%.10g");  // 1000000, not 1e+06
+    axis = a;
+  } else {
+    auto* a = new QtCharts::QValueAxis();
+    a->setLabelFormat("%.3g");
+    axis = a;
+  }
+  axis->setTitleText(QString::fromStdString(title));
+  return axis;
+}
+
+// A log axis spans whole decades so its ticks fall on 1, 10, 100…
+void setRange(QtCharts::QAbstractAxis* axis, bool log, double lo, double hi) {
+  if (log) {
+    if (lo <= 0) lo = hi / 1000;  // a caller's y_min of 0 has no place on a log axis
+    lo = std::pow(10.0, std::floor(std::log10(lo)));
+    hi = std::pow(10.0, std::ceil(std::log10(hi)));
+    if (hi <= lo) hi = lo * 10;
+  }
+  axis->setRange(lo, hi);
+}
+}  // namespace
+
 void saveChartPng(const LineChart& c, const std::string& path, int width, int height) {
   ensureApplication();
   auto* chart = new QtCharts::QChart();
   chart->setTitle(QString::fromStdString(c.title));
   chart->legend()->setAlignment(Qt::AlignBottom);
-  auto* ax = new QtCharts::QValueAxis();
-  auto* ay = new QtCharts::QValueAxis();
-  ax->setTitleText(QString::fromStdString(c.x_label));
-  ay->setTitleText(QString::fromStdString(c.y_label));
+  auto* ax = makeAxis(c.log_x, c.x_label);
+  auto* ay = makeAxis(c.log_y, c.y_label);
   chart->addAxis(ax, Qt::AlignBottom);
   chart->addAxis(ay, Qt::AlignLeft);
   double xmin = 1e300, xmax = -1e300, ymin = 1e300, ymax = -1e300;
@@ -39,6 +68,7 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
     line->setName(QString::fromStdString(s.name));
     for (std::size_t i = 0; i < std::min(s.x.size(), s.y.size()); ++i) {
       if (!std::isfinite(s.x[i]) || !std::isfinite(s.y[i])) continue;
+      if ((c.log_x && s.x[i] <= 0) || (c.log_y && s.y[i] <= 0)) continue;
       line->append(s.x[i], s.y[i]);
       xmin = std::min(xmin, s.x[i]);
       xmax = std::max(xmax, s.x[i]);
@@ -53,15 +83,16 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
     line->attachAxis(ax);
     line->attachAxis(ay);
   }
-  if (xmin > xmax) xmin = 0, xmax = 1, ymin = 0, ymax = 1;
+  if (xmin > xmax) {  // no points: an empty frame (1…10 on a log axis)
+    xmin = c.log_x ? 1 : 0, xmax = c.log_x ? 10 : 1;
+    ymin = c.log_y ? 1 : 0, ymax = c.log_y ? 10 : 1;
+  }
   if (std::isfinite(c.y_min)) ymin = c.y_min;
   if (std::isfinite(c.y_max)) ymax = c.y_max;
   if (ymax <= ymin) ymax = ymin + 1;
   if (xmax <= xmin) xmax = xmin + 1;
-  ax->setRange(xmin, xmax);
-  ay->setRange(ymin, ymax);
-  ax->setLabelFormat("%.3g");
-  ay->setLabelFormat("%.3g");
+  setRange(ax, c.log_x, xmin, xmax);
+  setRange(ay, c.log_y, ymin, ymax);
 
   QGraphicsScene scene;
   scene.addItem(chart);  // the scene owns the chart

@@ -56,6 +56,8 @@ std::map<std::string, std::string> featureSpec(const FeatureParams& f) {
           {"iss_nms", fmt(f.iss_nms)},
           {"iss_density", fmt(f.iss_density)},
           {"graph_radius", fmt(f.graph_radius)},
+          {"working_samples_across", fmt(f.samples_across)},
+          {"max_keypoints", std::to_string(f.max_keypoints)},
           {"osada_samples", std::to_string(f.osada_samples)},
           {"seed", std::to_string(f.seed)},
           {"normal_radius_m", fmt(kNormalRadius)}};
@@ -79,6 +81,10 @@ FeatureParams featureParamsFromSpec(const std::map<std::string, std::string>& sp
   p.iss_nms = r.number("iss_nms");
   p.iss_density = r.number("iss_density");
   p.graph_radius = r.number("graph_radius");
+  p.samples_across = r.number("working_samples_across");
+  p.max_keypoints = static_cast<int>(r.number("max_keypoints"));
+  if (!(p.samples_across >= 0) || p.samples_across > 1e6 || p.max_keypoints < 0)
+    throw Error(source + ": feature spec working_samples_across or max_keypoints out of range");
   p.osada_samples = static_cast<int>(r.number("osada_samples"));
   p.seed = static_cast<unsigned long long>(r.number("seed"));
   if (p.bins < 2 || p.bins > 4096) throw Error(source + ": feature spec bins " + r.text("bins") + " is outside 2..4096");
@@ -102,6 +108,11 @@ DescriptorOptions descriptorOptions(const FeatureParams& p, const std::vector<Fe
   o.iss.nms_radius = p.iss_nms;
   o.iss.density_radius = p.iss_density;
   o.graph.radius = p.graph_radius;
+  if (!(p.samples_across >= 0) || p.max_keypoints < 0)
+    throw Error("--samples-across and --max-keypoints must be >= 0 (0 = off)");
+  o.working.enabled = p.samples_across > 0;
+  if (o.working.enabled) o.working.samples_across = p.samples_across;
+  o.iss.max_keypoints = p.max_keypoints;
   o.osada.samples = p.osada_samples;
   o.osada.seed = p.seed;
   return o;

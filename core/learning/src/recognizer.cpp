@@ -41,13 +41,14 @@ Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadMode
 Recognition Recognizer::describe(const Cloud& cloud) const {
   const auto t0 = std::chrono::steady_clock::now();
   Recognition r;
-  // Filter here, then describe the filtered points: the same split the dataset cache uses, and
-  // the filtered points are what a viewer shows.
+  // Prepare (filter, working resolution) here, then describe those points: they are what a
+  // viewer shows, and the keypoint indices point into them.
   if (cloud.validCount() == 0) throw Error("no valid points (empty, or all NaN or infinite)");
-  r.filtered = PointSet::fromCloud(options_.filter ? filterCloud(cloud, options_.filter_options) : cloud);
+  PreparedView prepared = prepareView(cloud, options_);
+  r.filtered = std::move(prepared.points);
   r.filter_ms = msSince(t0);
   const auto t1 = std::chrono::steady_clock::now();
-  r.descriptor = describeFilteredPoints(r.filtered, options_);
+  r.descriptor = describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor());
   r.describe_ms = msSince(t1);
   for (const auto& pdf : r.descriptor.pdfs)
     for (double v : pdf) r.features.push_back(static_cast<float>(v));

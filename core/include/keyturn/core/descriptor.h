@@ -11,12 +11,14 @@
 #include "keyturn/core/geodesic.h"
 #include "keyturn/core/iss.h"
 #include "keyturn/core/shape_distributions.h"
+#include "keyturn/core/working_resolution.h"
 
 namespace keyturn {
 
 struct DescriptorOptions {
   bool filter = true;
   FilterOptions filter_options;
+  WorkingResolutionOptions working;  // applies with or without the filter
   IssOptions iss;
   GraphOptions graph;
   OsadaOptions osada;
@@ -37,6 +39,20 @@ struct StageTimes {
          histogram = 0, total = 0;
 };
 
+// A view made ready for the chain: filtered (unless options.filter is off), then at the
+// working resolution. The one path from a cloud to the points every tool describes.
+struct PreparedView {
+  PointSet points;
+  std::size_t input_points = 0;  // valid points of the input
+  FilterReport filter;           // steps empty when the filter was off
+  WorkingResolutionReport working;
+  double ms = 0;                 // time spent
+  double resolutionFloor() const { return working.subsampled ? working.spacing : 0.0; }
+};
+
+// Throws keyturn::Error (without a file name) for an empty or all-NaN cloud or one the filter empties.
+PreparedView prepareView(const Cloud& cloud, const DescriptorOptions& options);
+
 struct ViewDescriptor {
   std::size_t input_points = 0;     // valid points before filtering
   std::size_t points = 0;           // valid points after filtering
@@ -52,6 +68,8 @@ struct ViewDescriptor {
   // (same order as `features`; shape functions are left empty there).
   std::vector<std::vector<double>> random_keypoint_pdfs;
   StageTimes times;
+  FilterReport filter;               // what each filter step removed (describeView only)
+  WorkingResolutionReport working;   // the working resolution (describeView only)
 
   int keypointCount() const { return static_cast<int>(keypoints.size()); }
   std::vector<double> featureVector() const;  // PDFs concatenated
@@ -61,8 +79,12 @@ struct ViewDescriptor {
 // all-NaN cloud, a cloud the filter empties, or fewer than min_keypoints keypoints.
 ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options);
 
-// The same for points already filtered (options.filter is not applied again): for callers that
-// keep the filtered points, e.g. to show them, so they are built once. input_points = points.
-ViewDescriptor describeFilteredPoints(const PointSet& filtered, const DescriptorOptions& options);
+// The same for points already prepared (prepareView; nothing is filtered or subsampled
+// again): for callers that keep the points, e.g. to show them, so they are built once.
+// `min_resolution`: a floor for the resolution the radii are multiples of. A view subsampled to
+// the working spacing s has a mean neighbour distance below s (the kept points are irregular), so
+// its radii are taken in multiples of s, as for a view measured at spacing s (PreparedView::resolutionFloor).
+ViewDescriptor describeFilteredPoints(const PointSet& filtered, const DescriptorOptions& options,
+                                      double min_resolution = 0.0);
 
 }  // namespace keyturn

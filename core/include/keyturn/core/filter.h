@@ -1,8 +1,13 @@
 #pragma once
-// §4.1 filtering of a ToF view: range/box crop, jump-edge removal, dominant
-// plane removal (RANSAC), largest-cluster segmentation and statistical outlier
-// removal. Each step is optional; the defaults suit an SR4000 at 0.4–1.5 m.
+// §4.1 filtering of a depth view: range/box crop, jump-edge removal, support
+// plane removal (RANSAC + the support rule), largest-cluster segmentation and
+// statistical outlier removal. Each step is optional. The input's kind is
+// recognised (docs/filtering.md): a full organized frame with a support
+// (SR4000, Kinect, RealSense), an organized frame already masked to the object,
+// or an unorganized, already segmented object cloud; the defaults suit all three.
 #include <Eigen/Core>
+#include <string>
+#include <vector>
 
 #include "keyturn/core/cloud.h"
 
@@ -24,13 +29,18 @@ struct FilterOptions {
   bool jump_edge = true;
   float jump_edge_angle_deg = 10.0f;
 
-  // Dominant plane (table/turntable): RANSAC plane whose inliers are removed
-  // when they are at least this fraction of the points; points below the plane
-  // (on the far side from the camera) are removed with it.
+  // Support plane (table/turntable): the dominant RANSAC plane (inliers at least
+  // this fraction of the points) is removed, with everything behind it, only when
+  // it is a support the object stands on — the points it does not explain lie on
+  // the camera's side of it and its inliers spread at least as wide as those
+  // points' footprint on it. A face of the object (the rest lies behind it) or a
+  // plate's floor (its rim spreads wider) is kept.
   bool remove_plane = true;
   float plane_distance = 0.008f;
   float plane_min_fraction = 0.15f;
   int plane_iterations = 200;
+  int plane_max_samples = 20000;   // RANSAC hypotheses scored on at most this many points
+  int support_min_points = 30;     // points above a support: fewer and it is not holding anything
 
   // Keep only the largest Euclidean cluster (the object), cluster tolerance in metres.
   bool largest_cluster = true;
@@ -42,7 +52,25 @@ struct FilterOptions {
   float sor_std_mul = 2.0f;
 };
 
+// What kind of input the filter was given (reported, and it decides which steps apply:
+// the range crop and jump edges need an organized frame in the camera's coordinates).
+enum class InputKind { Frame, MaskedFrame, SegmentedCloud };
+const char* inputKindName(InputKind kind);  // "frame", "masked-frame", "segmented-cloud"
+
+// One step's effect: points before and after it. `flagged` marks a step that removed
+// more than half of what it was given where that is not its job (see filterCloud).
+struct FilterStep {
+  std::string name;  // crop, jump-edges, support-plane, cluster, outliers (and working-resolution)
+  bool applied = false;
+  std::size_t before = 0, after = 0;
+  bool flagged = false;
+  std::string note;  // why a step did not apply, or what it decided
+  std::size_t removed() const { return before - after; }
+};
+
 struct FilterReport {
+  InputKind kind = InputKind::SegmentedCloud;
+  std::vector<FilterStep> steps;  // in the order they ran
   std::size_t input_valid = 0;
   std::size_t after_crop = 0;
   std::size_t after_jump_edge = 0;
@@ -51,7 +79,13 @@ struct FilterReport {
   std::size_t after_outliers = 0;
   bool plane_found = false;
   Eigen::Vector4f plane{0.f, 0.f, 0.f, 0.f};  // ax+by+cz+d=0, normal towards the camera
+  bool anyFlagged() const;
+  std::string flaggedSummary() const;  // "support-plane removed 93% (12563 of 12575)", …; empty when none
 };
+
+// An organized frame with fewer valid pixels than this fraction is taken to be masked to the object.
+constexpr double kMaskedFrameMaxValidFraction = 0.3;
+InputKind classifyInput(const Cloud& cloud);
 
 // Returns a cloud of the same layout (organized stays organized, removed points NaN).
 Cloud filterCloud(const Cloud& input, const FilterOptions& options, FilterReport* report = nullptr);
@@ -60,7 +94,10 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& options, FilterReport
 void cropRange(Cloud& cloud, float min_range, float max_range);
 void cropBox(Cloud& cloud, const Eigen::Vector3f& box_min, const Eigen::Vector3f& box_max);
 std::size_t removeJumpEdges(Cloud& cloud, float angle_deg);
-bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane);
+// Removes the dominant plane when it is a support (see FilterOptions). `decision`, when given,
+// says what was found and why it was or was not removed. Returns whether it was removed.
+bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane,
+                         std::string* decision = nullptr);
 void keepLargestCluster(Cloud& cloud, float tolerance);
 void removeStatisticalOutliers(Cloud& cloud, int k, float std_mul);
 

@@ -19,6 +19,10 @@ struct IssOptions {
   double gamma21 = 0.975;
   double gamma32 = 0.975;
   int min_neighbors = 5;
+  // Keypoint budget: at most this many keypoints, the most salient (0 = no cap). The
+  // working resolution already bounds K; the budget bounds the K^3 triples of KPD3/KPA3
+  // and the K searches of GKPD for whatever input still exceeds it.
+  int max_keypoints = 64;
 };
 
 struct IssResult {

@@ -23,6 +23,12 @@ class RadiusSearch {
   float nearestDistance(int i) const;
   bool usesGrid() const;
 
+  // Computes every point's neighbours within `radius` once (a hash grid of that cell
+  // size, or the pixel window), so that later queries of any r <= radius are a scan
+  // of one short row: ISS's three radii and the graph's all come from one search.
+  void cacheNeighbourhoods(float radius);
+  float cachedRadius() const { return table_radius_; }
+
   // Force the k-d tree even for organized sets (benchmarks and cross-checks).
   static std::unique_ptr<RadiusSearch> kdTree(const PointSet& set);
 
@@ -31,6 +37,11 @@ class RadiusSearch {
  private:
   RadiusSearch() = default;
   std::unique_ptr<Impl> impl_;
+  const PointSet* set_ = nullptr;
+  float table_radius_ = 0.f;
+  std::vector<int> row_offset_;     // size n+1 once cached
+  std::vector<int> row_index_;      // neighbours within table_radius_, ascending index per row
+  std::vector<float> row_d2_;       // their squared distances
 };
 
 // Mean distance from each valid point to its nearest neighbour (the "cloud

@@ -17,6 +17,8 @@ struct LineChart {
   std::string title, x_label, y_label;
   std::vector<Series> series;
   double y_min = std::nan(""), y_max = std::nan("");  // NaN: from the data
+  // Logarithmic axes (base 10, whole decades): points ≤ 0 on such an axis are left out.
+  bool log_x = false, log_y = false;
 };
 
 // Throws keyturn::Error naming the file when it cannot be written.

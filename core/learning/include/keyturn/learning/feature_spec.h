@@ -11,7 +11,7 @@
 
 namespace keyturn::learning {
 
-constexpr int kFeatureCacheVersion = 2;     // 2: cache values written with 9 significant digits (exact)
+constexpr int kFeatureCacheVersion = 3;     // 2: 9 significant digits (exact); 3: support rule, working resolution
 constexpr double kNormalRadius = 0.012;     // VFH / OUR-CVFH normals, metres (≈ 4 SR4000 pixels at 0.6 m)
 
 struct FeatureParams {
@@ -24,6 +24,8 @@ struct FeatureParams {
   double jump_edge_angle = 10.0;  // degrees, 0 = off
   double iss_frame = 6.0, iss_nms = 4.0, iss_density = 2.0;  // × resolution
   double graph_radius = 3.5;
+  double samples_across = WorkingResolutionOptions().samples_across;  // 0 = the sensor's own resolution
+  int max_keypoints = IssOptions().max_keypoints;                     // 0 = no budget
   int osada_samples = 20000;
   unsigned long long seed = 7;
 };

@@ -1,0 +1,78 @@
+#include "keyturn/core/working_resolution.h"
+
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <unordered_map>
+#include <vector>
+
+namespace keyturn {
+namespace {
+
+std::uint64_t voxelKey(const Eigen::Vector3f& p, double inv_s) {
+  // 21 bits per axis around the origin: ±1M voxels, far beyond any view at millimetre spacing.
+  auto axis = [&](float x) {
+    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x * inv_s)) + (1 << 20)) & 0x1FFFFF;
+  };
+  return axis(p.x()) | axis(p.y()) << 21 | axis(p.z()) << 42;
+}
+
+}  // namespace
+
+void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& o, WorkingResolutionReport* report) {
+  WorkingResolutionReport r;
+  std::vector<int> valid;
+  valid.reserve(cloud.size());
+  Eigen::Vector3d c = Eigen::Vector3d::Zero();
+  for (std::size_t i = 0; i < cloud.size(); ++i)
+    if (Cloud::isValid(cloud.points[i])) {
+      valid.push_back(static_cast<int>(i));
+      c += cloud.points[i].cast<double>();
+    }
+  r.before = r.after = valid.size();
+  if (valid.size() >= 2 && o.enabled && o.samples_across > 0) {
+    c /= static_cast<double>(valid.size());
+    double ss = 0;
+    for (int i : valid) ss += (cloud.points[i].cast<double>() - c).squaredNorm();
+    r.extent = 2.0 * std::sqrt(ss / static_cast<double>(valid.size()));
+    r.spacing = r.extent / o.samples_across;
+  }
+  if (r.spacing > 0) {
+    const double inv_s = 1.0 / r.spacing;
+    struct Voxel {
+      Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+      int count = 0, best = -1;
+      float best_d2 = std::numeric_limits<float>::infinity();
+    };
+    std::unordered_map<std::uint64_t, Voxel> voxels;
+    voxels.reserve(valid.size());
+    std::vector<std::uint64_t> key(valid.size());
+    for (std::size_t k = 0; k < valid.size(); ++k) {
+      key[k] = voxelKey(cloud.points[valid[k]], inv_s);
+      Voxel& v = voxels[key[k]];
+      v.sum += cloud.points[valid[k]].cast<double>();
+      ++v.count;
+    }
+    if (static_cast<double>(voxels.size()) < o.keep_fraction * static_cast<double>(valid.size())) {
+      for (std::size_t k = 0; k < valid.size(); ++k) {
+        Voxel& v = voxels[key[k]];
+        const Eigen::Vector3f mean = (v.sum / v.count).cast<float>();
+        const float d2 = (cloud.points[valid[k]] - mean).squaredNorm();
+        if (d2 < v.best_d2) {  // ties keep the lower index: the same cloud, the same points
+          v.best_d2 = d2;
+          v.best = valid[k];
+        }
+      }
+      std::vector<char> keep(cloud.size(), 0);
+      for (const auto& [k, v] : voxels) keep[static_cast<std::size_t>(v.best)] = 1;
+      const Eigen::Vector3f nan = Eigen::Vector3f::Constant(std::nanf(""));
+      for (int i : valid)
+        if (!keep[static_cast<std::size_t>(i)]) cloud.points[i] = nan;
+      r.subsampled = true;
+      r.after = voxels.size();
+    }
+  }
+  if (report) *report = r;
+}
+
+}  // namespace keyturn
