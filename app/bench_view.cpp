@@ -102,9 +102,8 @@ nlohmann::json benchView(const std::string& name, const Cloud& cloud, const Benc
   j["total_cpu_ms"] = total_cpu.median;
   j["stages"]["total_cpu"] = spreadJson(total_cpu);
 
-  // PCL on the same filtered cloud with the same radii in metres.
-  const Cloud filtered = options.filter ? filterCloud(cloud, options.filter_options) : cloud;
-  const PointSet set = PointSet::fromCloud(filtered);
+  // PCL on the points keyturn's ISS sees (filtered, at the working resolution), same radii in metres.
+  const PointSet set = prepareView(cloud, options).points;
   const double res = d.resolution;
   std::size_t pcl_k = 0;
   const Timed iss = timeIt(runs.pcl_repetitions, [&] {

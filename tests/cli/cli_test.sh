@@ -18,7 +18,8 @@ check "good rows still written" test "$(wc -l < "$work/features.csv")" -eq 4
 check "truncated file named in one line" grep -q "broken.pcd: truncated PCD" "$work/describe.err"
 check "empty file named" grep -q "empty.pcd: empty file" "$work/describe.err"
 header=$(head -1 "$work/features.csv")
-check "header has keypoint count and 6x32 bins" test "$(echo "$header" | tr ',' '\n' | wc -l)" -eq $((7 + 6 * 32))
+check "header has keypoint count, 10 filter columns and 6x32 bins" test "$(echo "$header" | tr ',' '\n' | wc -l)" -eq $((7 + 10 + 6 * 32))
+check "header names the filter steps" grep -q "input_kind,input_points,crop_removed,jump_edges_removed,support_plane_removed,cluster_removed,outliers_removed,working_spacing_mm,working_removed,filter_flag" "$work/features.csv"
 k=$(sed -n 2p "$work/features.csv" | cut -d, -f3)
 check "keypoint count is a positive number" test "${k:-0}" -gt 5
 
@@ -81,5 +82,20 @@ if command -v umockdev-run > /dev/null; then
 else
   echo "SKIPPED: keyturn devices under umockdev (umockdev-run not installed)"
 fi
+
+# Real Kinect data (mOSD cuts): every input kind described by default, each step explained.
+real="$(dirname "$0")/../data/real/mosd"
+"$KT" describe "$real/full/learn0.pcd" "$real/masked/learn0_o1.pcd" "$real/crop/learn0_o1.pcd" --explain -j 1 \
+    --features kpd2,kpa3 -q --out "$work/real.csv" 2>"$work/real.err"
+check "real full, masked and crop views described" test $? -eq 0 -a "$(wc -l < "$work/real.csv")" -eq 4
+check "explain names the three input kinds" grep -q "learn0.pcd: frame" "$work/real.err"
+check "explain: masked frame" grep -q "learn0_o1.pcd: masked-frame" "$work/real.err"
+check "explain: segmented cloud" grep -q "learn0_o1.pcd: segmented-cloud" "$work/real.err"
+check "explain: the table is a support, the box's face is not" \
+    sh -c "grep -q 'a support, removed' '$work/real.err' && grep -q 'a face of the object), kept' '$work/real.err'"
+check "CSV rows carry the input kind" sh -c "cut -d, -f8 '$work/real.csv' | sort | tr '\n' ' ' | grep -q 'frame input_kind masked-frame segmented-cloud'"
+# A step that removes most of the view is flagged in one stderr line and in the row.
+"$KT" describe "$real/masked/learn0_o1.pcd" --max-range 0.62 --features kpd2 -q --out "$work/flag.csv" 2>"$work/flag.err"
+check "a step removing most of the view is flagged on stderr" grep -q "warning: .*learn0_o1.pcd: crop removed" "$work/flag.err"
 
 finish
