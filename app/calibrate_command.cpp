@@ -17,6 +17,12 @@
 namespace keyturn::app {
 namespace {
 
+constexpr double kMinTargetCircle = 0.01;  // m: a ball standing ~6 cm off the axis goes round on ~6 cm
+constexpr double kMaxAngleRmsDeg = 1.0;    // a fixed ball on a well-scaled pose source: ~0.05°
+const char* const kNotATarget =
+    ": not a sphere-target sequence (a ball of ~6 cm standing off-centre; simulated: capture --mesh "
+    "builtin:sphere-target), or the ball moved, or the pose source's scale is wrong; nothing written";
+
 struct CalibrateArgs {
   std::string dataset, out, cls, instance, elevation;
 };
@@ -57,6 +63,19 @@ int runCalibrate(const CalibrateArgs& a) {
   table /= static_cast<double>(centres.size());
   table.head<3>().normalize();
   const AxisCalibration cal = calibrateAxis(centres, angles, table);
+  // A sequence without an off-centre ball still fits "a sphere" per view (the object's own surface),
+  // and its axis would be wrong: refused rather than written (the ball's centre must go round).
+  char why[200];
+  if (cal.target_radius < kMinTargetCircle) {
+    std::snprintf(why, sizeof why, "the target's centre moves on a circle of only %.1f mm (at least %.0f mm needed)",
+                  cal.target_radius * 1000, kMinTargetCircle * 1000);
+    throw Error(a.dataset + ": " + why + kNotATarget);
+  }
+  if (cal.angle_rms_deg > kMaxAngleRmsDeg) {
+    std::snprintf(why, sizeof why, "reported and fitted turntable angles disagree by %.2f° rms (at most %.0f°)",
+                  cal.angle_rms_deg, kMaxAngleRmsDeg);
+    throw Error(a.dataset + ": " + why + kNotATarget);
+  }
   nlohmann::json j = {{"format", "keyturn-axis-calibration"},
                       {"version", 1},
                       {"axis", {cal.axis.x(), cal.axis.y(), cal.axis.z()}},
@@ -76,9 +95,6 @@ int runCalibrate(const CalibrateArgs& a) {
               cal.target_radius * 1000, cal.circle_rms * 1000, cal.angle_rms_deg, cal.views, a.out.c_str());
   if (cal.reported_angles_clockwise)
     std::printf("warning: the pose source's angles grow clockwise seen from above; set \"direction\": -1 in its profile\n");
-  if (cal.angle_rms_deg > 1.0)
-    std::printf("warning: reported and fitted angles disagree by %.2f° rms: check the target is fixed and the pose source's scale\n",
-                cal.angle_rms_deg);
   return 0;
 }
 

@@ -3,6 +3,7 @@
 // capture; Ctrl-C stops cleanly after the current view.
 #include <atomic>
 #include <csignal>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 
@@ -38,9 +39,11 @@ struct CaptureArgs {
   double sim_faults = 0;
 };
 
-int runCapture(const CaptureArgs& a) {
-  rig::Dataset dataset(a.out);
+// The calibration file, the pose source (and its profile) and the camera are opened before the
+// dataset is created, so a bad one is named before anything is written.
+int captureSequence(const CaptureArgs& a) {
   rig::CaptureOptions o;
+  if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
   rig::SimulatedRig simrig;                         // owns the simulated devices, when used
   std::unique_ptr<drivers::TofCamera> real_camera;  // or the real ones
   std::unique_ptr<drivers::PoseSource> real_pose;
@@ -60,19 +63,23 @@ int runCapture(const CaptureArgs& a) {
     camera = simrig.camera.get();
     o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
   } else {
+    (void)rig::parseCameraSpec(a.camera);
+    if (a.pose == "sim") throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
+    real_pose = rig::openPoseSource(a.pose, a.profile);  // before the camera: a missing profile is said at once
     real_camera = rig::openCamera(a.camera, "");
     camera = real_camera.get();
-  }
-  if (!a.calibration.empty()) {
-    // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
-    o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
   }
   if (a.pose == "sim") {
     if (!simrig.turntable) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
     pose = simrig.turntable.get();
   } else {
-    real_pose = rig::openPoseSource(a.pose, a.profile);
+    if (!real_pose) real_pose = rig::openPoseSource(a.pose, a.profile);
     pose = real_pose.get();
+  }
+  rig::Dataset dataset(a.out);
+  if (!a.calibration.empty()) {
+    // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
+    o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
   }
 
   o.cls = a.cls;
@@ -110,6 +117,25 @@ int runCapture(const CaptureArgs& a) {
   return 0;
 }
 
+// A capture that fails before its first view leaves no dataset behind (verify would call an empty
+// one OK); the simulated rig's state folder is made before the devices open, so it goes too.
+int runCapture(const CaptureArgs& a) {
+  const bool fresh = !std::filesystem::exists(a.out);
+  try {
+    return captureSequence(a);
+  } catch (const Error&) {
+    bool has_views = false;
+    try {
+      has_views = !rig::Dataset::readManifest(a.out).empty();
+    } catch (const Error&) {
+      // no manifest yet
+    }
+    std::error_code ec;
+    if (fresh && !has_views) std::filesystem::remove_all(a.out, ec);
+    throw;
+  }
+}
+
 int runVerify(const std::string& root) {
   const rig::VerifyReport r = rig::Dataset::verify(root);
   auto list = [](const char* what, const std::vector<std::string>& v) {
@@ -120,10 +146,12 @@ int runVerify(const std::string& root) {
   list("orphan", r.orphans);
   list("duplicate", r.duplicates);
   list("bad manifest row", r.bad_rows);
+  // A dataset without views is not a good one (a capture that never took its first view).
+  const bool ok = r.ok() && r.views > 0;
   std::cout << root << ": " << r.views << " views, " << r.missing.size() << " missing, " << r.corrupt.size()
             << " corrupt, " << r.orphans.size() << " orphan, " << r.duplicates.size() << " duplicate files"
-            << (r.ok() ? " — OK" : " — PROBLEMS") << "\n";
-  return r.ok() ? 0 : 1;
+            << (ok ? " — OK" : r.ok() ? " — EMPTY (no views)" : " — PROBLEMS") << "\n";
+  return ok ? 0 : 1;
 }
 
 }  // namespace

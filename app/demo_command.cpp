@@ -22,7 +22,7 @@ namespace keyturn::app {
 namespace {
 
 struct DemoArgs {
-  std::string out = "out/demo-dataset";
+  std::string out = "out/demo";  // as scripts/demo.sh
   std::string data = KEYTURN_DATA_DIR;
   double step = 30;
 };

@@ -25,7 +25,12 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return app.exit(e);
+    if (e.get_exit_code() == 0) return app.exit(e);  // --help, --version
+    // A bad option is an error like any other: one line, exit 1.
+    std::string where = "keyturn";
+    for (const auto* sub : app.get_subcommands()) where += " " + sub->get_name();
+    std::cerr << where << ": " << e.what() << " (see " << where << " --help)\n";
+    return 1;
   }
   try {
     for (const auto& c : commands)

@@ -78,7 +78,7 @@ Command addRenderCommand(CLI::App& app) {
   auto args = std::make_shared<RenderArgs>();
   auto* cmd = app.add_subcommand("render", "Render a simulated SR4000 view of a mesh on a turntable (organized PCD)");
   cmd->add_option("mesh", args->mesh, "Mesh (PLY/OBJ/STL/OFF; metres, z up, base on z = 0), builtin:mug or builtin:sphere-target")->required();
-  cmd->add_option("--out,-o", args->out, "PCD to write; {angle} is replaced by the turntable angle")->required();
+  cmd->add_option("--out,-o", args->out, "PCD to write; {angle} is replaced by the turntable angle in whole degrees, 3 digits (045)")->required();
   cmd->add_option("--angles", args->angles, "Comma-separated turntable angles in degrees")->capture_default_str();
   cmd->add_option("--elevation", args->elevation, "Camera elevation above the turntable (degrees)")->capture_default_str();
   cmd->add_option("--distance", args->distance,

@@ -8,6 +8,8 @@
 #include <QApplication>
 #include <QScreen>
 #include <QTimer>
+#include <atomic>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <iostream>
@@ -20,6 +22,26 @@
 #endif
 
 namespace {
+
+std::atomic<bool> g_quit{false};
+void onQuitSignal(int) { g_quit = true; }
+
+// Ctrl-C and SIGTERM close the window as its close button does (settings saved, devices closed,
+// the simulator's temporary folder removed) instead of killing the process mid-frame. A SIGINT
+// ignored from the start (a background job of a script) stays ignored.
+void quitOnSignals(QWidget& window) {
+  struct sigaction sa {};
+  sa.sa_handler = onQuitSignal;
+  sigemptyset(&sa.sa_mask);
+  struct sigaction old {};
+  if (::sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) ::sigaction(SIGINT, &sa, nullptr);
+  ::sigaction(SIGTERM, &sa, nullptr);
+  auto* poll = new QTimer(&window);
+  QObject::connect(poll, &QTimer::timeout, &window, [&window] {
+    if (g_quit.exchange(false)) window.close();
+  });
+  poll->start(50);
+}
 
 struct Args {
   bool simulated = false;
@@ -50,7 +72,25 @@ int main(int argc, char** argv) {
   try {
     cli.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    return cli.exit(e);
+    if (e.get_exit_code() == 0) return cli.exit(e);  // --help
+    std::cerr << "keyturn-studio: " << e.what() << " (see keyturn-studio --help)\n";
+    return 1;
+  }
+  const std::string data = KEYTURN_DATA_DIR;
+  const std::string objects_csv = data + "/objects/objects.csv";
+  keyturn::studio::StudioRigFactory factory(objects_csv);
+  if (!a.object.empty()) {
+    // Refused here: the window would otherwise fall back to the object used last.
+    std::string known;
+    bool found = false;
+    for (const auto& o : factory.simObjects()) {
+      found = found || o.instance == a.object;
+      known += (known.empty() ? "" : ", ") + o.instance;
+    }
+    if (!found) {
+      std::cerr << "keyturn-studio: --object " << a.object << ": not in " << objects_csv << " (" << known << ")\n";
+      return 1;
+    }
   }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM")) {
     std::cerr << "keyturn-studio: no display (DISPLAY is not set): run it on a desktop, or headless as "
@@ -58,8 +98,6 @@ int main(int argc, char** argv) {
     return 1;
   }
   QApplication app(argc, argv);
-  const std::string data = KEYTURN_DATA_DIR;
-  keyturn::studio::StudioRigFactory factory(data + "/objects/objects.csv");
   keyturn::studio::StudioOptions o;
   o.simulated = a.simulated;
   o.sim_object = a.object;
@@ -71,6 +109,7 @@ int main(int argc, char** argv) {
   o.geodesic_paths = a.paths;
   keyturn::studio::StudioWindow window(factory, o);
   window.show();
+  quitOnSignals(window);
 
   keyturn::studio::StudioRates start;
   if (a.measure > 0) {

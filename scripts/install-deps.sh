@@ -40,6 +40,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # JSON assertions in the command-line tests
   jq
+  # the docs test (tests/docs: runs the examples in README.md and docs/, standard library only)
+  python3
 )
 
 # Commands the scripts and tests call (a package can be installed and still not

@@ -242,6 +242,10 @@ Cloud loadPly(const std::string& path) {
   const PlyElement* vertex = ply.find("vertex");
   if (!vertex) fail(path, "PLY file has no vertex element");
   if (vertex->count == 0) fail(path, "empty point cloud (0 vertices)");
+  // A mesh's vertices are not what a camera sees (no occlusion, no noise, object coordinates).
+  if (const PlyElement* face = ply.find("face"); face && face->count > 0)
+    fail(path, "is a mesh (" + std::to_string(face->count) + " faces), not a camera view: render views of it first "
+               "(keyturn render)");
   const PlyProperty* x = vertex->find("x");
   const PlyProperty* y = vertex->find("y");
   const PlyProperty* z = vertex->find("z");

@@ -48,8 +48,12 @@ Sr4000Camera::Sr4000Camera(std::shared_ptr<MesaSrLibrary> lib, Sr4000Connection 
 
 Sr4000Camera::~Sr4000Camera() { close(); }
 
+std::string Sr4000Camera::name() const {
+  return options_.name.empty() ? connection_.describe() : options_.name;
+}
+
 void Sr4000Camera::fail(const std::string& what) const {
-  throw Error(connection_.describe() + " (" + lib_->path + "): " + what);
+  throw Error(name() + " (" + lib_->path + "): " + what);
 }
 
 void Sr4000Camera::open() {
@@ -181,11 +185,11 @@ TofFrame Sr4000Camera::acquire() {
       },
       [&](int k, int wait, const std::string& last) {
         if (options_.log)
-          options_.log(connection_.describe() + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " +
+          options_.log(name() + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " +
                        std::to_string(k) + " of " + std::to_string(options_.reconnect_attempts) + ")");
       },
       [&](const std::string& last) {
-        return Error(connection_.describe() + " (" + lib_->path + "): giving up after " +
+        return Error(name() + " (" + lib_->path + "): giving up after " +
                      std::to_string(options_.reconnect_attempts) + " reopen attempts: " + last);
       });
 }

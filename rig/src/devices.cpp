@@ -8,6 +8,8 @@
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/drivers/sr4000_camera.h"
+#include "keyturn/sim/mesasr_sim_config.h"
+#include "keyturn/sim/mesh.h"
 
 #ifndef KEYTURN_MESASR_SIM_DEFAULT
 #define KEYTURN_MESASR_SIM_DEFAULT "libmesasr.so"
@@ -20,16 +22,32 @@ std::string simulatorLibraryPath() {
   return env && *env ? env : KEYTURN_MESASR_SIM_DEFAULT;
 }
 
+drivers::Sr4000Connection parseCameraSpec(const std::string& spec) {
+  if (spec != "usb" && spec.rfind("usb:", 0) != 0 && spec.rfind("eth:", 0) != 0)
+    throw Error("camera '" + spec + "': expected sim, usb, usb:SERIAL or eth:IP");
+  return drivers::Sr4000Connection::parse(spec);
+}
+
 std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
                                                const std::string& library, DeviceLog log) {
   drivers::Sr4000Options options;
   options.log = log ? std::move(log) : [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
   if (spec == "sim") {
     if (!sim_config.empty()) ::setenv("MESASR_SIM_CONFIG", sim_config.c_str(), 1);
+    // The simulator can only say "open returned -1": read its configuration and mesh here first, so
+    // a bad file is named. Paths in the configuration are relative to its folder.
+    const sim::MesaSrSimConfig config = sim::MesaSrSimConfig::fromEnvironment();
+    const char* config_path = std::getenv("MESASR_SIM_CONFIG");
+    try {
+      (void)sim::loadMeshOrBuiltin(config.mesh);
+    } catch (const Error& e) {
+      throw Error(std::string(config_path && *config_path ? config_path : "simulated SR4000") + ": mesh: " + e.what());
+    }
+    options.name = "simulated SR4000";
     return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(simulatorLibraryPath()),
                                                    drivers::Sr4000Connection::parse("usb"), options);
   }
-  const auto connection = drivers::Sr4000Connection::parse(spec);  // validate before loading
+  const auto connection = parseCameraSpec(spec);  // validate before loading
   return std::make_unique<drivers::Sr4000Camera>(drivers::MesaSrLibrary::load(library), connection, options);
 }
 

@@ -131,6 +131,7 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
   std::normal_distribution<float> gauss(0.f, 1.f);
   // Reference amplitude: a 50% reflective target, head-on, at 1 m.
   const float a_ref = 0.5f;
+  constexpr float kConfidenceHalfSigma = 0.004f;  // m
   const float a_min = static_cast<float>(view.amplitude_threshold) * a_ref;
 
   RTCIntersectContext ctx;
@@ -195,7 +196,10 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
                                                   static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f)
                                       .normalized();
       cloud.points[i] = range * ray;
-      cloud.confidence[i] = std::min(1.f, amp / (4.f * a_min));
+      // Graded like the SR4000's confidence map: falls with the pixel's range noise σ (∝ 1/amplitude),
+      // 1/2 where σ is the data sheet's 4 mm; independent of the amplitude threshold.
+      const float sigma = static_cast<float>(view.noise_at_1m) * (a_ref / amp);
+      cloud.confidence[i] = kConfidenceHalfSigma / (kConfidenceHalfSigma + sigma);
     }
   }
   return cloud;

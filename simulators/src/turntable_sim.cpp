@@ -206,6 +206,12 @@ void TurntableServer::serveTcp() {
       }
       modbus_set_socket(ctx, fds[i].fd);
       const int rc = modbus_receive(ctx, query);
+      if (rc > 0 && query[6] != o_.unit_id) {
+        // The MBAP header's unit id (byte 6): another unit behind this address does not answer,
+        // as a Modbus TCP gateway reports it (libmodbus filters unit ids on RTU only).
+        modbus_reply_exception(ctx, query, MODBUS_EXCEPTION_GATEWAY_TARGET);
+        continue;
+      }
       if (rc > 0 && handle(ctx, query, rc, fds[i].fd)) continue;
       if (rc == 0) continue;  // not for this unit
       ::close(fds[i].fd);

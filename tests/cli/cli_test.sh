@@ -59,7 +59,7 @@ echo '{"faults": {"open_fail": true}}' > "$work/fail.json"
 "$KT" grab --camera sim --sim-config "$work/fail.json" --out "$work/grab/x.pcd" 2> "$work/openfail.err"
 check "camera that cannot open exits non-zero" test $? -ne 0
 check "open failure is one clear line" test "$(wc -l < "$work/openfail.err")" -eq 1
-check "open failure names the camera" grep -q "first SR4000 on USB" "$work/openfail.err"
+check "open failure names the camera" grep -q "simulated SR4000" "$work/openfail.err"
 check "no partial files after a failed grab" test ! -e "$work/grab/x.pcd"
 
 KEYTURN_MESASR_LIB=/nonexistent/libmesasr.so "$KT" grab --camera usb --out "$work/grab/y.pcd" 2> "$work/nolib.err"

@@ -137,3 +137,21 @@ TEST(CloudIo, PlyHeaderPromisingMoreVerticesThanTheFileHoldsIsRejected) {
                                            "property float y\nproperty float z\nend_header\n";
   EXPECT_NE(expectError(path).find("promises 2000000000"), std::string::npos);
 }
+
+TEST(CloudIo, PlyMeshIsRefusedAsAView) {
+  const std::string path = (tempDir() / "mesh.ply").string();
+  std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
+                         "0 0 1\n0.1 0 1\n0 0.1 1\n3 0 1 2\n";
+  const std::string msg = expectError(path);
+  EXPECT_NE(msg.find("mesh.ply: is a mesh (1 faces), not a camera view: render views of it first"), std::string::npos)
+      << msg;
+}
+
+TEST(CloudIo, PlyWithAnEmptyFaceElementIsACloud) {
+  const std::string path = (tempDir() / "noface.ply").string();
+  std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
+                         "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
+                         "0 0 1\n0.1 0 1\n";
+  EXPECT_EQ(loadCloud(path).size(), 2u);
+}

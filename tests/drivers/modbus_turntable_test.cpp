@@ -229,6 +229,22 @@ TEST(ModbusTurntable, ModbusExceptionsAreNamedAndNotRetried) {
   EXPECT_EQ(server.requests(), 1);
 }
 
+TEST(ModbusTurntable, TheSimulatedTcpTableAnswersOnlyItsUnitId) {
+  auto o = fastTable();
+  o.unit_id = 3;
+  sim::TurntableServer server(o);
+  std::string other = server.endpoint();
+  other.replace(other.rfind('@'), std::string::npos, "@4");
+  ModbusOptions mo;
+  mo.timeout_ms = 100;
+  ModbusTurntable wrong(ModbusEndpoint::parse(other), ModbusTurntableProfile::load("keyturn-sim"), mo);
+  const std::string msg = errorOf([&] { wrong.read(); });
+  EXPECT_NE(msg.find("unit 4"), std::string::npos) << msg;
+  EXPECT_NE(msg.find("Modbus exception 11"), std::string::npos) << msg;
+  EXPECT_EQ(server.requests(), 0);
+  EXPECT_NEAR(connectTo(server)->read().turntable_deg, 0.0, 1e-9);  // its own unit id still answers
+}
+
 TEST(ModbusTurntable, ATableThatNeverArrivesIsVisible) {
   auto o = fastTable();
   o.faults.never_reach = true;

@@ -2,11 +2,13 @@
 // library would be.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <chrono>
 #include <fstream>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
+#include <vector>
 
 #include "keyturn/core/error.h"
 #include "support/error_of.h"
@@ -145,6 +147,40 @@ TEST_F(Sr4000SimTest, XyzAgreesWithDistanceAndIntrinsics) {
     EXPECT_NEAR(k.fy * p.y() / p.z() + k.cy - 0.5, static_cast<double>(i / 176), 1e-2);
   }
   EXPECT_GT(valid, 20000u);
+}
+
+// Like a real SR4000's, the confidence map is graded (it was 0 or 65535): higher amplitude, higher confidence.
+TEST_F(Sr4000SimTest, ConfidenceMapIsGraded) {
+  auto cam = open();
+  const TofFrame f = cam->acquire();
+  ASSERT_EQ(f.confidence.size(), f.amplitude.size());
+  std::vector<std::pair<std::uint16_t, std::uint16_t>> amp_conf;
+  std::size_t full = 0;
+  for (std::size_t i = 0; i < f.distance.size(); ++i) {
+    if (f.distance[i] == 0) {
+      EXPECT_EQ(f.confidence[i], 0) << i;
+      continue;
+    }
+    if (f.confidence[i] == 65535) ++full;
+    amp_conf.emplace_back(f.amplitude[i], f.confidence[i]);
+  }
+  ASSERT_GT(amp_conf.size(), 20000u);
+  EXPECT_EQ(full, 0u);
+  std::sort(amp_conf.begin(), amp_conf.end());
+  std::vector<std::uint16_t> levels;
+  for (const auto& ac : amp_conf) levels.push_back(static_cast<std::uint16_t>(ac.second / 1000));
+  std::sort(levels.begin(), levels.end());
+  EXPECT_GT(std::unique(levels.begin(), levels.end()) - levels.begin(), 20);
+  // Median confidence of the weakest tenth of the returns is below that of the strongest tenth.
+  const std::size_t tenth = amp_conf.size() / 10;
+  std::vector<std::uint16_t> weak, strong;
+  for (std::size_t i = 0; i < tenth; ++i) {
+    weak.push_back(amp_conf[i].second);
+    strong.push_back(amp_conf[amp_conf.size() - 1 - i].second);
+  }
+  std::nth_element(weak.begin(), weak.begin() + tenth / 2, weak.end());
+  std::nth_element(strong.begin(), strong.begin() + tenth / 2, strong.end());
+  EXPECT_LT(weak[tenth / 2] + 10000, strong[tenth / 2]);
 }
 
 TEST_F(Sr4000SimTest, AmplitudeThresholdZeroesWeakPixels) {

@@ -126,19 +126,19 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
 }
 
 TEST(FeatureSpec, IntegersAreParsedAsIntegersNotCastFromDoubles) {
-  FeatureParams p;
-  p.seed = 18446744073709551557ull;  // past 2^53: a double would lose its last digits
-  EXPECT_EQ(featureParamsFromSpec(featureSpec(p), "x").seed, p.seed);
+  DescriptorOptions p;
+  p.osada.seed = 18446744073709551557ull;  // past 2^53: a double would lose its last digits
+  EXPECT_EQ(descriptorOptionsFromSpec(featureSpec(p), "x").osada.seed, p.osada.seed);
   auto err = [&](const std::string& key, const std::string& value) {
-    auto spec = featureSpec(FeatureParams{});
+    auto spec = featureSpec(DescriptorOptions{});
     spec[key] = value;
-    return keyturn::test::errorOf([&] { featureParamsFromSpec(spec, "features.csv"); });
+    return keyturn::test::errorOf([&] { descriptorOptionsFromSpec(spec, "features.csv"); });
   };
-  EXPECT_EQ(err("bins", "1e30"), "features.csv: feature spec 'bins' is not an integer in 2..4096: '1e30'");
-  EXPECT_EQ(err("bins", "4097"), "features.csv: feature spec 'bins' is not an integer in 2..4096: '4097'");
-  EXPECT_EQ(err("osada_samples", "2.5"),
-            "features.csv: feature spec 'osada_samples' is not an integer in 0..2147483647: '2.5'");
-  EXPECT_EQ(err("seed", "-1"), "features.csv: feature spec 'seed' is not an integer in 0..18446744073709551615: '-1'");
+  EXPECT_EQ(err("bins", "1e30"), "features.csv: feature spec 'bins' is not a whole number: '1e30'");
+  EXPECT_EQ(err("bins", "4097"), "features.csv: feature spec 'bins' must be within 2..4096, not '4097'");
+  EXPECT_EQ(err("osada_samples", "2.5"), "features.csv: feature spec 'osada_samples' is not a whole number: '2.5'");
+  EXPECT_EQ(err("seed", "-1"), "features.csv: feature spec 'seed' is not a whole number: '-1'");
+  EXPECT_EQ(err("max_keypoints", "-3"), "features.csv: feature spec 'max_keypoints' must be at least 0, not '-3'");
 }
 
 TEST(ClassMeans, IgnoreMissingValues) {

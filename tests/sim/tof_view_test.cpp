@@ -1,6 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 #include "keyturn/core/error.h"
 #include "keyturn/sim/tof_view.h"
@@ -124,4 +126,31 @@ TEST(TofView, CameraFromTurntableMapsTheObjectOntoItsPixels) {
   const auto& seen = c.points[row * 176 + u];
   ASSERT_TRUE(Cloud::isValid(seen));
   EXPECT_LT((seen.cast<double>() - p_cam.head<3>()).norm(), 0.006);
+}
+
+// A real SR4000's confidence map is graded; the simulated one falls with the range noise σ
+// (∝ 1/amplitude): 1/2 where σ is 4 mm, whatever the amplitude threshold.
+TEST(TofView, ConfidenceIsGradedByTheRangeNoise) {
+  sim::TofViewRenderer r(sim::makeMugMesh());
+  for (double threshold : {0.0, 0.02}) {
+    sim::SceneView v;
+    v.amplitude_threshold = threshold;
+    const Cloud c = r.render(v);
+    std::vector<std::pair<float, float>> amp_conf;
+    for (std::size_t i = 0; i < c.size(); ++i)
+      if (Cloud::isValid(c.points[i])) amp_conf.emplace_back(c.amplitude[i], c.confidence[i]);
+    ASSERT_GT(amp_conf.size(), 1000u);
+    std::sort(amp_conf.begin(), amp_conf.end());
+    std::vector<float> levels;
+    for (const auto& [amp, conf] : amp_conf) {
+      EXPECT_GT(conf, 0.f);
+      EXPECT_LT(conf, 1.f);
+      // σ = 2 mm × (0.5 / amplitude); confidence = 4 mm / (4 mm + σ).
+      EXPECT_NEAR(conf, 0.004 / (0.004 + 0.002 * 0.5 / amp), 1e-5);
+      levels.push_back(std::round(conf * 100.f));
+    }
+    for (std::size_t i = 1; i < amp_conf.size(); ++i) EXPECT_GE(amp_conf[i].second, amp_conf[i - 1].second);
+    std::sort(levels.begin(), levels.end());
+    EXPECT_GT(std::unique(levels.begin(), levels.end()) - levels.begin(), 20) << "threshold " << threshold;
+  }
 }

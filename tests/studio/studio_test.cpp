@@ -303,6 +303,20 @@ class StudioTest : public QObject {
     QCOMPARE(w.findChild<QLineEdit*>("captureFolder")->text(), QString("/data/rig-a"));
   }
 
+  // The whole window, status bar included, fits a 1600 × 1000 screen with a title bar (it was
+  // 1,025 px tall: the Devices and Recognition panels set the minimum height).
+  void theWindowFitsA1600By1000Screen() {
+    StudioWindow w(*factory_, simulated("ycb_025_mug"));
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    QVERIFY2(w.minimumSizeHint().height() <= 960, qPrintable(QString::number(w.minimumSizeHint().height())));
+    QVERIFY2(w.height() <= 960 && w.width() <= 1600, qPrintable(QString("%1 x %2").arg(w.width()).arg(w.height())));
+    auto* rates = w.findChild<QLabel*>("rates");
+    QVERIFY(rates);
+    QVERIFY(rates->isVisible());
+    QVERIFY(rates->mapTo(&w, QPoint(0, rates->height())).y() <= w.height());
+  }
+
   void stabilityIsTheShareAgreeingWithTheMostFrequentClass() {
     Stability s(4);
     QCOMPARE(s.mode(), -1);

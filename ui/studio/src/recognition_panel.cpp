@@ -108,7 +108,7 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   }
   auto* view = new QChartView(chart_);
   view->setRenderHint(QPainter::Antialiasing);
-  view->setMinimumHeight(220);
+  view->setMinimumHeight(140);  // grows with the dock; at 220 the window did not fit a 1000 px screen
   pl->addWidget(view, 1);
   layout->addWidget(pdf_box, 1);
 

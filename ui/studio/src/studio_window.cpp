@@ -2,8 +2,12 @@
 
 #include <QCloseEvent>
 #include <QDockWidget>
+#include <QGuiApplication>
 #include <QHBoxLayout>
 #include <QPushButton>
+#include <QScreen>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTimer>
@@ -13,6 +17,26 @@
 #include "studio_window_impl.h"
 
 namespace keyturn::studio {
+
+namespace {
+
+// A side panel that scrolls when the window is short instead of setting the window's minimum
+// height: the Devices panel (~680 px) over the capture dock made the window 1,025 px tall, more
+// than a 1000 px screen. (Its contents keep their width: no labels that grow later.)
+QScrollArea* scrolling(QWidget* panel, int max_width) {
+  auto* area = new QScrollArea;
+  area->setWidget(panel);
+  area->setWidgetResizable(true);
+  area->setFrameShape(QFrame::NoFrame);
+  area->setHorizontalScrollBarPolicy(Qt::ScrollBarAlwaysOff);
+  const int bar = area->verticalScrollBar()->sizeHint().width();
+  panel->setMaximumWidth(max_width);
+  area->setMinimumWidth(panel->minimumSizeHint().width() + bar);
+  area->setMaximumWidth(max_width + bar);
+  return area;
+}
+
+}  // namespace
 
 void StudioWindow::Impl::build() {
   w->setWindowTitle("keyturn studio");
@@ -59,8 +83,7 @@ void StudioWindow::Impl::build() {
   devices = new DevicesPanel(factory);
   auto* dock_devices = new QDockWidget(tr("Devices"));
   dock_devices->setObjectName("devicesDock");
-  dock_devices->setWidget(devices);
-  devices->setMaximumWidth(420);
+  dock_devices->setWidget(scrolling(devices, 420));
   w->addDockWidget(Qt::LeftDockWidgetArea, dock_devices);
 
   recognition = new RecognitionPanel;
@@ -75,6 +98,7 @@ void StudioWindow::Impl::build() {
   dock_cap->setObjectName("captureDock");
   dock_cap->setWidget(capture);
   w->addDockWidget(Qt::BottomDockWidgetArea, dock_cap);
+  capture_dock = dock_cap;
 
   auto* tools = w->addToolBar(tr("Live"));
   tools->setObjectName("liveToolbar");
@@ -112,7 +136,12 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
   QSettings& s = *d_->settings;
   d_->devices->restore(s);
   d_->capture->restore(s);
-  resize(1600, 1000);
+  // Fits a 1600 × 1000 screen with a title bar; smaller screens get what they have.
+  QSize size(1600, 960);
+  if (QScreen* screen = QGuiApplication::primaryScreen()) size = size.boundedTo(screen->availableGeometry().size());
+  resize(size);
+  // The capture dock at its own height, the live view and the side panels above it take the rest.
+  resizeDocks({d_->capture_dock}, {d_->capture_dock->minimumSizeHint().height()}, Qt::Vertical);
   restoreGeometry(s.value("window/geometry").toByteArray());
   restoreState(s.value("window/state").toByteArray());
   if (!d_->options.dataset.empty()) d_->capture->setDataset(QString::fromStdString(d_->options.dataset));

@@ -3,6 +3,7 @@
 // (studio_window.cpp), wiring of panels and worker threads (studio_wiring.cpp),
 // live display (studio_live.cpp), capture and snapshot (studio_capture.cpp).
 #include <QAction>
+#include <QDockWidget>
 #include <QLabel>
 #include <QSettings>
 #include <QThread>
@@ -41,6 +42,7 @@ struct StudioWindow::Impl {
   CapturePanel* capture = nullptr;
   RecognitionPanel* recognition = nullptr;
   ImagePanel *distance = nullptr, *amplitude = nullptr, *confidence = nullptr;
+  QDockWidget* capture_dock = nullptr;
   CloudView* cloud = nullptr;
   QWidget* banner = nullptr;
   QLabel* banner_text = nullptr;

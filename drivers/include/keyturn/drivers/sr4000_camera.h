@@ -25,6 +25,7 @@ struct Sr4000Options {
   int reconnect_attempts = 3;
   int backoff_initial_ms = 200;  // doubled per attempt
   std::function<void(const std::string&)> log;  // retries and reconnects are reported here
+  std::string name;  // the camera in errors and log lines (default: the connection, "first SR4000 on USB")
 };
 
 class Sr4000Camera final : public TofCamera {
@@ -47,6 +48,7 @@ class Sr4000Camera final : public TofCamera {
   void refreshImageList();
   TofFrame acquireOnce();
   [[noreturn]] void fail(const std::string& what) const;
+  std::string name() const;
 
   std::shared_ptr<MesaSrLibrary> lib_;
   Sr4000Connection connection_;

@@ -11,6 +11,7 @@
 #include <string>
 
 #include "keyturn/drivers/pose_source.h"
+#include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/drivers/tof_camera.h"
 
 namespace keyturn::rig {
@@ -23,6 +24,8 @@ using DeviceLog = std::function<void(const std::string&)>;
 std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
                                                const std::string& library = "", DeviceLog log = {});
 std::string simulatorLibraryPath();
+// A real camera's spec (usb, usb:SERIAL, eth:IP); anything else is refused naming every choice, sim included.
+drivers::Sr4000Connection parseCameraSpec(const std::string& spec);
 
 // log: the driver's retries and reconnects (default: stderr).
 std::unique_ptr<drivers::PoseSource> openPoseSource(const std::string& spec, const std::string& profile,

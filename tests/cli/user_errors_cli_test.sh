@@ -1,0 +1,110 @@
+#!/usr/bin/env bash
+# What a new user running the docs' examples slightly wrong gets back: one line naming the file or
+# option and what was wrong, exit 1 — and nothing half-made left on disk (issue 22's findings).
+set -u
+source "$(dirname "$0")/lib.sh"
+STUDIO=${KEYTURN_STUDIO:-}
+data=$(cd "$(dirname "$0")/../../data" && pwd)
+one_line() { test "$(wc -l < "$1")" -eq 1; }
+
+# The simulator's configuration: paths relative to the file's folder; a bad file or mesh is named.
+mkdir -p "$work/cfg/objects"
+cp "$data/objects/mug__ycb_025_mug.ply" "$work/cfg/objects/"
+echo '{"mesh": "objects/mug__ycb_025_mug.ply", "elevation": 45}' > "$work/cfg/c.json"
+(cd "$work" && "$KT" grab --camera sim --sim-config cfg/c.json --out "$work/cfg.pcd" > /dev/null 2> "$work/cfg.err")
+check "a config's mesh path is relative to the config's folder" test $? -eq 0
+"$KT" grab --camera sim --sim-config "$work/none.json" --out "$work/x.pcd" 2> "$work/none.err"
+check "a missing config exits 1" test $? -eq 1
+check "a missing config is named in one line" grep -q "none.json: cannot open simulator configuration" "$work/none.err"
+check "  (one line)" one_line "$work/none.err"
+echo '{"mesh": ' > "$work/broken.json"
+"$KT" grab --camera sim --sim-config "$work/broken.json" --out "$work/x.pcd" 2> "$work/broken.err"
+check "a malformed config is named" grep -q "broken.json: not valid JSON" "$work/broken.err"
+echo '{"mesh": "nowhere.ply"}' > "$work/nomesh.json"
+"$KT" grab --camera sim --sim-config "$work/nomesh.json" --out "$work/x.pcd" 2> "$work/nomesh.err"
+check "a config's missing mesh is named with the config" grep -q "nomesh.json: mesh: .*nowhere.ply" "$work/nomesh.err"
+check "  (one line)" one_line "$work/nomesh.err"
+check "no files after a failed grab" test ! -e "$work/x.pcd"
+
+# --camera: every choice is listed, sim included.
+"$KT" capture --camera gige --class a --instance b --out "$work/gige" 2> "$work/gige.err"
+check "an unknown camera exits 1" test $? -eq 1
+check "an unknown camera lists sim" grep -q "camera 'gige': expected sim, usb, usb:SERIAL or eth:IP" "$work/gige.err"
+check "  and leaves no dataset" test ! -e "$work/gige"
+
+# Out-of-range and missing options: one line, exit 1, like every other error.
+"$KT" describe --bins 1 "$work/cfg.pcd" 2> "$work/bins.err"
+check "describe --bins 1 exits 1" test $? -eq 1
+check "describe --bins 1 is one line naming the option" grep -q "^keyturn describe: --bins: Value 1 not in range" "$work/bins.err"
+check "  (one line)" one_line "$work/bins.err"
+"$KT" grab --frames 0 --out "$work/x.pcd" 2> "$work/frames.err"
+check "grab --frames 0 exits 1" test $? -eq 1
+check "  (one line)" one_line "$work/frames.err"
+"$KT" describe --help > /dev/null
+check "--help still exits 0" test $? -eq 0
+
+# A mesh is not a view.
+"$KT" describe "$data/objects/mug__ycb_025_mug.ply" -q > /dev/null 2> "$work/mesh.err"
+check "describe on a mesh exits 1" test $? -eq 1
+check "describe on a mesh says so" grep -q "mug__ycb_025_mug.ply: is a mesh (.* faces), not a camera view: render views of it first" "$work/mesh.err"
+
+# A capture that fails before its first view leaves no dataset that verify would call OK.
+echo '{"format": "something-else"}' > "$work/notcal.json"
+"$KT" capture --class mug --instance x --calibration "$work/notcal.json" --out "$work/badcal" 2> "$work/badcal.err"
+check "a bad --calibration exits 1" test $? -eq 1
+check "  and leaves no dataset" test ! -e "$work/badcal"
+# A real-rig capture whose turntable answers (the simulated one) but whose camera library is missing.
+"$KT" sim turntable --modbus-tcp 127.0.0.1:0 --duration 120 > "$work/table.out" 2> /dev/null &
+table=$!
+trap 'kill $table 2>/dev/null' EXIT
+for _ in $(seq 100); do [ -s "$work/table.out" ] && break; sleep 0.1; done
+KEYTURN_MESASR_LIB=/nonexistent/libmesasr.so "$KT" capture --camera usb --pose "$(head -1 "$work/table.out")" \
+    --class a --instance b --out "$work/nolib" 2> "$work/nolib.err"
+check "a capture without libMesaSR exits 1" test $? -eq 1
+check "  says libMesaSR is missing" grep -q "libMesaSR not found" "$work/nolib.err"
+check "  and leaves no dataset" test ! -e "$work/nolib"
+kill $table 2>/dev/null
+"$KT" capture --camera usb --pose modbus-tcp:127.0.0.1:1 --profile "$work/missing.json" --class a --instance b \
+    --out "$work/noprof" 2> "$work/noprof.err"
+check "a missing --profile is named before the camera is looked for" grep -q "missing.json" "$work/noprof.err"
+check "  (not libMesaSR)" test "$(grep -c "libMesaSR" "$work/noprof.err")" -eq 0
+mkdir -p "$work/empty"
+"$KT" capture --class mug --instance x --step 90 --settle 0.01 -q --out "$work/empty/ds" 2> /dev/null
+head -1 "$work/empty/ds/manifest.csv" > "$work/empty/m.csv" && mv "$work/empty/m.csv" "$work/empty/ds/manifest.csv"
+rm -rf "$work/empty/ds/mug"
+"$KT" verify "$work/empty/ds" > "$work/empty.out"
+check "verify fails on a dataset without views" test $? -eq 1
+check "verify says it is empty" grep -q "0 views.* — EMPTY (no views)" "$work/empty.out"
+
+# calibrate-axis on a sequence without the sphere target refuses instead of writing a wrong axis.
+"$KT" capture --class mug --instance x --step 30 --settle 0.01 -q --out "$work/mugseq" 2> /dev/null
+"$KT" calibrate-axis "$work/mugseq" --out "$work/axis.json" > "$work/cal.out" 2> "$work/cal.err"
+check "calibrate-axis without a sphere target exits 1" test $? -eq 1
+check "  says it is not a sphere-target sequence" grep -q "mugseq: .*not a sphere-target sequence" "$work/cal.err"
+check "  on one line" test "$(grep -c "^keyturn" "$work/cal.err")" -eq 1
+check "  and writes no calibration" test ! -e "$work/axis.json"
+
+# keyturn-studio: an unknown --object is refused before any window opens (no display needed).
+if [ -n "$STUDIO" ]; then
+  env -u DISPLAY "$STUDIO" --simulated --object nope 2> "$work/studio.err"
+  check "studio --object nope exits 1" test $? -eq 1
+  check "studio names the object and the list" grep -q "^keyturn-studio: --object nope: not in .*objects.csv (.*ycb_035_power_drill" "$work/studio.err"
+  env -u DISPLAY "$STUDIO" --threads 0 2> "$work/threads.err"
+  check "studio --threads 0 is one line, exit 1" test $? -eq 1 -a "$(wc -l < "$work/threads.err")" -eq 1
+  # Ctrl-C closes the window as its close button does: exit 0 at once, the simulator's folder removed.
+  # (set -m: a background job of a script would otherwise start with SIGINT ignored.)
+  HOME="$work/home" xvfb-run -a -s "-screen 0 1600x1000x24" bash -c '
+    set -m
+    "$1" --simulated --settings "$2/studio.ini" > /dev/null 2>&1 &
+    pid=$!
+    sleep 8
+    start=$(date +%s%N); kill -INT $pid; wait $pid; rc=$?
+    echo "$rc $(( ($(date +%s%N) - start) / 1000000 )) $pid"' _ "$STUDIO" "$work" > "$work/sigint.txt"
+  read -r rc ms pid < "$work/sigint.txt"
+  check "studio: Ctrl-C exits 0 (rc $rc)" test "$rc" -eq 0
+  check "studio: within 3 s of Ctrl-C (${ms} ms)" test "$ms" -lt 3000
+  check "studio: its temporary folder is gone" test ! -e "/tmp/keyturn-studio-$pid"
+  check "studio: settings saved on Ctrl-C" grep -q "geometry" "$work/studio.ini"
+fi
+
+finish

@@ -1,0 +1,290 @@
+"""Figures the docs quote, checked against the program (part of the docs test, run_examples.py).
+
+Each check finds its figure in the docs by a pattern; a figure that is no longer where the check looks
+fails too (with the pattern), so a reworded sentence is looked at again rather than silently unchecked.
+Examples' outputs are read from the documents' work folders (the examples ran just before).
+"""
+import json
+import re
+import subprocess
+from pathlib import Path
+
+
+class Context:
+    def __init__(self, source, build, folders):
+        self.source, self.build, self.folders = source, build, folders
+        self.results, self._help = [], {}
+
+    def doc(self, rel):
+        return (self.source / rel).read_text(encoding="utf-8")
+
+    def find(self, rel, pattern, flags=re.S):
+        """The first match of pattern in the document, or None (and a failure naming the pattern)."""
+        m = re.search(pattern, self.doc(rel), flags)
+        if not m:
+            self.fail(f"{rel}: the docs test looks for /{pattern}/ and does not find it (update tests/docs/checks.py "
+                      f"with the docs)")
+        return m
+
+    def ok(self, text):
+        self.results.append((True, text))
+
+    def fail(self, text):
+        self.results.append((False, text))
+
+    def expect(self, cond, text):
+        self.results.append((bool(cond), text))
+
+    def run(self, *args, cwd=None, timeout=300):
+        p = subprocess.run([str(a) for a in args], cwd=cwd, capture_output=True, text=True, timeout=timeout)
+        if p.returncode != 0:
+            raise RuntimeError(f"{' '.join(map(str, args))} exited {p.returncode}: {p.stderr.strip()[-400:]}")
+        return p.stdout
+
+    def keyturn(self, *args, **kw):
+        return self.run(self.build / "app" / "keyturn", *args, **kw)
+
+    def default(self, command, option):
+        """The default --help prints for an option (CLI11: `--bins INT:INT in [2 - 4096]=32`)."""
+        if command not in self._help:
+            exe = self.build / "app" / ("keyturn-studio" if command == "studio" else "keyturn")
+            argv = [exe, "--help"] if command == "studio" else [exe] + command.split() + ["--help"]
+            self._help[command] = self.run(*argv)
+        for line in self._help[command].splitlines():
+            m = re.match(r"^\s+(?:-\w,)?" + re.escape(option) + r"(?:,\S+)?\s+\S.*?=(.+?)(?:\s{2,}|$)", line)
+            if m:
+                return m.group(1)
+        return None
+
+    def expect_default(self, rel, quoted, command, option):
+        actual = self.default(command, option)
+        self.expect(actual == quoted, f"{rel}: {command} {option} default: docs say {quoted}, --help says {actual}")
+
+
+def header_of_pcd(path):
+    head = {}
+    with open(path, "rb") as f:
+        for raw in f:
+            line = raw.decode("ascii", "replace").strip()
+            key, _, value = line.partition(" ")
+            head[key] = value
+            if key == "DATA":
+                break
+    return head
+
+
+def check_option_defaults(c):
+    for rel, pattern, command, option in [
+        ("README.md", r"`--extent`\s*\(([\d.]+) m\)", "describe", "--extent"),
+        ("README.md", r"`--range (\w+)` \(default\)", "describe", "--range"),
+        ("README.md", r"`low_keypoints` \(1 when K < (\d+)", "describe", "--low-keypoints"),
+        ("docs/descriptors.md", r"(\d+) bins by default", "describe", "--bins"),
+        ("docs/descriptors.md", r"\(`--seed`, default (\d+)\)", "describe", "--seed"),
+        ("docs/studio.md", r"`--threads N` \(recognition threads, default (\d+)\)", "studio", "--threads"),
+        ("docs/results.md", r"--classifier ([\w,]+),\s*\n", "evaluate", "--classifier"),
+        ("docs/results.md", r"#\s+--protocol ([\w,-]+), (\d+) bins", "evaluate", "--protocol"),
+        ("docs/benchmarks.md", r"`keyturn bench --repetitions \d+`, default (\d+) runs", "bench", "--repetitions"),
+        ("docs/camera.md", r"\| modulation \| (\d+) MHz", "grab", "--modulation"),
+        ("docs/protocols.md", r"\(`--unit`, default (\d+)\)", "sim turntable", "--unit"),
+    ]:
+        m = c.find(rel, pattern)
+        if m:
+            c.expect_default(rel, m.group(1), command, option)
+    m = c.find("docs/results.md", r"#\s+--protocol [\w,-]+, (\d+) bins")
+    if m:
+        c.expect_default("docs/results.md", m.group(1), "evaluate", "--bins")
+    m = c.find("docs/results.md", r"defaults: the (\d+) feature sets")
+    if m:
+        sets = (c.default("evaluate", "--features") or "").strip('"').split()
+        c.expect(int(m.group(1)) == len(sets),
+                 f"docs/results.md: evaluate's default feature sets: docs say {m.group(1)}, --help lists {len(sets)}")
+
+
+def check_describe_columns(c, work):
+    m = c.find("README.md", r"- Columns: (.*?)`<feature>_<bin>`")
+    csv = work / "features.csv"
+    if not m:
+        return
+    if not csv.exists():
+        return c.fail(f"README.md: {csv.name} was not written by the describe example")
+    quoted = re.findall(r"`([^`]+)`", m.group(1))
+    names = [n.strip() for q in quoted for n in q.split(",") if re.fullmatch(r"\s*[a-z_]+\s*", n)]
+    header = csv.read_text().splitlines()[0].split(",")
+    c.expect(header[:len(names)] == names,
+             f"README.md: describe's leading columns: docs say {names}, features.csv has {header[:len(names)]}")
+    ex = c.find("README.md", r"keyturn describe out/demo/dataset --features ([\w,]+)\s*\\\s*\n\s*--bins (\d+)")
+    if ex:
+        feats, bins = ex.group(1).split(","), int(ex.group(2))
+        want = [f"{f}_{b}" for f in feats for b in range(bins)]
+        c.expect(header[len(names):] == want,
+                 f"README.md: describe's feature columns are <feature>_<bin> for {feats} × {bins} bins "
+                 f"({len(header) - len(names)} columns, {len(want)} expected)")
+
+
+def check_bench_keys(c):
+    """Every key the README names for bench --json is there, in the top level and in each view."""
+    m = c.find("README.md", r"JSON keys(.*?)per-stage `stages\.\{…\}\.\{([\w,]+)\}`(.*?)Measured figures")
+    if not m:
+        return
+    listed = [k for k in re.findall(r"`([a-z_]+)`", m.group(1))]
+    tail = re.findall(r"`([a-z_]+)`", m.group(3))
+    j = json.loads(c.keyturn("bench", "--json", "--repetitions", "1", "--pcl-repetitions", "1"))
+    missing = [k for k in listed + ["stages"] + tail[:1] if k not in j]
+    c.expect(listed and not missing, f"README.md: bench --json has the keys the README lists (missing: {missing})")
+    stats = m.group(2).split(",")
+    stages = j.get("stages", {})
+    bad = [s for s, v in stages.items() if sorted(v) != sorted(stats)]
+    c.expect(stages and not bad, f"README.md: every bench stage has {stats} (not: {bad})")
+    views = j.get("views", [])
+    short = [v.get("name") for v in views if any(k not in v for k in listed)]
+    c.expect(views and not short, f"README.md: each of bench's views has those keys (not: {short})")
+
+
+def check_render_and_grab(c, work):
+    m = c.find("README.md", r"a simulated SR4000 view \((\d+) × (\d+) organized PCD: ([\w ]+)\)")
+    pcd = work / "views" / "mug_000.pcd"
+    if m:
+        if not pcd.exists():
+            c.fail("README.md: the render example did not write views/mug_000.pcd")
+        else:
+            h = header_of_pcd(pcd)
+            got = (h.get("WIDTH"), h.get("HEIGHT"), h.get("FIELDS"))
+            c.expect(got == (m.group(1), m.group(2), m.group(3)),
+                     f"README.md: render writes {m.group(1)} × {m.group(2)} with fields '{m.group(3)}' (got {got})")
+    m = c.find("README.md", r"`\{angle\}` becomes .*?: (`views/mug_\d+\.pcd`(?:,\s*`views/mug_\d+\.pcd`)*)")
+    if m:
+        names = re.findall(r"`([^`]+)`", m.group(1))
+        missing = [n for n in names if not (work / n).exists()]
+        c.expect(not missing, f"README.md: render's {{angle}} file names {names} (missing: {missing})")
+
+
+def check_dataset_format(c, readme_work):
+    rel = "docs/dataset-format.md"
+    ds = readme_work / "datasets" / "sim"
+    m = c.find(rel, r"## manifest\.csv\s*```\s*\n([^\n]+)\n")
+    if m and (ds / "manifest.csv").exists():
+        got = (ds / "manifest.csv").read_text().splitlines()[0]
+        c.expect(got == m.group(1), f"{rel}: manifest header: docs '{m.group(1)}', capture wrote '{got}'")
+    m = c.find(rel, r"dataset\.json\s+\{([^}]*)\}")
+    if m and (ds / "dataset.json").exists():
+        keys = re.findall(r'"(\w+)"', m.group(1))
+        got = sorted(json.loads((ds / "dataset.json").read_text()))
+        c.expect(sorted(keys) == got, f"{rel}: dataset.json keys: docs {sorted(keys)}, capture wrote {got}")
+    m = c.find(rel, r"## The sidecar.*?\n\| key \| meaning \|\n(.*?)\n\n")
+    sidecars = sorted(ds.glob("*/*/*/*.json"))
+    if m and sidecars:
+        keys = sorted({k for row in m.group(1).splitlines() for k in re.findall(r"`(\w+)`", row.split("|")[1])})
+        got = sorted(json.loads(sidecars[0].read_text()))
+        c.expect(keys == got, f"{rel}: sidecar keys: docs {keys}, capture wrote {got}")
+    m = c.find(rel, r"## Axis calibration file.*?```json\s*\n(.*?)```")
+    axis = readme_work / "axis.json"
+    if m and axis.exists():
+        keys = sorted(re.findall(r'"(\w+)":', m.group(1)))
+        got = sorted(json.loads(axis.read_text()))
+        c.expect(keys == got, f"{rel}: calibration keys: docs {keys}, calibrate-axis wrote {got}")
+    m = c.find(rel, r"## Feature cache.*?```\s*\n.*?\n(id,[\w,]+?),kpd2_0")
+    calibrated = readme_work / "datasets" / "calibrated"
+    if m and calibrated.exists():
+        c.keyturn("describe", calibrated, "--cache", "-q")
+        caches = sorted((calibrated / ".keyturn").glob("features-*.csv"))
+        lines = [l for l in caches[0].read_text().splitlines() if not l.startswith("#")] if caches else [""]
+        c.expect(lines[0].startswith(m.group(1) + ",kpd2_0"),
+                 f"{rel}: feature cache columns start '{m.group(1)},kpd2_0' (got '{lines[0][:60]}')")
+
+
+def check_dataset_size(c, work):
+    """The full simulated dataset's size, from a quarter-turn sample of every object and elevation."""
+    m = c.find("README.md", r"--out datasets/sr4kd-sim` \(([\d,]+)\s+views, about ([\d.]+) GB")
+    r = c.find("docs/results.md", r"#\s+(\d+) objects × elevations ([\d,]+) × (\d+) views \((\d+)°\) = ([\d,]+) views")
+    objects = [l for l in (c.source / "data/objects/objects.csv").read_text().splitlines()[1:] if l.strip()]
+    elevations = (c.default("simulate", "--elevations") or "").strip('"').split(",")
+    step = float(c.default("simulate", "--step") or "nan")
+    total = len(objects) * len(elevations) * round(360 / step)
+    if r:
+        c.expect((int(r.group(1)), r.group(2), int(r.group(3)), float(r.group(4)), int(r.group(5).replace(",", "")))
+                 == (len(objects), ",".join(elevations), round(360 / step), step, total),
+                 f"docs/results.md: {r.group(0).strip('# ')} (program: {len(objects)} objects, elevations "
+                 f"{','.join(elevations)}, step {step:g}°: {total} views)")
+    if not m:
+        return
+    c.expect(int(m.group(1).replace(",", "")) == total, f"README.md: the simulated dataset has {total} views "
+                                                        f"(docs: {m.group(1)})")
+    sample = work / "size-sample"
+    c.keyturn("simulate", "--objects", c.source / "data/objects/objects.csv", "--step", "90", "-q",
+              "--out", sample, timeout=600)
+    rows = len((sample / "manifest.csv").read_text().splitlines()) - 1
+    size = sum(p.stat().st_size for p in sample.rglob("*") if p.is_file() and ".sim" not in p.parts)
+    estimate = size / rows * total / 1e9
+    quoted = float(m.group(2))
+    c.expect(abs(estimate - quoted) <= 0.15 * quoted,
+             f"README.md: about {quoted} GB for {total} views; measured {size / rows / 1e3:.0f} kB/view over "
+             f"{rows} views → {estimate:.2f} GB")
+
+
+def check_repeatability_report(c, work):
+    m = c.find("README.md", r"The report folder holds (.*?) and (\w+) PNG charts")
+    report = work / "reports" / "rep-lab"
+    if not m:
+        return
+    if not report.exists():
+        return c.fail("README.md: the repeatability example wrote no reports/rep-lab")
+    files = re.findall(r"`([\w.]+)`", m.group(1))
+    missing = [f for f in files if not (report / f).exists()]
+    words = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5}
+    pngs = len(list(report.glob("*.png")))
+    c.expect(not missing and pngs == words.get(m.group(2), -1),
+             f"README.md: the repeatability report holds {files} and {m.group(2)} PNGs (missing {missing}, "
+             f"{pngs} PNGs)")
+
+
+def check_studio_model_labels(c):
+    model = json.loads((c.source / "data/models/sim-objects/model.json").read_text())
+    builtin = "+".join(b.upper() for b in model["blocks"])
+    labels = set(re.findall(r"^\| built-in: ([\w+]+) \|", c.doc("docs/benchmarks.md"), re.M))
+    c.expect(labels == {builtin}, f"docs/benchmarks.md: rows labelled built-in name the built-in model {builtin} "
+                                  f"(labels: {sorted(labels)})")
+    m = c.find("docs/benchmarks.md", r"The built-in model is ([\w +]+?) \(")
+    if m:
+        c.expect(m.group(1).replace(" ", "") == builtin, f"docs/benchmarks.md: 'The built-in model is {m.group(1)}' "
+                                                         f"(data/models/sim-objects: {builtin})")
+
+
+def check_demo_folder(c):
+    """README's describe example reads the folder `keyturn demo` and scripts/demo.sh write."""
+    script = re.search(r"OUT=\$\{OUT:-([\w/.-]+)\}", (c.source / "scripts/demo.sh").read_text())
+    default = c.default("demo", "--out")
+    m = c.find("README.md", r"keyturn describe ([\w/.-]+)/dataset --features")
+    if m and script:
+        c.expect(default == script.group(1) == m.group(1),
+                 f"README.md: the demo folder: keyturn demo --out default {default}, scripts/demo.sh {script.group(1)}, "
+                 f"README's describe example {m.group(1)}")
+
+
+def run_all(source, build, folders):
+    c = Context(source, build, folders)
+    readme = folders.get("README.md")
+    camera = folders.get("docs/camera.md")
+    for check in [lambda: check_option_defaults(c),
+                  lambda: check_describe_columns(c, readme),
+                  lambda: check_bench_keys(c),
+                  lambda: check_render_and_grab(c, readme),
+                  lambda: check_camera_grab(c, camera),
+                  lambda: check_dataset_format(c, readme),
+                  lambda: check_repeatability_report(c, readme),
+                  lambda: check_studio_model_labels(c),
+                  lambda: check_demo_folder(c),
+                  lambda: check_dataset_size(c, readme)]:
+        try:
+            check()
+        except Exception as e:  # a check that cannot run is a failure, never a pass
+            c.fail(f"a docs check could not run: {e}")
+    return c.results
+
+
+def check_camera_grab(c, work):
+    """docs/camera.md's grab example writes the four files it names (in its own work folder)."""
+    m = c.find("docs/camera.md", r"Writes (`view\.pcd`).*?and (`view_\w+\.png`, `view_\w+\.png`, `view_\w+\.png`)")
+    if m:
+        names = re.findall(r"`([^`]+)`", m.group(1) + m.group(2))
+        missing = [n for n in names if not (work / n).exists()]
+        c.expect(len(names) == 4 and not missing, f"docs/camera.md: grab writes {names} (missing: {missing})")

@@ -1,0 +1,63 @@
+#!/usr/bin/env python3
+"""The docs test on documents made for it: an unmarked example that needs hardware fails with its
+file and line; marked, it is listed as skipped with its reason; reduced, it runs the reduced form."""
+import subprocess
+import sys
+import tempfile
+from pathlib import Path
+
+HERE = Path(__file__).resolve().parent
+
+
+def run(build, readme, docs=None):
+    with tempfile.TemporaryDirectory() as tmp:
+        src = Path(tmp) / "src"
+        (src / "docs").mkdir(parents=True)
+        (src / "data").mkdir()
+        (src / "README.md").write_text(readme)
+        for name, text in (docs or {}).items():
+            (src / "docs" / name).write_text(text)
+        p = subprocess.run([sys.executable, str(HERE / "run_examples.py"), "--source", str(src), "--build", build,
+                            "--work", str(Path(tmp) / "work"), "--no-checks"], capture_output=True, text=True)
+        return p.returncode, p.stdout + p.stderr
+
+
+def main():
+    build = sys.argv[1]
+    failures = []
+
+    def expect(cond, what, out):
+        if not cond:
+            failures.append(f"{what}:\n{out}")
+
+    hardware = "# Title\n\nText.\n\n```sh\nbuild/app/keyturn grab --camera sim --out a.pcd\n" \
+               "build/app/keyturn grab --camera usb --out b.pcd\n```\n"
+    rc, out = run(build, hardware)
+    expect(rc == 1 and "README.md:7: example exited 1" in out and "libMesaSR" in out,
+           "an unmarked hardware example fails with its file and line", out)
+
+    marked = hardware.replace("```sh", '<!-- docs-test: skip "--camera usb" needs an SR4000 -->\n```sh')
+    rc, out = run(build, marked)
+    expect(rc == 0 and "skipped (needs an SR4000): build/app/keyturn grab --camera usb" in out,
+           "a marked one is skipped with its reason", out)
+
+    reduced = "<!-- docs-test: reduced \"--frames 50\" \"--frames 2\" 2 frames -->\n```sh\n" \
+              "build/app/keyturn grab --frames 50 --out a.pcd\ntest -s a_confidence.png\n```\n"
+    rc, out = run(build, reduced, {"new.md": "```bash\nbuild/app/keyturn devices --json > d.json\n```\n"})
+    expect(rc == 0 and "reduced (2 frames): build/app/keyturn grab --frames 2" in out and "docs/new.md:1: ok" in out,
+           "a reduced one runs reduced; a new document is picked up", out)
+
+    rc, out = run(build, '<!-- docs-test: reduced "--nothing" "x" no such text -->\n```sh\nls\n```\n')
+    expect(rc != 0 and "matches no command" in out, "a directive that matches nothing is an error", out)
+
+    rc, out = run(build, "```\nbuild/app/keyturn devices\n```\n")
+    expect(rc == 1 and "without a language" in out, "an unlabelled block of commands is an error", out)
+
+    for f in failures:
+        print("FAILED:", f)
+    print(f"{5 - len(failures)} passed, {len(failures)} failed")
+    return 1 if failures else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
