@@ -18,6 +18,7 @@
 #include <utility>
 
 #include "keyturn/core/radius_search.h"
+#include "voxel_key.h"
 
 namespace keyturn {
 namespace {
@@ -201,11 +202,7 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
     return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / side)), static_cast<int>(std::floor(p.y() / side)),
                            static_cast<int>(std::floor(p.z() / side)));
   };
-  auto key = [](const Eigen::Vector3i& c) {
-    return (static_cast<std::uint64_t>(c.x() + (1 << 20)) & 0x1FFFFF) |
-           (static_cast<std::uint64_t>(c.y() + (1 << 20)) & 0x1FFFFF) << 21 |
-           (static_cast<std::uint64_t>(c.z() + (1 << 20)) & 0x1FFFFF) << 42;
-  };
+  auto key = [](const Eigen::Vector3i& c) { return detail::voxelKey(c.x(), c.y(), c.z()); };
   std::vector<std::pair<std::uint64_t, int>> order(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) order[k] = {key(cellOf(cloud.points[index[k]])), index[k]};
   std::sort(order.begin(), order.end());

@@ -16,6 +16,7 @@
 #include <utility>
 
 #include "keyturn/core/error.h"
+#include "voxel_key.h"
 
 namespace keyturn {
 
@@ -187,12 +188,8 @@ void hashGridRows(const PointSet& set, float r, std::vector<int>& offset, std::v
                   std::vector<float>& d2) {
   const int n = static_cast<int>(set.size());
   const double inv = 1.0 / r;
-  auto cell = [&](const Eigen::Vector3f& p, int axis) { return static_cast<std::int64_t>(std::floor(p[axis] * inv)); };
-  auto key = [](std::int64_t x, std::int64_t y, std::int64_t z) {
-    return (static_cast<std::uint64_t>(x + (1 << 20)) & 0x1FFFFF) |
-           (static_cast<std::uint64_t>(y + (1 << 20)) & 0x1FFFFF) << 21 |
-           (static_cast<std::uint64_t>(z + (1 << 20)) & 0x1FFFFF) << 42;
-  };
+  auto cell = [&](const Eigen::Vector3f& p, int axis) { return detail::voxelCell(p[axis], inv); };
+  const auto key = detail::voxelKey;
   std::vector<std::pair<std::uint64_t, int>> order(n);
   for (int i = 0; i < n; ++i) {
     const auto& p = set.points[i];

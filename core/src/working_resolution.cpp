@@ -1,5 +1,7 @@
 #include "keyturn/core/working_resolution.h"
 
+#include "voxel_key.h"
+
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -10,11 +12,7 @@ namespace keyturn {
 namespace {
 
 std::uint64_t voxelKey(const Eigen::Vector3f& p, double inv_s) {
-  // 21 bits per axis around the origin: ±1M voxels, far beyond any view at millimetre spacing.
-  auto axis = [&](float x) {
-    return static_cast<std::uint64_t>(static_cast<std::int64_t>(std::floor(x * inv_s)) + (1 << 20)) & 0x1FFFFF;
-  };
-  return axis(p.x()) | axis(p.y()) << 21 | axis(p.z()) << 42;
+  return detail::voxelKey(detail::voxelCell(p.x(), inv_s), detail::voxelCell(p.y(), inv_s), detail::voxelCell(p.z(), inv_s));
 }
 
 }  // namespace

@@ -35,7 +35,7 @@ check "  and leaves no dataset" test ! -e "$work/gige"
 # Out-of-range and missing options: one line, exit 1, like every other error.
 "$KT" describe --bins 1 "$work/cfg.pcd" 2> "$work/bins.err"
 check "describe --bins 1 exits 1" test $? -eq 1
-check "describe --bins 1 is one line naming the option" grep -q "^keyturn describe: --bins: Value 1 not in range" "$work/bins.err"
+check "describe --bins 1 is one line naming the option" grep -q "^keyturn describe: --bins: must be within 2..4096" "$work/bins.err"
 check "  (one line)" one_line "$work/bins.err"
 "$KT" grab --frames 0 --out "$work/x.pcd" 2> "$work/frames.err"
 check "grab --frames 0 exits 1" test $? -eq 1

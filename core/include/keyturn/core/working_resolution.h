@@ -12,7 +12,7 @@ namespace keyturn {
 struct WorkingResolutionOptions {
   bool enabled = true;
   // Working spacing s = E / samples_across, E = 2 x the RMS distance of the points from their centroid.
-  double samples_across = 30.0;
+  double samples_across = 40.0;
   // A view whose points already fall into at least this fraction of distinct s-voxels
   // is no denser than the working spacing and is kept as it is.
   double keep_fraction = 0.8;
