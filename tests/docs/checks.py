@@ -77,7 +77,7 @@ def check_option_defaults(c):
     for rel, pattern, command, option in [
         ("README.md", r"`--extent`\s*\(([\d.]+) m\)", "describe", "--extent"),
         ("README.md", r"`--range (\w+)` \(default\)", "describe", "--range"),
-        ("README.md", r"`low_keypoints` \(1 when K < (\d+)", "describe", "--low-keypoints"),
+        ("README.md", r"`low_keypoints`\s*\(1 when K < (\d+)", "describe", "--low-keypoints"),
         ("docs/descriptors.md", r"(\d+) bins by default", "describe", "--bins"),
         ("docs/descriptors.md", r"\(`--seed`, default (\d+)\)", "describe", "--seed"),
         ("docs/studio.md", r"`--threads N` \(recognition threads, default (\d+)\)", "studio", "--threads"),
