@@ -7,15 +7,20 @@
 # most of an hour on 2 cores). Run it before a stop that changes install-deps.sh,
 # the scripts or the CMake requirements; record the figures in docs/fresh-machine.md.
 #
-# usage (as root): scripts/fresh-machine-check.sh [--setup-only] [WORK_DIR]
+# usage (as root): scripts/fresh-machine-check.sh [--setup-only | --test-only] [WORK_DIR]
 #   --setup-only  build the root, clone, run scripts/install-deps.sh, stop
+#   --test-only   reuse the root a full run left (packages, builds), move its clone
+#                 to HEAD and run only `bash scripts/test.sh` (to finish a run that
+#                 was stopped during test.sh, without an hour of set-up again)
 #   WORK_DIR      where the root and the logs go (default /var/tmp/keyturn-fresh);
 #                 its old root is deleted first
 # It tests the committed HEAD, not uncommitted changes.
 set -euo pipefail
 repo=$(cd "$(dirname "$0")/.." && pwd)
 setup_only=0
+test_only=0
 if [ "${1:-}" = "--setup-only" ]; then setup_only=1; shift; fi
+if [ "${1:-}" = "--test-only" ]; then test_only=1; shift; fi
 work=${1:-/var/tmp/keyturn-fresh}
 root=$work/root
 src=/src/keyturn
@@ -65,8 +70,12 @@ bind() {  # bind-mount the host's $1 at the same path in the root
   mounted+=("$root$1")
 }
 
+if [ "$test_only" -eq 1 ]; then
+  [ -d "$root$src/.git" ] || die "--test-only needs the root of an earlier run at $root"
+  if grep -q " $root/" /proc/mounts; then die "$root still has mounts; unmount them first"; fi
+fi
 # A root left by an interrupted run may still have mounts: never delete through them.
-if [ -d "$root" ]; then
+if [ "$test_only" -eq 0 ] && [ -d "$root" ]; then
   for m in sys dev proc; do umount -R "$root/$m" 2> /dev/null || true; done
   if grep -q " $root/" /proc/mounts; then die "$root still has mounts; unmount them first"; fi
   rm -rf "$root"
@@ -77,6 +86,7 @@ command -v debootstrap > /dev/null || {
   DEBIAN_FRONTEND=noninteractive apt-get install -y -qq --no-install-recommends debootstrap > /dev/null
 }
 
+if [ "$test_only" -eq 0 ]; then
 say "commit $commit, mirror $mirror ($mirror_file), root $root"
 t0=$(date +%s)
 debootstrap --variant=minbase --include=git,ca-certificates bookworm "$root" "$mirror" > "$work/debootstrap.log" 2>&1 ||
@@ -96,14 +106,21 @@ fi
 cp /etc/resolv.conf "$root/etc/resolv.conf"
 grep -qs localhost "$root/etc/hosts" || printf '127.0.0.1\tlocalhost\n::1\tlocalhost ip6-localhost\n' >> "$root/etc/hosts"
 od -An -N16 -tx1 /dev/urandom | tr -d ' \n' > "$root/etc/machine-id"
+fi
 
 bind /proc
 bind /sys
 bind /dev  # with /dev/pts (pseudo-terminals for the Modbus RTU tests) and /dev/shm
 
-mkdir -p "$root$(dirname "$src")"
-git clone --quiet "$repo" "$root$src"
-git -C "$root$src" checkout --quiet --detach "$commit"
+if [ "$test_only" -eq 1 ]; then
+  git -C "$root$src" fetch --quiet "$repo" "$commit"
+  git -C "$root$src" checkout --quiet --detach "$commit"
+  say "reusing $root, its clone moved to $commit"
+else
+  mkdir -p "$root$(dirname "$src")"
+  git clone --quiet "$repo" "$root$src"
+  git -C "$root$src" checkout --quiet --detach "$commit"
+fi
 
 # A login's environment, not this shell's: only PATH, HOME, locale and a proxy if
 # this machine reaches its mirror through one.
@@ -132,6 +149,8 @@ timed() {  # timed NAME COMMAND: runs COMMAND in the root, logs to WORK/NAME.log
 if [ "$setup_only" -eq 1 ]; then
   timed install-deps "bash scripts/install-deps.sh"
   say "packages installed in the root: $(chroot "$root" dpkg-query -W -f='${Status}\n' | grep -c 'install ok installed')"
+elif [ "$test_only" -eq 1 ]; then
+  timed test "bash scripts/test.sh"
 else
   timed demo "bash scripts/demo.sh"
   timed test "bash scripts/test.sh"
