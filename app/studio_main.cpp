@@ -28,14 +28,18 @@ void onQuitSignal(int) { g_quit = true; }
 
 // Ctrl-C and SIGTERM close the window as its close button does (settings saved, devices closed,
 // the simulator's temporary folder removed) instead of killing the process mid-frame. A SIGINT
-// ignored from the start (a background job of a script) stays ignored.
-void quitOnSignals(QWidget& window) {
+// ignored from the start (a background job of a script) stays ignored. Installed first thing in
+// main, so a signal during start-up (slow on a loaded machine) closes the window as soon as it exists.
+void catchQuitSignals() {
   struct sigaction sa {};
   sa.sa_handler = onQuitSignal;
   sigemptyset(&sa.sa_mask);
   struct sigaction old {};
   if (::sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) ::sigaction(SIGINT, &sa, nullptr);
   ::sigaction(SIGTERM, &sa, nullptr);
+}
+
+void quitOnSignals(QWidget& window) {
   auto* poll = new QTimer(&window);
   QObject::connect(poll, &QTimer::timeout, &window, [&window] {
     if (g_quit.exchange(false)) window.close();
@@ -54,6 +58,7 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
+  catchQuitSignals();
   Args a;
   CLI::App cli("keyturn studio: live ToF capture on a turntable rig and keypoint-based recognition");
   cli.add_flag("--simulated", a.simulated, "Start with the simulated SR4000 and turntable connected and the built-in model");

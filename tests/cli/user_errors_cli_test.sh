@@ -97,7 +97,9 @@ if [ -n "$STUDIO" ]; then
     set -m
     "$1" --simulated --settings "$2/studio.ini" > /dev/null 2>&1 &
     pid=$!
-    sleep 8
+    # Up and running: its simulated rig folder exists (waited for, not a fixed sleep: a loaded machine starts it slowly).
+    for _ in $(seq 600); do [ -d "/tmp/keyturn-studio-$pid" ] && break; sleep 0.1; done
+    sleep 2
     start=$(date +%s%N); kill -INT $pid; wait $pid; rc=$?
     echo "$rc $(( ($(date +%s%N) - start) / 1000000 )) $pid"' _ "$STUDIO" "$work" > "$work/sigint.txt"
   read -r rc ms pid < "$work/sigint.txt"

@@ -29,8 +29,8 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
 
 }  // namespace
 
-// The specification of the default options, as feature caches and models of cache version 3 hold
-// it (version 3 added the working resolution and the keypoint budget).
+// The specification of the default options, as feature caches and models of cache version 4 hold
+// it (version 3 added the working resolution and the keypoint budget; 4 changed what is computed, not the keys).
 TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
   const std::map<std::string, std::string> expected = {
       {"bins", "32"},          {"range", "fixed"},        {"extent_m", "0.35"},   {"filter", "on"},

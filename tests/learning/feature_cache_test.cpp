@@ -77,13 +77,36 @@ TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
   EXPECT_FALSE(std::isnan(block(all, full[0], "esf").front())) << "the whole cache holds the peers";
 }
 
+// The cache, train and classify describe a view as `keyturn describe` and the studio's
+// recogniser do: the same filtered points, K and PDFs for a full frame with its table.
+TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
+  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_describe";
+  fs::remove_all(root);
+  const auto views = writeViews(root);
+  DescriptorOptions o;
+  o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2};
+  const FeatureTable layout = featureLayout({"kpd2", "kpa3", "gkpd2"}, o);
+  const auto rows = describeViews(views, o, layout, 1, nullptr);
+  ASSERT_EQ(rows.size(), views.size());
+  for (std::size_t v = 0; v < views.size(); ++v) {
+    const Cloud frame = loadCloud(views[v].path);
+    const ViewDescriptor d = describeView(frame, o);
+    ASSERT_LT(d.points, frame.validCount() / 2) << "the frame's table is filtered away";
+    EXPECT_EQ(rows[v].keypoints, d.keypointCount()) << views[v].id;
+    for (std::size_t f = 0; f < o.features.size(); ++f) {
+      const auto want = std::vector<float>(d.pdfs[f].begin(), d.pdfs[f].end());
+      EXPECT_EQ(block(layout, rows[v], featureName(o.features[f])), want) << views[v].id << " " << f;
+    }
+  }
+}
+
 TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
-  // The default parameters of cache version 3 give this name (tested: a changed default renames the cache).
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-fbff008d6a9cfafb.csv");
+  // The default parameters of cache version 4 give this name (tested: a changed default renames the cache).
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-dda34511223692ca.csv");
   DescriptorOptions other;
   other.histogram.bins = 16;
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-fbff008d6a9cfafb.shard-2-of-4.csv");
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-dda34511223692ca.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
   EXPECT_EQ(all.width(), 15 * 32 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);

@@ -45,13 +45,13 @@ void put(FeatureRow& row, const FeatureTable& t, const std::string& block, const
 void note(FeatureRow& row, const std::string& what) { row.problem += (row.problem.empty() ? "" : "; ") + what; }
 
 // The descriptor options that compute the layout's keypoint and shape blocks: a u_ block needs its
-// keypoint function and the random-keypoint twin. Filtering is the caller's (the peers share it).
+// keypoint function and the random-keypoint twin. The filter stays as the options say: the keypoint
+// blocks go through describeView's filter and working resolution, as `describe` and the recogniser's do.
 DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions& options) {
   DescriptorOptions o = options;
   o.features.clear();
   o.random_keypoints_twin = false;
   o.random_seed = options.osada.seed;
-  o.filter = false;
   for (Feature f : allFeatures()) {
     const bool random = isKeypointFeature(f) && has(layout, kRandom + featureName(f));
     if (has(layout, featureName(f)) || random) o.features.push_back(f);

@@ -12,7 +12,8 @@
 
 namespace keyturn::learning {
 
-constexpr int kFeatureCacheVersion = 3;     // 2: 9 significant digits (exact); 3: support rule, working resolution
+constexpr int kFeatureCacheVersion = 4;     // 2: 9 significant digits (exact); 3: support rule, working resolution;
+                                             // 4: keypoint blocks of filtered views (3 skipped the filter)
 constexpr double kNormalRadius = 0.012;     // VFH / OUR-CVFH normals, metres (≈ 4 SR4000 pixels at 0.6 m)
 
 std::map<std::string, std::string> featureSpec(const DescriptorOptions& options);
