@@ -2,6 +2,7 @@
 
 #include "voxel_key.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -61,13 +62,45 @@ void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& 
           v.best = valid[k];
         }
       }
+      // Voxel representatives of neighbouring voxels can lie much closer than s (0.6 s on average),
+      // which would fill every r-ball with ~2.5× the neighbours a sensor at spacing s gives. So the
+      // representatives are thinned to at least s apart, in index order (deterministic; row by row
+      // for an organized view), as a sensor at spacing s would sample the surface.
+      std::vector<int> reps;
+      reps.reserve(voxels.size());
+      for (const auto& [k, v] : voxels) reps.push_back(v.best);
+      std::sort(reps.begin(), reps.end());
+      std::unordered_map<std::uint64_t, std::vector<int>> kept_in;
+      kept_in.reserve(reps.size());
+      const float s2 = static_cast<float>(r.spacing * r.spacing);
       std::vector<char> keep(cloud.size(), 0);
-      for (const auto& [k, v] : voxels) keep[static_cast<std::size_t>(v.best)] = 1;
+      std::size_t kept = 0;
+      for (int i : reps) {
+        const Eigen::Vector3f& p = cloud.points[i];
+        const std::int64_t cx = detail::voxelCell(p.x(), inv_s), cy = detail::voxelCell(p.y(), inv_s),
+                           cz = detail::voxelCell(p.z(), inv_s);
+        bool near = false;
+        for (std::int64_t dx = -1; dx <= 1 && !near; ++dx)
+          for (std::int64_t dy = -1; dy <= 1 && !near; ++dy)
+            for (std::int64_t dz = -1; dz <= 1 && !near; ++dz) {
+              const auto it = kept_in.find(detail::voxelKey(cx + dx, cy + dy, cz + dz));
+              if (it == kept_in.end()) continue;
+              for (int j : it->second)
+                if ((cloud.points[j] - p).squaredNorm() < s2) {
+                  near = true;
+                  break;
+                }
+            }
+        if (near) continue;
+        kept_in[detail::voxelKey(cx, cy, cz)].push_back(i);
+        keep[static_cast<std::size_t>(i)] = 1;
+        ++kept;
+      }
       const Eigen::Vector3f nan = Eigen::Vector3f::Constant(std::nanf(""));
       for (int i : valid)
         if (!keep[static_cast<std::size_t>(i)]) cloud.points[i] = nan;
       r.subsampled = true;
-      r.after = voxels.size();
+      r.after = kept;
     }
   }
   if (report) *report = r;

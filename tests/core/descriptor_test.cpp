@@ -9,6 +9,7 @@
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
+#include "keyturn/core/working_resolution.h"
 #include "keyturn/sim/tof_view.h"
 #include "support/synthetic_clouds.h"
 
@@ -136,6 +137,47 @@ TEST(Descriptor, PerViewRangeIsScaleInvariant) {
   // With the fixed metric range the doubled cube moves mass to longer bins.
   o.histogram.mode = RangeMode::Fixed;
   EXPECT_NE(describeView(test::unorganized(cube), o).pdfs[0], describeView(test::unorganized(big), o).pdfs[0]);
+}
+
+// A dense tilted plane (1 mm grid, 0.2 m across, unorganized) is thinned to points at least s apart
+// that still cover it: every measured point within (1 + √3) s of a kept one, and about half a kept
+// point per s² (measured 0.53; a sensor's grid at spacing s has 1), not the ~1.2 that voxel
+// representatives alone leave, 0.6 s apart on average.
+TEST(WorkingResolution, KeepsPointsAtLeastTheSpacingApartAndCoversTheSurface) {
+  Cloud plane;
+  for (int i = 0; i < 200; ++i)
+    for (int j = 0; j < 200; ++j) {
+      const float x = 0.001f * i, y = 0.001f * j;
+      plane.points.emplace_back(x, y, 0.6f + 0.4f * x + 0.3f * y);
+    }
+  plane.width = static_cast<std::uint32_t>(plane.points.size());
+  plane.height = 1;
+  Cloud thinned = plane;
+  WorkingResolutionReport report;
+  subsampleToWorkingResolution(thinned, WorkingResolutionOptions(), &report);
+  ASSERT_TRUE(report.subsampled);
+  const double s = report.spacing;
+  EXPECT_GT(s, 0.003);
+  EXPECT_LT(s, 0.006);
+  std::vector<Eigen::Vector3f> kept;
+  for (const auto& p : thinned.points)
+    if (Cloud::isValid(p)) kept.push_back(p);
+  EXPECT_EQ(kept.size(), report.after);
+  float closest = 1e9f;
+  for (std::size_t a = 0; a < kept.size(); ++a)
+    for (std::size_t b = a + 1; b < kept.size(); ++b) closest = std::min(closest, (kept[a] - kept[b]).norm());
+  EXPECT_GE(closest, static_cast<float>(s) * (1 - 1e-5f));
+  float farthest = 0;
+  for (std::size_t i = 0; i < plane.points.size(); i += 7) {
+    float d = 1e9f;
+    for (const auto& k : kept) d = std::min(d, (plane.points[i] - k).norm());
+    farthest = std::max(farthest, d);
+  }
+  EXPECT_LE(farthest, static_cast<float>((1 + std::sqrt(3.0)) * s));
+  const double area = 0.2 * 0.2 * std::sqrt(1 + 0.4 * 0.4 + 0.3 * 0.3);
+  const double per_s2 = static_cast<double>(kept.size()) * s * s / area;
+  EXPECT_GT(per_s2, 0.4);
+  EXPECT_LT(per_s2, 0.8);
 }
 
 // The working resolution: the mug seen by the SR4000 at 0.35, 0.5 and 0.7 m (pixel spacing

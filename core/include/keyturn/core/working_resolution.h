@@ -25,9 +25,9 @@ struct WorkingResolutionReport {
   std::size_t before = 0, after = 0;
 };
 
-// Keeps, in each voxel of side s, the measured point nearest the voxel's centroid
-// (measured points, not averages: keypoints stay on the sensor's surface). The
-// layout is kept: an organized view stays organized, the dropped pixels NaN.
+// Keeps, of the measured points nearest each s-voxel's centroid (measured points, not
+// averages: keypoints stay on the sensor's surface), those at least s apart, in index
+// order. The layout is kept: an organized view stays organized, the dropped pixels NaN.
 void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& options,
                                   WorkingResolutionReport* report = nullptr);
 
