@@ -156,12 +156,12 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
   progress.begin("detect", views.size());
   for (auto& v : data) {
     // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
-    v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res).size());
+    v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
     for (Detector d : o.detectors) {
       const auto t0 = std::chrono::steady_clock::now();
-      v.native[d] = detectKeypoints(d, v.set, v.res);
+      v.native[d] = detectKeypoints(d, v.set, v.res, o.detector);
       v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      v.equal[d] = detectKeypointsAtBudget(d, v.set, v.res, v.budget);
+      v.equal[d] = detectKeypointsAtBudget(d, v.set, v.res, v.budget, o.detector);
     }
     progress.step();
   }

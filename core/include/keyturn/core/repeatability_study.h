@@ -28,6 +28,7 @@ struct StudyOptions {
   std::vector<Detector> detectors{Detector::Iss, Detector::Harris3d, Detector::Sift3d, Detector::Uniform};
   std::vector<double> eps_res{0.5, 1, 1.5, 2, 2.5, 3};  // ε in multiples of the resolution
   std::string pairs = "consecutive";     // consecutive, from-first, all-within:DEG
+  DetectorOptions detector;             // each detector's scales (ISS's also set the budget K)
   bool icp = false;
   bool filter = true;                    // the describe filter before detection
   int keypoints = 0;                     // the equal budget K; 0 = ISS's native count in each view
