@@ -4,6 +4,7 @@
 #include "keyturn/core/keypoint_detectors.h"
 
 #include <pcl/features/normal_3d.h>
+#include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/filters/uniform_sampling.h>
 #include <pcl/keypoints/harris_3d.h>
 #include <pcl/keypoints/sift_keypoint.h>
@@ -13,6 +14,11 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/radius_search.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <numeric>
 
 namespace keyturn {
 
@@ -39,6 +45,70 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const PointSet& set) {
   pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
   for (const auto& p : set.points) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
   return c;
+}
+
+// Harris's response at every point (no suppression), in the set's order.
+std::vector<double> harrisResponse(const PointSet& set, double res, const DetectorOptions& o) {
+  auto cloud = toPcl(set);
+  pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI> h(pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI>::HARRIS);
+  h.setInputCloud(cloud);
+  h.setRadius(o.harris_radius * res);
+  h.setNonMaxSupression(false);
+  h.setRefine(false);
+  h.setNumberOfThreads(1);
+  pcl::PointCloud<pcl::PointXYZI> all;
+  h.compute(all);
+  std::vector<double> out(set.size(), 0.0);
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  pcl::Indices idx(1);
+  std::vector<float> d2(1);
+  for (const auto& p : all)
+    if (std::isfinite(p.x) && std::isfinite(p.intensity) && tree.nearestKSearch(pcl::PointXYZ(p.x, p.y, p.z), 1, idx, d2) == 1)
+      out[static_cast<std::size_t>(idx[0])] = p.intensity;
+  return out;
+}
+
+// |curvature| at every point, from the normals SIFT's scale space is built on.
+std::vector<double> curvature(const PointSet& set, double res) {
+  auto cloud = toPcl(set);
+  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
+  ne.setInputCloud(cloud);
+  ne.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
+  ne.setRadiusSearch(3.5 * res);
+  pcl::PointCloud<pcl::Normal> n;
+  ne.compute(n);
+  std::vector<double> out(set.size(), 0.0);
+  for (std::size_t i = 0; i < n.size() && i < out.size(); ++i)
+    out[i] = std::isfinite(n[i].curvature) ? std::abs(n[i].curvature) : 0.0;
+  return out;
+}
+
+float minDistance(const Eigen::Vector3f& p, const std::vector<Eigen::Vector3f>& chosen) {
+  float best = std::numeric_limits<float>::infinity();
+  for (const auto& c : chosen) best = std::min(best, (c - p).squaredNorm());
+  return std::sqrt(best);
+}
+
+// Greedy farthest-point order: each next point the farthest from those chosen.
+void farthestPoints(const std::vector<Eigen::Vector3f>& pool, std::size_t k, std::vector<Eigen::Vector3f>& chosen) {
+  if (pool.empty()) return;
+  std::vector<float> d(pool.size());
+  if (chosen.empty()) {
+    Eigen::Vector3f c = Eigen::Vector3f::Zero();
+    for (const auto& p : pool) c += p / static_cast<float>(pool.size());
+    std::size_t first = 0;
+    for (std::size_t i = 1; i < pool.size(); ++i)
+      if ((pool[i] - c).squaredNorm() < (pool[first] - c).squaredNorm()) first = i;
+    chosen.push_back(pool[first]);
+  }
+  for (std::size_t i = 0; i < pool.size(); ++i) d[i] = minDistance(pool[i], chosen);
+  while (chosen.size() < k) {
+    const std::size_t far = static_cast<std::size_t>(std::max_element(d.begin(), d.end()) - d.begin());
+    if (d[far] <= 0.f) break;  // every pool point already chosen
+    chosen.push_back(pool[far]);
+    for (std::size_t i = 0; i < pool.size(); ++i) d[i] = std::min(d[i], (pool[i] - pool[far]).norm());
+  }
 }
 }  // namespace
 
@@ -103,6 +173,68 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
     }
   }
   return out;
+}
+
+std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet& set, double res, int k,
+                                                     const DetectorOptions& o) {
+  const std::size_t want = std::min<std::size_t>(static_cast<std::size_t>(std::max(k, 0)), set.size());
+  std::vector<Eigen::Vector3f> chosen;
+  if (want == 0) return chosen;
+  DetectorOptions uncapped = o;
+  uncapped.iss.max_keypoints = 0;
+  const std::vector<Eigen::Vector3f> native = detectKeypoints(d, set, res, uncapped);
+  if (d == Detector::Uniform) {
+    farthestPoints(native, want, chosen);
+    farthestPoints(set.points, want, chosen);
+    return chosen;
+  }
+  std::vector<double> score;
+  double radius = 0;  // the detector's suppression radius, metres
+  if (d == Detector::Iss) {
+    const RadiusSearch search(set);
+    score = detectIssKeypoints(set, search, res, uncapped.iss).saliency;
+    radius = o.iss.nms_radius * res;
+  } else if (d == Detector::Harris3d) {
+    score = harrisResponse(set, res, o);
+    radius = o.harris_radius * res;
+  } else {
+    score = curvature(set, res);
+    radius = 2 * o.sift_min_scale * res;
+  }
+  // Native keypoints ranked by the score of the point they stand on (or nearest).
+  auto cloud = toPcl(set);
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(cloud);
+  pcl::Indices idx(1);
+  std::vector<float> d2(1);
+  std::vector<std::pair<double, std::size_t>> ranked;
+  for (std::size_t i = 0; i < native.size(); ++i) {
+    const auto& p = native[i];
+    const double s = tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 1, idx, d2) == 1
+                         ? score[static_cast<std::size_t>(idx[0])] : 0.0;
+    ranked.emplace_back(s, i);
+  }
+  std::stable_sort(ranked.begin(), ranked.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  for (const auto& [s, i] : ranked) {
+    if (chosen.size() == want) break;
+    chosen.push_back(native[i]);
+  }
+  // Too few: the most salient other points, spread by the suppression radius.
+  std::vector<std::size_t> order(set.size());
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] > score[b]; });
+  std::vector<char> used(set.size(), 0);
+  for (float r = static_cast<float>(radius); chosen.size() < want; r *= 0.5f) {
+    for (std::size_t i : order) {
+      if (chosen.size() == want) break;
+      if (used[i] || (r > 1e-6f && minDistance(set.points[i], chosen) < r)) continue;
+      if (r <= 1e-6f && minDistance(set.points[i], chosen) == 0.f) continue;  // the same point twice
+      used[i] = 1;
+      chosen.push_back(set.points[i]);
+    }
+    if (r <= 1e-6f) break;
+  }
+  return chosen;
 }
 
 }  // namespace keyturn

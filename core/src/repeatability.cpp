@@ -5,6 +5,7 @@
 #include <pcl/point_types.h>
 #include <pcl/registration/icp.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace keyturn {
@@ -52,6 +53,20 @@ RepeatabilityResult keypointRepeatability(const std::vector<Eigen::Vector3f>& mo
   for (std::size_t e = 0; e < eps.size(); ++e)
     r.relative[e] = r.visible > 0 ? static_cast<double>(r.absolute[e]) / r.visible : 0.0;
   return r;
+}
+
+double overlapFraction(const PointSet& a, const PointSet& b, const Eigen::Matrix4d& b_from_a, double radius_m,
+                       std::size_t max_points) {
+  if (a.size() == 0 || b.size() == 0) return 0.0;
+  pcl::KdTreeFLANN<pcl::PointXYZ> tree;
+  tree.setInputCloud(toPcl(b.points));
+  const Eigen::Matrix3f R = b_from_a.topLeftCorner<3, 3>().cast<float>();
+  const Eigen::Vector3f t = b_from_a.topRightCorner<3, 1>().cast<float>();
+  const std::size_t stride = std::max<std::size_t>(1, (a.size() + max_points - 1) / std::max<std::size_t>(max_points, 1));
+  std::size_t near = 0, tried = 0;
+  for (std::size_t i = 0; i < a.size(); i += stride, ++tried)
+    if (nearest(tree, false, R * a.points[i] + t) <= radius_m) ++near;
+  return static_cast<double>(near) / static_cast<double>(tried);
 }
 
 IcpRefinement refineByIcp(const PointSet& model, const PointSet& scene, const Eigen::Matrix4d& initial,

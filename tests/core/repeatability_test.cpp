@@ -142,26 +142,29 @@ TEST(Repeatability, IcpRecoversAPerturbedGroundTruth) {
   EXPECT_LT(icp.rms_m, 0.2 * res);
 }
 
-TEST(PoseList, ParsesPosesAndReportsBadLines) {
-  namespace fs = std::filesystem;
-  const fs::path dir = fs::temp_directory_path() / ("keyturn_poses_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  const std::string good = (dir / "poses.txt").string();
-  std::ofstream(good) << "# view tx ty tz qx qy qz qw\n\n"
-                         "1700000000.1 views/a.pcd 0.1 0.2 0.3 0 0 0 1\n"
-                         "b.ply 0 0 0 0 0 0.7071067811865476 0.7071067811865476\n";
-  const auto poses = readPoseList(good);
-  ASSERT_EQ(poses.size(), 2u);
-  EXPECT_EQ(poses[0].file, (dir / "views/a.pcd").string());
-  EXPECT_EQ(poses[0].line, 3);
-  EXPECT_NEAR(poses[0].world_from_view(2, 3), 0.3, 1e-12);
-  EXPECT_NEAR(poses[1].world_from_view(1, 0), 1.0, 1e-9);  // 90° about z
-  const std::string bad = (dir / "bad.txt").string();
-  std::ofstream(bad) << "a.pcd 0 0 0 0 0 0 1\nb.pcd 0 0 x 0 0 0 1\n";
-  EXPECT_NE(errorOf([&] { readPoseList(bad); }).find("bad.txt: line 2: 'x' is not a number"), std::string::npos);
-  std::ofstream(bad) << "a.pcd 0 0 0 0 0 0\n";
-  EXPECT_NE(errorOf([&] { readPoseList(bad); }).find("line 1: expected VIEW_FILE tx ty tz qx qy qz qw, found 7 fields"),
-            std::string::npos);
-  std::ofstream(bad) << "a.pcd 0 0 0 0 0 0 2\n";
-  EXPECT_NE(errorOf([&] { readPoseList(bad); }).find("line 1: quaternion is not unit length"), std::string::npos);
+TEST(Repeatability, AnEqualBudgetGivesEachDetectorExactlyK) {
+  const auto pts = object();
+  const PointSet set = PointSet::fromCloud(test::unorganized(pts));
+  const double res = cloudResolution(set);
+  for (Detector d : {Detector::Iss, Detector::Harris3d, Detector::Sift3d, Detector::Uniform}) {
+    const std::size_t native = detectKeypoints(d, set, res).size();
+    // Below, at and above the detector's own count: cut to its most salient, or completed.
+    for (std::size_t k : {std::size_t{5}, native, native + 40}) {
+      const auto kp = detectKeypointsAtBudget(d, set, res, static_cast<int>(k));
+      EXPECT_EQ(kp.size(), k) << detectorName(d) << " native " << native;
+      for (std::size_t i = 0; i < kp.size(); ++i)
+        for (std::size_t j = i + 1; j < kp.size(); ++j) ASSERT_GT((kp[i] - kp[j]).norm(), 0.f) << "a point twice";
+    }
+    EXPECT_EQ(detectKeypointsAtBudget(d, set, res, static_cast<int>(set.size()) + 10).size(), set.size());
+  }
+  // ISS's K most salient are its own keypoints: at its native count the budget changes nothing.
+  const auto iss = detectKeypoints(Detector::Iss, set, res);
+  auto budget = detectKeypointsAtBudget(Detector::Iss, set, res, static_cast<int>(iss.size()));
+  const auto less = [](const Eigen::Vector3f& a, const Eigen::Vector3f& b) {
+    return std::lexicographical_compare(a.data(), a.data() + 3, b.data(), b.data() + 3);
+  };
+  auto sorted = iss;
+  std::sort(sorted.begin(), sorted.end(), less);
+  std::sort(budget.begin(), budget.end(), less);
+  EXPECT_EQ(sorted, budget);
 }

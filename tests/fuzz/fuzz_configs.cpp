@@ -21,7 +21,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         (void)keyturn::drivers::CanOpenAxis::loadAll(keyturn::fuzz::writeInput(data + 1, size - 1, "axes.json"));
         break;
       case 2:
-        (void)keyturn::readPoseList(keyturn::fuzz::writeInput(data + 1, size - 1, "poses.txt"));
+        (void)keyturn::readPoses(keyturn::fuzz::writeInput(data + 1, size - 1, "poses.txt"));
         break;
       default:
         (void)keyturn::sim::MesaSrSimConfig::fromFile(keyturn::fuzz::writeInput(data + 1, size - 1, "sim.json"));

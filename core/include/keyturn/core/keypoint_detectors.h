@@ -30,4 +30,14 @@ struct DetectorOptions {
 std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, double resolution,
                                              const DetectorOptions& options = DetectorOptions());
 
+// Exactly min(k, set size) keypoints for comparing detectors at one budget: the
+// detector's own keypoints (ISS without its cap) ranked by its saliency — ISS λ3,
+// Harris's response, for SIFT the surface curvature it runs on at the nearest
+// point — and the first k kept. When it finds fewer, the rest are the most salient
+// other points at least the detector's suppression radius from those chosen (the
+// radius halved until k are found). Uniform sampling has no saliency: its points in
+// farthest-point order from the one nearest the centroid, completed the same way.
+std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet& set, double resolution, int k,
+                                                     const DetectorOptions& options = DetectorOptions());
+
 }  // namespace keyturn

@@ -25,6 +25,11 @@ RepeatabilityResult keypointRepeatability(const std::vector<Eigen::Vector3f>& mo
                                           const Eigen::Matrix4d& scene_from_model, const std::vector<double>& eps_m,
                                           double visibility_radius_res = 1.0);
 
+// Fraction of a's points (at most max_points of them, evenly strided) that have a
+// point of b within radius once carried by b_from_a: how much the two views overlap.
+double overlapFraction(const PointSet& a, const PointSet& b, const Eigen::Matrix4d& b_from_a, double radius_m,
+                       std::size_t max_points = 2000);
+
 struct IcpRefinement {
   Eigen::Matrix4d scene_from_model = Eigen::Matrix4d::Identity();
   double rms_m = 0;     // of the final correspondences

@@ -1,0 +1,234 @@
+// The repeatability study: pairs, the overlap check, native and equal-K detection,
+// scores per pair and their means per detector.
+#include "keyturn/core/repeatability_study.h"
+
+#include <Eigen/Geometry>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <sstream>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/filter.h"
+#include "keyturn/core/radius_search.h"
+
+namespace keyturn {
+
+std::vector<double> parseEpsList(const std::string& s) {
+  std::vector<double> out;
+  try {
+    if (s.find(':') != std::string::npos) {
+      double a, b, step;
+      char c1, c2;
+      std::istringstream ss(s);
+      if (!(ss >> a >> c1 >> b >> c2 >> step) || c1 != ':' || c2 != ':' || step <= 0 || b < a) throw std::invalid_argument(s);
+      for (double e = a; e <= b + 1e-9; e += step) out.push_back(e);
+    } else {
+      std::istringstream ss(s);
+      for (std::string t; std::getline(ss, t, ',');) out.push_back(std::stod(t));
+    }
+  } catch (const std::exception&) {
+    throw Error("--eps: expected START:STOP:STEP or a comma list of multiples of the resolution, got '" + s + "'");
+  }
+  if (out.empty()) throw Error("--eps: no values");
+  return out;
+}
+
+std::vector<Detector> parseDetectorList(const std::string& text) {
+  std::vector<Detector> out;
+  std::istringstream ss(text);
+  for (std::string t; std::getline(ss, t, ',');) out.push_back(parseDetector(t));
+  if (out.empty()) throw Error("--detectors: no detector named");
+  return out;
+}
+
+double rotationBetween(const StudyView& a, const StudyView& b) {
+  if (std::isfinite(a.angle_deg) && std::isfinite(b.angle_deg)) {
+    const double d = std::fmod(std::abs(a.angle_deg - b.angle_deg), 360.0);
+    return d > 180 ? 360 - d : d;
+  }
+  const Eigen::Matrix3d r = (b.view_from_common * a.view_from_common.inverse()).topLeftCorner<3, 3>();
+  return Eigen::AngleAxisd(r).angle() * 180 / M_PI;
+}
+
+std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views, const std::string& rule_text) {
+  double within = 360;
+  std::string rule = rule_text;
+  if (rule.rfind("all-within:", 0) == 0) {
+    try {
+      within = std::stod(rule.substr(11));
+    } catch (const std::exception&) {
+      throw Error("--pairs: all-within needs degrees, got '" + rule_text + "'");
+    }
+    rule = "all-within";
+  }
+  if (rule != "consecutive" && rule != "from-first" && rule != "all-within")
+    throw Error("--pairs: expected consecutive, from-first or all-within:DEG, got '" + rule_text + "'");
+  std::map<std::string, std::vector<int>> groups;
+  for (int i = 0; i < static_cast<int>(views.size()); ++i) groups[views[i].group].push_back(i);
+  std::vector<std::pair<int, int>> pairs;
+  for (auto& [g, idx] : groups) {
+    std::stable_sort(idx.begin(), idx.end(), [&](int x, int y) {
+      return std::isfinite(views[x].angle_deg) && views[x].angle_deg < views[y].angle_deg;
+    });
+    for (std::size_t i = 0; i < idx.size(); ++i)
+      for (std::size_t j = i + 1; j < idx.size(); ++j) {
+        const bool take = rule == "consecutive" ? j == i + 1
+                          : rule == "from-first" ? i == 0
+                                                 : rotationBetween(views[idx[i]], views[idx[j]]) <= within;
+        if (take) pairs.emplace_back(idx[i], idx[j]);
+      }
+  }
+  return pairs;
+}
+
+namespace {
+
+struct Loaded {
+  PointSet set;
+  double res = 0;
+  int budget = 0;
+  std::map<Detector, std::vector<Eigen::Vector3f>> native, equal;
+  std::map<Detector, double> ms;
+};
+
+Eigen::Matrix4d sceneFromModel(const StudyView& m, const StudyView& s, bool inverted) {
+  return inverted ? Eigen::Matrix4d(s.view_from_common.inverse() * m.view_from_common)
+                  : Eigen::Matrix4d(s.view_from_common * m.view_from_common.inverse());
+}
+
+double meanOverlap(const std::vector<StudyView>& views, const std::vector<Loaded>& data,
+                   const std::vector<std::pair<int, int>>& pairs, double k, bool inverted, std::vector<double>* each) {
+  double sum = 0;
+  for (const auto& [m, s] : pairs) {
+    const double f = overlapFraction(data[m].set, data[s].set, sceneFromModel(views[m], views[s], inverted), k * data[s].res);
+    if (each) each->push_back(f);
+    sum += f;
+  }
+  return pairs.empty() ? 0 : sum / pairs.size();
+}
+
+std::string percent(double f) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.0f %%", 100 * f);
+  return b;
+}
+
+}  // namespace
+
+Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o, const StudyProgress& progress) {
+  if (views.size() < 2) throw Error("repeatability needs at least 2 views");
+  if (o.detectors.empty() || o.eps_res.empty()) throw Error("repeatability needs a detector and a value of ε");
+  Study st;
+  st.options = o;
+  const auto pairs = selectPairs(views, o.pairs);
+  if (pairs.empty()) throw Error("no view pairs under --pairs " + o.pairs);
+
+  std::vector<Loaded> data(views.size());
+  progress.begin("load", views.size());
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    Cloud c = loadCloud(views[i].file);
+    if (o.filter) c = filterCloud(c, FilterOptions());
+    data[i].set = PointSet::fromCloud(c);
+    if (data[i].set.size() < 2) throw Error(views[i].file + ": fewer than 2 points left to detect keypoints on");
+    data[i].res = cloudResolution(data[i].set);
+    st.mean_resolution_m += data[i].res / views.size();
+    progress.step();
+  }
+  progress.end();
+
+  // The poses must make the views overlap, or every score is a meaningless 0.
+  std::vector<double> overlap;
+  st.mean_overlap = meanOverlap(views, data, pairs, o.overlap_radius_res, false, &overlap);
+  const auto bare = std::count_if(overlap.begin(), overlap.end(), [&](double f) { return f < o.overlap_min; });
+  if (2 * bare > static_cast<long>(pairs.size())) {
+    st.mean_overlap_inverted = meanOverlap(views, data, pairs, o.overlap_radius_res, true, nullptr);
+    const std::string hint = st.mean_overlap_inverted >= 2 * o.overlap_min
+                                 ? " — inverted? the inverse gives " + percent(st.mean_overlap_inverted) + " (--invert-poses)"
+                                 : " — nor does their inverse (" + percent(st.mean_overlap_inverted) +
+                                       "): check --pose-format and the units (metres)";
+    if (!o.force)
+      throw Error("poses give no overlap between views (" + std::to_string(bare) + " of " + std::to_string(pairs.size()) +
+                  " pairs under " + percent(o.overlap_min) + ")" + hint + "; --force scores anyway");
+  }
+
+  progress.begin("detect", views.size());
+  for (auto& v : data) {
+    // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
+    v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
+    for (Detector d : o.detectors) {
+      const auto t0 = std::chrono::steady_clock::now();
+      v.native[d] = detectKeypoints(d, v.set, v.res, o.detector);
+      v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
+      v.equal[d] = detectKeypointsAtBudget(d, v.set, v.res, v.budget, o.detector);
+    }
+    progress.step();
+  }
+  progress.end();
+
+  st.eps_near_2 = static_cast<std::size_t>(std::min_element(o.eps_res.begin(), o.eps_res.end(), [](double x, double y) {
+                                              return std::abs(x - 2.0) < std::abs(y - 2.0);
+                                            }) - o.eps_res.begin());
+  const std::size_t ne = o.eps_res.size();
+  for (Detector d : o.detectors) {
+    auto& S = st.detectors[d];
+    S.absolute.assign(ne, 0);
+    S.relative.assign(ne, 0);
+    S.absolute_equal.assign(ne, 0);
+    S.relative_equal.assign(ne, 0);
+    for (const auto& v : data) {
+      S.keypoints += static_cast<double>(v.native.at(d).size()) / data.size();
+      S.equal_keypoints += static_cast<double>(v.equal.at(d).size()) / data.size();
+      S.detection_ms += v.ms.at(d) / data.size();
+    }
+  }
+  progress.begin("pairs", pairs.size());
+  double icp_sum = 0;
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const auto [m, s] = pairs[p];
+    PairScore ps;
+    ps.model = m;
+    ps.scene = s;
+    ps.overlap = overlap[p];
+    ps.rotation_deg = rotationBetween(views[m], views[s]);
+    Eigen::Matrix4d T = sceneFromModel(views[m], views[s], false);
+    if (o.icp) {
+      const auto r = refineByIcp(data[m].set, data[s].set, T, 5 * data[s].res);
+      T = r.scene_from_model;
+      ps.icp_rms_m = r.rms_m;
+      icp_sum += r.rms_m;
+    }
+    std::vector<double> eps_m;
+    for (double e : o.eps_res) eps_m.push_back(e * data[s].res);
+    ps.eps_m = eps_m;
+    const int rot = static_cast<int>(std::lround(ps.rotation_deg));
+    for (Detector d : o.detectors) {
+      auto& S = st.detectors[d];
+      const auto rn = keypointRepeatability(data[m].native.at(d), data[s].native.at(d), data[s].set, data[s].res, T, eps_m);
+      const auto rq = keypointRepeatability(data[m].equal.at(d), data[s].equal.at(d), data[s].set, data[s].res, T, eps_m);
+      for (std::size_t e = 0; e < ne; ++e) {
+        S.absolute[e] += rn.absolute[e] / static_cast<double>(pairs.size());
+        S.relative[e] += rn.relative[e] / static_cast<double>(pairs.size());
+        S.absolute_equal[e] += rq.absolute[e] / static_cast<double>(pairs.size());
+        S.relative_equal[e] += rq.relative[e] / static_cast<double>(pairs.size());
+      }
+      auto& bn = S.relative_by_rotation[rot];
+      bn.first += rn.relative[st.eps_near_2];
+      ++bn.second;
+      auto& bq = S.relative_equal_by_rotation[rot];
+      bq.first += rq.relative[st.eps_near_2];
+      ++bq.second;
+      ps.native[d] = rn;
+      ps.equal[d] = rq;
+    }
+    st.pairs.push_back(std::move(ps));
+    progress.step();
+  }
+  progress.end();
+  if (o.icp) st.mean_icp_rms_m = icp_sum / pairs.size();
+  st.views = std::move(views);
+  return st;
+}
+
+}  // namespace keyturn
