@@ -3,7 +3,6 @@
 // file is reported and skipped, the good rows are still written, and the exit
 // code says something failed.
 #include <atomic>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -16,6 +15,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/view_explanation.h"
 #include "progress.h"
 #include "view_files.h"
 
@@ -92,41 +92,6 @@ std::string csvRow(const std::string& file, const ViewDescriptor& d) {
   return r.str();
 }
 
-// What each step did to one view, for --explain.
-std::string explanation(const std::string& file, const ViewDescriptor& d) {
-  std::ostringstream e;
-  char line[512];
-  if (d.filter.steps.empty()) {
-    e << file << ": not filtered (--no-filter), " << d.input_points << " valid points\n";
-  } else {
-    e << file << ": " << inputKindName(d.filter.kind) << ", " << d.input_points << " valid points\n";
-    for (const auto& s : d.filter.steps) {
-      if (!s.applied) std::snprintf(line, sizeof line, "  %-18s skipped (%s)\n", s.name.c_str(), s.note.c_str());
-      else
-        std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (-%zu)%s%s%s\n", s.name.c_str(), s.before, s.after,
-                      s.removed(), s.flagged ? "  FLAGGED" : "", s.note.empty() ? "" : "  ", s.note.c_str());
-      e << line;
-    }
-  }
-  const auto& w = d.working;
-  if (!d.filter.steps.empty()) {
-    // The working resolution ran as a filter step; say what spacing it chose.
-    if (w.spacing > 0)
-      std::snprintf(line, sizeof line, "  (working spacing %.2f mm = extent %.0f mm / samples across%s)\n",
-                    w.spacing * 1000, w.extent * 1000, w.subsampled ? "" : "; no denser than that: kept");
-    else line[0] = '\0';
-  } else if (w.spacing > 0)
-    std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (spacing %.2f mm = extent %.0f mm / samples across%s)\n",
-                  "working-resolution", w.before, w.after, w.spacing * 1000, w.extent * 1000,
-                  w.subsampled ? "" : "; no denser than that: kept");
-  else std::snprintf(line, sizeof line, "  %-18s off\n", "working-resolution");
-  e << line;
-  std::snprintf(line, sizeof line, "  => %zu points, resolution %.2f mm, K = %d keypoints\n", d.points,
-                d.resolution * 1000, d.keypointCount());
-  e << line;
-  return e.str();
-}
-
 int runDescribe(const DescribeArgs& a) {
   if (a.cache || !a.shard.empty()) {
     if (a.inputs.size() != 1 || !isDataset(a.inputs.front()))
@@ -154,7 +119,7 @@ int runDescribe(const DescribeArgs& a) {
         rows[i] = csvRow(file, d);
         low[i] = d.low_keypoints ? d.keypointCount() : 0;
         flags[i] = d.filter.flaggedSummary();
-        if (a.explain) explained[i] = explanation(file, d);
+        if (a.explain) explained[i] = explainView(file, d);
       } catch (const Error& e) {
         const std::string msg = e.what();
         errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;

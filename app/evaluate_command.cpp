@@ -116,7 +116,7 @@ int runEvaluate(const EvaluateArgs& a) {
     describe_s[bins] = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const FeatureTable& t = tables[bins];
     for (const auto& set : sets)
-      for (const auto& b : featureSetBlocks(set))
+      for (const auto& b : learning::featureSetBlocks(set))
         if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
     for (const auto& pn : protocol_names) {
       protocols.push_back(std::make_unique<Protocol>(learning::makeProtocol(pn, t, a.split_seed)));
@@ -130,7 +130,7 @@ int runEvaluate(const EvaluateArgs& a) {
   for (auto& r : rows) {
     learning::ClassifierParams p = a.params;
     p.kind = r.classifier;
-    r.ev = learning::evaluateFolds(tables[r.bins], featureSetBlocks(r.features), r.proto->labels.of_row,
+    r.ev = learning::evaluateFolds(tables[r.bins], learning::featureSetBlocks(r.features), r.proto->labels.of_row,
                                    static_cast<int>(r.proto->labels.names.size()), r.proto->folds, p, a.jobs,
                                    [&] { progress.advance(); });
   }

@@ -24,17 +24,6 @@ void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
                "Network: the paper's sigmoid output layer (default: softmax with cross-entropy)");
 }
 
-std::vector<std::string> featureSetBlocks(const std::string& set) {
-  std::vector<std::string> out;
-  std::stringstream ss(set);
-  for (std::string b; std::getline(ss, b, '+');) {
-    if (b.empty()) throw Error("feature set '" + set + "': empty part");
-    out.push_back(b);
-  }
-  if (out.empty()) throw Error("empty feature set");
-  return out;
-}
-
 std::vector<std::string> splitList(const std::string& list) {
   std::vector<std::string> out;
   std::string cur;

@@ -1,20 +1,18 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
-#include <algorithm>
 #include <chrono>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "commands.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/error.h"
-#include "keyturn/learning/feature_spec.h"
 #include "keyturn/learning/model_file.h"
+#include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/protocols.h"
 #include "learning_options.h"
 #include "view_files.h"
@@ -37,7 +35,7 @@ int runTrain(const TrainArgs& a) {
   learning::Model m;
   m.info.params = a.params;
   m.info.params.kind = a.classifier;
-  m.info.blocks = featureSetBlocks(a.features);
+  m.info.blocks = learning::featureSetBlocks(a.features);
   m.info.spec = t.spec;
   m.info.classes = labels.names;
   const std::vector<int>& y = labels.of_row;
@@ -76,41 +74,23 @@ int runClassify(const ClassifyArgs& a) {
     std::vector<learning::LabelledView> views;
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
     // The model's own parameters, and only its blocks.
-    const DescriptorOptions options = learning::descriptorOptionsFromSpec(m.info.spec, a.model + "/model.json");
-    std::vector<std::string> blocks;
-    for (const auto& b : m.info.blocks)
-      if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
     DescribeProgressLine progress(a.quiet || views.size() < 2);
-    t = learning::featureLayout(blocks, options);
-    t.rows = learning::describeViews(views, options, t, a.jobs, &progress);
+    t = learning::modelLayout(m, a.model);
+    t.rows = learning::describeViews(views, learning::modelOptions(m, a.model), t, a.jobs, &progress);
     for (const auto& row : t.rows)
       if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
   }
-  const auto diff = learning::specDifferences(m.info.spec, t.spec);
-  if (!diff.empty()) {
-    std::string msg = a.model + ": the model was trained on features computed another way (";
-    for (std::size_t i = 0; i < diff.size(); ++i) msg += (i ? "; " : "") + diff[i];
-    throw Error(msg + "): describe the views with the model's parameters");
-  }
-  std::vector<std::size_t> usable;
-  for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (t.rows[i].keypoints >= 0 || t.rows[i].problem.empty()) usable.push_back(i);
   nlohmann::json js = nlohmann::json::array();
-  if (!usable.empty()) {
-    const learning::Matrix p = m.classifier->predictProba(t.select(m.info.blocks, usable));
-    for (std::size_t k = 0; k < usable.size(); ++k) {
-      const auto& row = t.rows[usable[k]];
-      Eigen::Index best = 0;
-      p.row(static_cast<Eigen::Index>(k)).maxCoeff(&best);
-      nlohmann::json probs;
-      for (std::size_t c = 0; c < m.info.classes.size(); ++c) probs[m.info.classes[c]] = p(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c));
-      js.push_back({{"view", row.id}, {"class", m.info.classes[static_cast<std::size_t>(best)]},
-                    {"probability", p(static_cast<Eigen::Index>(k), best)}, {"keypoints", row.keypoints},
-                    {"probabilities", probs}});
-      if (!a.json)
-        std::cout << row.id << "\t" << m.info.classes[static_cast<std::size_t>(best)] << "\t" << std::fixed
-                  << std::setprecision(3) << p(static_cast<Eigen::Index>(k), best) << "\tK=" << row.keypoints << "\n";
-    }
+  for (const auto& p : learning::predictRows(m, t, a.model)) {
+    const auto& row = t.rows[p.row];
+    const auto best = static_cast<std::size_t>(p.best);
+    nlohmann::json probs;
+    for (std::size_t c = 0; c < m.info.classes.size(); ++c) probs[m.info.classes[c]] = p.probabilities[c];
+    js.push_back({{"view", row.id}, {"class", m.info.classes[best]}, {"probability", p.probabilities[best]},
+                  {"keypoints", row.keypoints}, {"probabilities", probs}});
+    if (!a.json)
+      std::cout << row.id << "\t" << m.info.classes[best] << "\t" << std::fixed << std::setprecision(3)
+                << p.probabilities[best] << "\tK=" << row.keypoints << "\n";
   }
   if (a.json) std::cout << js.dump(2) << "\n";
   for (const auto& e : errors) std::cerr << "keyturn classify: " << e << "\n";

@@ -42,6 +42,8 @@ packages=(
   jq
   # the docs test (tests/docs: runs the examples in README.md and docs/, standard library only)
   python3
+  # the Python module (ui/python, pybind11) and its tests (numpy); scikit-learn is optional (docs/python.md)
+  python3-dev pybind11-dev python3-numpy
 )
 
 # Commands the scripts and tests call (a package can be installed and still not

@@ -71,7 +71,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   return v;
 }
 
-ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
+ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o, PointSet* prepared) {
   if (o.features.empty()) throw Error("no features requested");
   PreparedView v = prepareView(input, o);
   ViewDescriptor out = describeFilteredPoints(v.points, o, v.resolutionFloor());
@@ -80,6 +80,7 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o) {
   out.working = v.working;
   out.times.filter = v.ms;
   out.times.total += v.ms;
+  if (prepared) *prepared = std::move(v.points);
   return out;
 }
 

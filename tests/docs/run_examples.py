@@ -2,7 +2,7 @@
 """The docs test: every shell example in README.md and docs/*.md, run as a user would.
 
 Each document gets a work folder of its own (with `build` and `data` linking to the build and the
-repository's data, and the build's app/ on PATH); its ```sh blocks run there in order, each as one
+repository's data, and the build's app/ and then this test's python3 on PATH); its ```sh blocks run there in order, each as one
 bash script under `set -e`. A block that cannot run here says so in an HTML comment on the lines
 just above it, and the test lists it with its reason:
 
@@ -13,6 +13,7 @@ just above it, and the test lists it with its reason:
   <!-- docs-test: display -->                      run under Xvfb (1600 × 1000)
   <!-- docs-test: env NAME=VALUE -->               set for the block
   <!-- docs-test: file NAME -->                    (before any block) write the block's text to NAME
+  <!-- docs-test: needs MODULE REASON -->          run only when python3 imports MODULE (an optional package)
 
 An unmarked example that fails (one that needs hardware, say) fails the test with its file and line.
 Then the figures the docs quote that a program can confirm (defaults, column names, JSON keys,
@@ -110,7 +111,7 @@ class Plan:
     def __init__(self, block):
         self.block, self.skip_reason, self.notes = block, None, []
         self.setup, self.env, self.display, self.file = [], {}, False, None
-        self.skips, self.subs = [], []
+        self.skips, self.subs, self.needs = [], [], []
         for line, d in block.directives:
             word, _, rest = d.partition(" ")
             try:
@@ -132,6 +133,11 @@ class Plan:
                 elif word == "env":
                     name, _, value = rest.partition("=")
                     self.env[name.strip()] = value.strip()
+                elif word == "needs":
+                    module, _, reason = rest.partition(" ")
+                    if not module or not reason.strip():
+                        raise ValueError("expected needs MODULE REASON")
+                    self.needs.append((module, reason.strip()))
                 elif word == "display":
                     self.display = True
                 elif word == "file":
@@ -187,6 +193,10 @@ def run_script(script, cwd, env, display, timeout):
     return p.returncode, out.decode(errors="replace"), line
 
 
+def python_has(module):
+    return subprocess.run([sys.executable, "-c", f"import {module}"], capture_output=True).returncode == 0
+
+
 def prepare_work(work, source, build, rel):
     folder = work / re.sub(r"[^\w.-]", "_", rel)
     shutil.rmtree(folder, ignore_errors=True)
@@ -220,7 +230,9 @@ def main():
     for rel in docs:
         folder = prepare_work(work, source, build, rel)
         folders[rel] = folder
-        env = dict(os.environ, PATH=f"{build / 'app'}:{os.environ.get('PATH', '')}", HOME=str(folder / "home"),
+        # python3 in the examples is the one this test runs with (CMake's: the one the module is built for).
+        path = f"{build / 'app'}:{Path(sys.executable).parent}:{os.environ.get('PATH', '')}"
+        env = dict(os.environ, PATH=path, HOME=str(folder / "home"),
                    LC_ALL="C.UTF-8")
         env.pop("DISPLAY", None)  # a block that needs a display says so (display), and gets Xvfb
         for block in read_blocks(source, rel):
@@ -235,6 +247,10 @@ def main():
                 continue
             if plan.skip_reason:
                 notes.append(f"{block.where}: skipped ({plan.skip_reason})")
+                continue
+            absent = [(m, r) for m, r in plan.needs if not python_has(m)]
+            if absent:
+                notes.append(f"{block.where}: skipped (no Python module {absent[0][0]}: {absent[0][1]})")
                 continue
             script = plan.script()
             notes.extend(plan.notes)

@@ -53,9 +53,15 @@ def main():
     rc, out = run(build, "```\nbuild/app/keyturn devices\n```\n")
     expect(rc == 1 and "without a language" in out, "an unlabelled block of commands is an error", out)
 
+    needs = ("<!-- docs-test: needs no_such_module_kt optional -->\n```sh\nexit 3\n```\n"
+             "<!-- docs-test: needs json standard library -->\n```sh\ntouch ran\ntest -e ran\n```\n")
+    rc, out = run(build, needs)
+    expect(rc == 0 and "skipped (no Python module no_such_module_kt: optional)" in out and "README.md:6: ok" in out,
+           "a block that needs an absent Python module is skipped, one whose module is there runs", out)
+
     for f in failures:
         print("FAILED:", f)
-    print(f"{5 - len(failures)} passed, {len(failures)} failed")
+    print(f"{6 - len(failures)} passed, {len(failures)} failed")
     return 1 if failures else 0
 
 

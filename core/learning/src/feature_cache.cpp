@@ -60,6 +60,8 @@ DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions
   return o;
 }
 
+}  // namespace
+
 FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const FeatureTable& layout) {
   FeatureRow row;
   row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
@@ -104,6 +106,8 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
   copy("ourcvfh", [&] { return pclOurCvfh(set, kNormalRadius); });
   return row;
 }
+
+namespace {
 
 std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, const std::vector<std::size_t>& which,
                                      const DescriptorOptions& options, const FeatureTable& layout, int jobs,

@@ -77,7 +77,8 @@ struct ViewDescriptor {
 
 // Throws keyturn::Error (without a file name: callers add it) for an empty or
 // all-NaN cloud, a cloud the filter empties, or fewer than min_keypoints keypoints.
-ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options);
+// `prepared`, when given, receives the points described (keypoint_index points into them).
+ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options, PointSet* prepared = nullptr);
 
 // The same for points already prepared (prepareView; nothing is filtered or subsampled
 // again): for callers that keep the points, e.g. to show them, so they are built once.

@@ -40,6 +40,10 @@ FeatureTable featureLayout(const std::vector<std::string>& blocks, const Descrip
 std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard = 0,
                              int shards = 1);
 
+// One cloud described for the layout's blocks, as describeViews describes each file: a block that
+// cannot be computed stays NaN and the row's problem says why (keypoints -1: no keypoint block).
+FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const FeatureTable& layout);
+
 // Describes views for the layout's blocks only, in parallel (jobs 0: all cores). A block that cannot
 // be computed stays NaN and the row says why; an unreadable view has keypoints -1.
 std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, const DescriptorOptions& options,

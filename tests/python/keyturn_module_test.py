@@ -1,0 +1,335 @@
+#!/usr/bin/env python3
+"""The keyturn Python module against the command line: the same file and options give the same
+numbers as `keyturn describe` and `keyturn classify`; a dataset's feature cache is the one the CLI
+fills; bad input raises an exception with keyturn's one-line message.
+
+Run by ctest (tests/CMakeLists.txt) with PYTHONPATH at the built module, KEYTURN the CLI,
+KEYTURN_SOURCE the repository and KEYTURN_WORK a scratch folder."""
+import csv
+import io
+import json
+import math
+import os
+import shutil
+import subprocess
+import threading
+import time
+import unittest
+from pathlib import Path
+
+import numpy as np
+
+import keyturn
+
+KT = os.environ["KEYTURN"]
+SOURCE = Path(os.environ["KEYTURN_SOURCE"])
+WORK = Path(os.environ["KEYTURN_WORK"])
+FRAME = SOURCE / "data/frames/mosd_learn0.pcd"            # a real Kinect frame, shipped
+CROP = SOURCE / "tests/data/real/mosd/crop/learn0_o2.pcd"  # a real segmented object cloud
+MODEL = SOURCE / "data/models/sim-objects"                  # the built-in model
+
+
+def cli(*args, check=True):
+    return subprocess.run([KT, *map(str, args)], capture_output=True, text=True, check=check)
+
+
+def csv_rows(text):
+    rows = list(csv.reader(io.StringIO(text)))
+    return rows[0], rows[1:]
+
+
+def g6(v):
+    """A number as describe's CSV writes it (C++ streams at precision 6: %g)."""
+    return "%.6g" % v
+
+
+def row_of(file, d):
+    """The CSV row `keyturn describe` writes, made from a Description."""
+    removed = {s["name"]: s["removed"] for s in d.filter["steps"]}
+    row = [file, str(d.points), str(d.K), "1" if d.low_keypoints else "0", str(d.unreachable_keypoints),
+           str(d.unreachable_pairs), g6(d.resolution * 1000.0), d.filter["input_kind"], str(d.input_points)]
+    row += [str(removed.get(s, 0)) for s in ("crop", "jump-edges", "support-plane", "cluster", "outliers")]
+    row += [g6(d.working["spacing_m"] * 1000.0), str(d.working["removed"]), d.filter["flagged"]]
+    return row + [g6(v) for v in d.feature_vector]
+
+
+class Fixture:
+    """A rendered SR4000 view and a small simulated dataset, made once with the CLI."""
+    made = False
+
+    @classmethod
+    def make(cls):
+        if cls.made:
+            return
+        shutil.rmtree(WORK, ignore_errors=True)
+        WORK.mkdir(parents=True)
+        cli("render", SOURCE / "data/objects/mug__ycb_025_mug.ply", "--angles", "40", "--out", WORK / "mug.pcd")
+        objects = WORK / "objects.csv"
+        objects.write_text("class,instance,mesh\n"
+                           f"mug,ycb_025_mug,{SOURCE}/data/objects/mug__ycb_025_mug.ply\n"
+                           f"bottle,ycb_006_mustard_bottle,{SOURCE}/data/objects/bottle__ycb_006_mustard_bottle.ply\n")
+        cli("simulate", "--objects", objects, "--elevations", "30", "--step", "60", "-q", "--out", WORK / "ds")
+        cls.made = True
+
+
+class LoadCloud(unittest.TestCase):
+    def test_version_is_the_programs(self):
+        self.assertEqual(keyturn.__version__, cli("--version").stdout.strip())
+
+    def test_organized_frame_keeps_its_grid_with_nan(self):
+        c = keyturn.load_cloud(FRAME)
+        self.assertEqual(c.points.shape, (480, 640, 3))
+        self.assertEqual(c.points.dtype, np.float32)
+        valid = np.isfinite(c.points).all(axis=2)
+        self.assertEqual(int(valid.sum()), c.valid_count)
+        self.assertGreater(480 * 640 - c.valid_count, 0)  # the frame has holes: NaN pixels
+        self.assertTrue(0.3 < float(np.nanmedian(c.points[..., 2])) < 3.0)  # metres in front of the camera
+
+    def test_segmented_cloud_is_n_by_3(self):
+        c = keyturn.load_cloud(str(CROP))
+        self.assertEqual(c.points.ndim, 2)
+        self.assertEqual(c.points.shape[1], 3)
+        self.assertEqual(c.points.shape[0], len(c))
+
+    def test_amplitude_and_confidence_of_a_rendered_view(self):
+        Fixture.make()
+        c = keyturn.load_cloud(WORK / "mug.pcd")
+        self.assertEqual(c.points.shape, (144, 176, 3))
+        self.assertEqual(c.amplitude.shape, (144, 176))
+        self.assertEqual(c.confidence.shape, (144, 176))
+        # Pixels that see the mug or the turntable return light; the rest have no point.
+        hit = np.isfinite(c.points).all(axis=2)
+        self.assertGreater(float(c.amplitude[hit].mean()), 0.0)
+        self.assertIsNone(keyturn.load_cloud(FRAME).amplitude)
+
+
+class Describe(unittest.TestCase):
+    def assert_matches_cli(self, path, cli_args, **kwargs):
+        header, rows = csv_rows(cli("describe", path, "-q", *cli_args).stdout)
+        self.assertEqual(len(rows), 1)
+        d = keyturn.describe(path, **kwargs)
+        ours = row_of(str(path), d)
+        self.assertEqual(len(ours), len(header))
+        for name, theirs, mine in zip(header, rows[0], ours):
+            self.assertEqual(mine, theirs, f"{path}: column {name}")
+        return d
+
+    def test_shipped_frame_default_options_equal_the_cli_row(self):
+        d = self.assert_matches_cli(FRAME, [])
+        self.assertEqual(d.features, ["kpd2", "kpd3", "kpa3", "gkpd1", "gkpd2", "gkpcd2"])
+        self.assertEqual(d.filter["input_kind"], "frame")
+        for name, pdf in d.pdfs.items():
+            self.assertEqual(pdf.shape, (32,), name)
+            self.assertAlmostEqual(float(pdf.sum()), 1.0, places=6, msg=name)
+        # The keypoints are rows of the described points.
+        self.assertEqual(d.keypoints.shape, (d.K, 3))
+        np.testing.assert_array_equal(d.described_points[d.keypoint_indices], d.keypoints)
+        self.assertEqual(d.described_points.shape, (d.points, 3))
+
+    def test_options_are_the_cli_flags(self):
+        Fixture.make()
+        self.assert_matches_cli(WORK / "mug.pcd", ["--features", "kpd2,kpa3,d2", "--bins", "16", "--extent", "0.3",
+                                                   "--iss-nms", "3", "--samples-across", "25", "--seed", "3"],
+                                features=["kpd2", "kpa3", "d2"], bins=16, extent_m=0.3, iss_nms=3.0,
+                                working_samples_across=25, seed=3)
+        self.assert_matches_cli(CROP, ["--features", "kpd2", "--no-filter", "--range", "per-view"],
+                                features="kpd2", filter=False, range="per-view")
+
+    def test_explain_is_what_the_cli_prints(self):
+        theirs = cli("describe", FRAME, "-q", "--explain").stderr
+        d = keyturn.describe(str(FRAME), explain=True)
+        self.assertIn("support-plane", d.explanation)
+        self.assertEqual(d.explanation, theirs)
+        self.assertIsNone(keyturn.describe(str(FRAME)).explanation)
+
+    def test_arrays_and_clouds_describe_as_the_file(self):
+        c = keyturn.load_cloud(FRAME)
+        by_file = keyturn.describe(FRAME, features="kpd2")
+        by_cloud = keyturn.describe(c, features="kpd2")
+        by_array = keyturn.describe(c.points, features="kpd2")
+        by_float64 = keyturn.describe(c.points.astype(np.float64), features="kpd2")
+        for other in (by_cloud, by_array, by_float64):
+            np.testing.assert_array_equal(other.feature_vector, by_file.feature_vector)
+            self.assertEqual(other.K, by_file.K)
+        # An unorganized array of the valid points is a segmented cloud: another input kind.
+        flat = c.points[np.isfinite(c.points).all(axis=2)]
+        self.assertEqual(keyturn.describe(flat, features="kpd2").filter["input_kind"], "segmented-cloud")
+
+    def test_parameters_are_the_librarys_table(self):
+        p = keyturn.parameters()
+        self.assertEqual(p["bins"]["default"], 32)
+        self.assertEqual(p["bins"]["flag"], "--bins")
+        self.assertEqual(p["extent_m"]["default"], 0.35)
+        self.assertIs(p["plane_removal"]["default"], True)
+        self.assertEqual(p["low_keypoints"]["default"], 10)
+        self.assertIsNone(p["low_keypoints"]["spec_key"])
+        # Every command-line flag of describe's table is a keyword here.
+        help_text = cli("describe", "--help").stdout
+        for name, row in p.items():
+            self.assertIn(row["flag"], help_text, name)
+            self.assertIn(name, keyturn.describe.__doc__)
+
+    def test_gil_released_while_describing(self):
+        entered, done, counted = threading.Event(), threading.Event(), [0]
+
+        def work():
+            entered.set()
+            keyturn.describe(FRAME)
+            done.set()
+
+        t = threading.Thread(target=work)
+        t.start()
+        entered.wait()
+        time.sleep(0.05)  # the thread is inside the chain (over a second on this frame)
+        while not done.is_set():
+            counted[0] += 1
+        t.join()
+        # Holding the GIL, the chain would keep this loop from running at all until it returned.
+        self.assertGreater(counted[0], 10000)
+
+
+class Classify(unittest.TestCase):
+    def assert_classifies_as_cli(self, model, view):
+        theirs = json.loads(cli("classify", model, view, "--json", "-q").stdout)
+        self.assertEqual(len(theirs), 1)
+        m = keyturn.Model(model)
+        for given in (view, keyturn.load_cloud(view), keyturn.load_cloud(view).points):
+            ours = m.classify(given)
+            self.assertEqual(ours.cls, theirs[0]["class"])
+            self.assertEqual(ours.probability, theirs[0]["probability"])
+            self.assertEqual(ours.probabilities, theirs[0]["probabilities"])
+            self.assertEqual(ours.keypoints, theirs[0]["keypoints"])
+        self.assertEqual(list(ours.probabilities), m.classes)
+        self.assertAlmostEqual(sum(ours.probabilities.values()), 1.0, places=5)
+        return ours
+
+    def test_built_in_model_as_the_cli(self):
+        Fixture.make()
+        ours = self.assert_classifies_as_cli(MODEL, WORK / "mug.pcd")
+        self.assertEqual(ours.cls, "ycb_025_mug")
+        m = keyturn.Model(MODEL)
+        self.assertEqual(m.blocks, ["kpd2", "kpa3"])
+        self.assertEqual(m.inputs, 64)
+        self.assertEqual(len(m.classes), 15)
+
+    def test_a_model_trained_by_the_cli(self):
+        Fixture.make()
+        model = WORK / "model"
+        cli("train", WORK / "ds", "--features", "kpd2+kpa3", "--rounds", "10", "-q", "--out", model)
+        view = WORK / "ds/bottle/ycb_006_mustard_bottle/e30/a60.0.pcd"
+        self.assertTrue(view.exists(), view)
+        self.assert_classifies_as_cli(model, view)
+        self.assertEqual(sorted(keyturn.Model(model).classes), ["ycb_006_mustard_bottle", "ycb_025_mug"])
+
+
+class DatasetTest(unittest.TestCase):
+    def test_views_labels_and_poses(self):
+        Fixture.make()
+        ds = keyturn.Dataset(WORK / "ds")
+        self.assertEqual(len(ds), 12)  # 2 objects × 6 turntable angles
+        self.assertEqual(sorted({v.cls for v in ds.views}), ["bottle", "mug"])
+        v = ds[0]
+        self.assertTrue(Path(v.path).exists())
+        self.assertEqual(v.elevation, "30")
+        self.assertEqual(v.elevation_deg, 30.0)
+        self.assertEqual(sorted({v.commanded_deg for v in ds.views}), [0.0, 60.0, 120.0, 180.0, 240.0, 300.0])
+        for v in ds.views:
+            self.assertLess(abs(v.measured_deg - v.commanded_deg), 1.0, v.id)
+        # The simulated camera knows its pose exactly: views of one object differ by the table's turn.
+        first, later = ds[0], ds[1]
+        self.assertEqual(first.instance, later.instance)
+        t0, t1 = first.camera_from_turntable, later.camera_from_turntable
+        self.assertEqual(t0.shape, (4, 4))
+        np.testing.assert_allclose(t0[3], [0, 0, 0, 1])
+        rel = np.linalg.inv(t0) @ t1
+        self.assertAlmostEqual(rel[2, 2], 1.0, places=6)  # a turn about the table's axis
+        turned = abs(math.degrees(math.atan2(rel[1, 0], rel[0, 0])))
+        self.assertAlmostEqual(turned, abs(later.measured_deg - first.measured_deg), delta=0.01)
+
+    def test_features_fill_and_read_the_cli_cache(self):
+        Fixture.make()
+        ds_path = WORK / "ds"
+        shutil.rmtree(ds_path / ".keyturn", ignore_errors=True)
+        ds = keyturn.Dataset(ds_path)
+        f = ds.features("kpd2+kpa3")
+        self.assertTrue(Path(f.cache).exists())
+        self.assertEqual(f.x.shape, (12, 64))
+        self.assertEqual(f.x.dtype, np.float32)
+        self.assertEqual(f.ids, [v.id for v in ds.views])
+        self.assertEqual(f.cls, [v.cls for v in ds.views])
+        self.assertTrue(np.isfinite(f.x).all())
+        # Each row is the view's describe, at the cache's float precision.
+        d = keyturn.describe(ds[3].path, features=["kpd2", "kpa3"])
+        np.testing.assert_array_equal(f.x[3], d.feature_vector.astype(np.float32))
+        self.assertEqual(f.keypoints[3], d.K)
+        # The CLI finds the cache the module filled: describe --cache writes nothing new.
+        before = os.stat(f.cache).st_mtime_ns
+        out = cli("describe", ds_path, "--cache")
+        self.assertIn(f.cache, out.stderr)
+        self.assertEqual(os.stat(f.cache).st_mtime_ns, before)
+        # Another parameter set is another cache.
+        g = ds.features(["kpd2"], bins=16)
+        self.assertNotEqual(g.cache, f.cache)
+        self.assertEqual(g.x.shape, (12, 16))
+        self.assertEqual(g.spec["bins"], "16")
+
+
+class BadInput(unittest.TestCase):
+    def assert_one_line(self, e, *parts):
+        text = str(e.exception)
+        self.assertNotIn("\n", text)
+        for p in parts:
+            self.assertIn(p, text)
+
+    def test_wrong_array_shape(self):
+        with self.assertRaises(ValueError) as e:
+            keyturn.describe(np.zeros((100, 2), np.float32))
+        self.assert_one_line(e, "N × 3", "(100, 2)")
+        with self.assertRaises(ValueError) as e:
+            keyturn.Model(MODEL).classify(np.zeros((4, 5, 6)))
+        self.assert_one_line(e, "classify", "(4, 5, 6)")
+        with self.assertRaises(TypeError):
+            keyturn.describe({"x": 1})
+
+    def test_nan_only_cloud(self):
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.describe(np.full((50, 3), np.nan, np.float32))
+        self.assert_one_line(e, "no valid points")
+        self.assertIsInstance(e.exception, RuntimeError)
+
+    def test_missing_file_names_it(self):
+        missing = WORK / "no-such-view.pcd"
+        for call in (keyturn.load_cloud, keyturn.describe, keyturn.Model(MODEL).classify):
+            with self.assertRaises(keyturn.Error) as e:
+                call(missing)
+            self.assert_one_line(e, str(missing))
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.Model(WORK / "no-such-model")
+        self.assert_one_line(e, "no-such-model")
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.Dataset(WORK)
+        self.assert_one_line(e, "not a keyturn dataset")
+
+    def test_bad_parameters(self):
+        with self.assertRaises(TypeError) as e:
+            keyturn.describe(FRAME, binz=16)
+        self.assert_one_line(e, "binz", "bins")
+        with self.assertRaises(ValueError) as e:
+            keyturn.describe(FRAME, bins=1)
+        self.assert_one_line(e, "bins", "2..4096")
+        with self.assertRaises(TypeError) as e:
+            keyturn.describe(FRAME, bins=16.0)
+        self.assert_one_line(e, "bins must be an int")
+        with self.assertRaises(ValueError) as e:
+            keyturn.describe(FRAME, features=["kpd9"])
+        self.assert_one_line(e, "kpd9")
+
+    def test_unknown_block(self):
+        Fixture.make()
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.Dataset(WORK / "ds").features("kpd2+nope")
+        self.assert_one_line(e, "nope")
+
+
+if __name__ == "__main__":
+    unittest.main(verbosity=2)

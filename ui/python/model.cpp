@@ -1,0 +1,99 @@
+// keyturn.Model: a trained model (keyturn train) classifying views as `keyturn classify`
+// does: described with the model's own parameters and only its blocks.
+#include <pybind11/stl.h>
+
+#include <mutex>
+
+#include "bindings.h"
+#include "keyturn/learning/feature_cache.h"
+#include "keyturn/learning/model_predictions.h"
+
+namespace keyturn::python {
+namespace {
+
+struct Classification {
+  std::string cls;
+  double probability = 0;
+  std::vector<std::pair<std::string, double>> probabilities;  // the model's class order
+  int keypoints = 0;
+  std::string problem;
+};
+
+class PyModel {
+ public:
+  explicit PyModel(std::string dir) : source_(std::move(dir)) {
+    py::gil_scoped_release release;
+    model_ = learning::loadModel(source_);
+    layout_ = learning::modelLayout(model_, source_);
+    options_ = learning::modelOptions(model_, source_);
+  }
+
+  Classification classify(const py::object& view) {
+    std::string name;
+    const Cloud cloud = cloudFrom(view, "classify", &name);
+    learning::FeatureTable t = layout_;
+    std::vector<learning::Prediction> p;
+    {
+      py::gil_scoped_release release;
+      t.rows = {learning::describeCloud(cloud, options_, layout_)};
+      if (t.rows[0].keypoints < 0 && !t.rows[0].problem.empty()) throw Error(name + ": " + t.rows[0].problem);
+      std::lock_guard<std::mutex> lock(predict_mutex_);  // one prediction at a time, as the recogniser
+      p = learning::predictRows(model_, t, source_);
+    }
+    Classification c;
+    const auto& classes = model_.info.classes;
+    c.cls = classes.at(static_cast<std::size_t>(p.at(0).best));
+    c.probability = p[0].probabilities.at(static_cast<std::size_t>(p[0].best));
+    for (std::size_t k = 0; k < classes.size(); ++k) c.probabilities.emplace_back(classes[k], p[0].probabilities[k]);
+    c.keypoints = t.rows[0].keypoints;
+    c.problem = t.rows[0].problem;
+    return c;
+  }
+
+  const learning::ModelInfo& info() const { return model_.info; }
+  const std::string& source() const { return source_; }
+
+ private:
+  std::string source_;
+  learning::Model model_;
+  learning::FeatureTable layout_;
+  DescriptorOptions options_;
+  std::mutex predict_mutex_;
+};
+
+}  // namespace
+
+void bindModel(py::module_& m) {
+  py::class_<Classification>(m, "Classification", "A view's class and probabilities (keyturn classify --json)")
+      .def_readonly("cls", &Classification::cls, "the most probable class")
+      .def_readonly("probability", &Classification::probability)
+      .def_property_readonly("probabilities", [](const Classification& c) {
+        py::dict d;
+        for (const auto& [k, v] : c.probabilities) d[py::str(k)] = v;
+        return d;
+      }, "class → probability, the model's class order")
+      .def_readonly("keypoints", &Classification::keypoints, "K")
+      .def_readonly("problem", &Classification::problem, "what was thin or missing ('' when nothing)")
+      .def("__repr__", [](const Classification& c) {
+        return "<keyturn.Classification " + c.cls + " " + std::to_string(c.probability) + ">";
+      });
+
+  py::class_<PyModel>(m, "Model", "A model folder written by keyturn train (model.json and the classifier's file)")
+      .def(py::init([](const py::object& path) {
+             return std::make_unique<PyModel>(py::str(py::module_::import("os").attr("fspath")(path)));
+           }),
+           py::arg("path"), "Loads the model; raises keyturn.Error naming the file when it is missing or corrupt")
+      .def("classify", &PyModel::classify, py::arg("view"),
+           "classify(view) -> Classification\n\nview: a PCD/PLY path, a keyturn.Cloud or an N × 3 / H × W × 3 array. "
+           "Described with the model's own parameters, as keyturn classify does (GIL released).")
+      .def_property_readonly("classes", [](const PyModel& p) { return p.info().classes; })
+      .def_property_readonly("blocks", [](const PyModel& p) { return p.info().blocks; }, "feature blocks, in order")
+      .def_property_readonly("inputs", [](const PyModel& p) { return p.info().inputs; })
+      .def_property_readonly("spec", [](const PyModel& p) { return p.info().spec; }, "its feature specification")
+      .def_property_readonly("classifier", [](const PyModel& p) { return p.info().params.kind; })
+      .def("__repr__", [](const PyModel& p) {
+        return "<keyturn.Model " + p.source() + ", " + std::to_string(p.info().classes.size()) + " classes>";
+      });
+}
+
+}  // namespace keyturn::python
