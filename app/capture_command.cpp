@@ -4,17 +4,14 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
-#include "keyturn/rig/devices.h"
-#include "keyturn/core/durable_file.h"
+#include "keyturn/rig/capture_rig.h"
 #include "keyturn/rig/sidecars.h"
-#include "keyturn/rig/simulated_rig.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -44,38 +41,19 @@ struct CaptureArgs {
 int captureSequence(const CaptureArgs& a) {
   rig::CaptureOptions o;
   if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
-  rig::SimulatedRig simrig;                         // owns the simulated devices, when used
-  std::unique_ptr<drivers::TofCamera> real_camera;  // or the real ones
-  std::unique_ptr<drivers::PoseSource> real_pose;
-  drivers::TofCamera* camera = nullptr;
-  drivers::PoseSource* pose = nullptr;
-  if (a.camera == "sim") {
-    rig::SimulatedRigOptions so;
-    so.dir = a.out + "/.sim";
-    so.camera.mesh = a.mesh;
-    so.camera.elevation_deg = a.elevation;
-    so.camera.distance = a.distance;
-    so.camera.seed = a.seed;
-    so.camera.fault_rate = a.sim_faults;
-    so.simulated_pose = a.pose == "sim";
-    so.world = a.world;
-    simrig = rig::openSimulatedRig(so);
-    camera = simrig.camera.get();
-    o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
-  } else {
-    (void)rig::parseCameraSpec(a.camera);
-    if (a.pose == "sim") throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
-    real_pose = rig::openPoseSource(a.pose, a.profile);  // before the camera: a missing profile is said at once
-    real_camera = rig::openCamera(a.camera, "");
-    camera = real_camera.get();
-  }
-  if (a.pose == "sim") {
-    if (!simrig.turntable) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
-    pose = simrig.turntable.get();
-  } else {
-    if (!real_pose) real_pose = rig::openPoseSource(a.pose, a.profile);
-    pose = real_pose.get();
-  }
+  rig::CaptureDevices devices;
+  devices.camera = a.camera;
+  devices.pose = a.pose;
+  devices.profile = a.profile;
+  devices.sim.dir = a.out + "/.sim";
+  devices.sim.camera.mesh = a.mesh;
+  devices.sim.camera.elevation_deg = a.elevation;
+  devices.sim.camera.distance = a.distance;
+  devices.sim.camera.seed = a.seed;
+  devices.sim.camera.fault_rate = a.sim_faults;
+  devices.sim.world = a.world;
+  rig::CaptureRig capture_rig(devices);
+  o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
   rig::Dataset dataset(a.out);
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
@@ -100,15 +78,15 @@ int captureSequence(const CaptureArgs& a) {
 
   const std::size_t total = rig::sequenceAngles(o).size();
   Progress progress("capture " + a.cls + "/" + a.instance + " e" + o.elevation_label, total, !a.quiet);
-  const rig::CaptureReport rep = rig::runCapture(*camera, *pose, dataset, o,
+  const rig::CaptureReport rep = rig::runCapture(capture_rig.camera(), capture_rig.pose(), dataset, o,
                                                  [&](const rig::CaptureProgress&) { progress.advance(); });
   progress.finish();
   std::cerr << "keyturn capture: " << rep.written << " views written, " << rep.skipped << " already there"
             << (rep.redos ? ", " + std::to_string(rep.redos) + " redone (table moved)" : "") << " → " << a.out << "\n";
-  if (simrig.turntable)
-    std::cerr << "keyturn capture: simulated turntable: " << simrig.turntable->server().requests() << " requests, "
-              << simrig.turntable->server().faultsInjected() << " faults injected\n";
-  if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(camera))
+  if (const auto* table = capture_rig.simulatedTurntable())
+    std::cerr << "keyturn capture: simulated turntable: " << table->server().requests() << " requests, "
+              << table->server().faultsInjected() << " faults injected\n";
+  if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(&capture_rig.camera()))
     std::cerr << "keyturn capture: camera reopened " << sr->reconnects() << " times\n";
   if (rep.stopped) {
     std::cerr << "keyturn capture: stopped; run the same command again to resume\n";
@@ -124,14 +102,7 @@ int runCapture(const CaptureArgs& a) {
   try {
     return captureSequence(a);
   } catch (const Error&) {
-    bool has_views = false;
-    try {
-      has_views = !rig::Dataset::readManifest(a.out).empty();
-    } catch (const Error&) {
-      // no manifest yet
-    }
-    std::error_code ec;
-    if (fresh && !has_views) std::filesystem::remove_all(a.out, ec);
+    if (fresh) rig::removeDatasetWithoutViews(a.out);
     throw;
   }
 }

@@ -3,7 +3,6 @@
 // file is reported and skipped, the good rows are still written, and the exit
 // code says something failed.
 #include <atomic>
-#include <cstdio>
 #include <filesystem>
 #include <iostream>
 #include <optional>
@@ -16,6 +15,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/view_report.h"
 #include "progress.h"
 #include "view_files.h"
 
@@ -56,77 +56,6 @@ int runDescribeDataset(const DescribeArgs& a) {
   return 0;
 }
 
-std::string csvHeader(const std::vector<Feature>& features, int bins) {
-  std::ostringstream h;
-  h << "file,points,keypoints,low_keypoints,unreachable_keypoints,unreachable_pairs,resolution_mm,"
-       "input_kind,input_points,crop_removed,jump_edges_removed,support_plane_removed,cluster_removed,"
-       "outliers_removed,working_spacing_mm,working_removed,filter_flag";
-  for (Feature f : features)
-    for (int b = 0; b < bins; ++b) h << ',' << featureName(f) << '_' << b;
-  return h.str();
-}
-
-std::string csvQuote(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string csvRow(const std::string& file, const ViewDescriptor& d) {
-  std::ostringstream r;
-  r.precision(6);
-  r << csvQuote(file) << ',' << d.points << ',' << d.keypointCount() << ',' << (d.low_keypoints ? 1 : 0)
-    << ',' << d.unreachable_keypoints << ',' << d.unreachable_pairs << ',' << d.resolution * 1000.0;
-  r << ',' << (d.filter.steps.empty() ? "unfiltered" : inputKindName(d.filter.kind)) << ',' << d.input_points;
-  for (const char* step : {"crop", "jump-edges", "support-plane", "cluster", "outliers"}) {
-    std::size_t removed = 0;
-    for (const auto& s : d.filter.steps)
-      if (s.name == step) removed = s.removed();
-    r << ',' << removed;
-  }
-  r << ',' << d.working.spacing * 1000.0 << ',' << d.working.before - d.working.after << ','
-    << csvQuote(d.filter.flaggedSummary());
-  for (const auto& pdf : d.pdfs)
-    for (double v : pdf) r << ',' << v;
-  return r.str();
-}
-
-// What each step did to one view, for --explain.
-std::string explanation(const std::string& file, const ViewDescriptor& d) {
-  std::ostringstream e;
-  char line[512];
-  if (d.filter.steps.empty()) {
-    e << file << ": not filtered (--no-filter), " << d.input_points << " valid points\n";
-  } else {
-    e << file << ": " << inputKindName(d.filter.kind) << ", " << d.input_points << " valid points\n";
-    for (const auto& s : d.filter.steps) {
-      if (!s.applied) std::snprintf(line, sizeof line, "  %-18s skipped (%s)\n", s.name.c_str(), s.note.c_str());
-      else
-        std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (-%zu)%s%s%s\n", s.name.c_str(), s.before, s.after,
-                      s.removed(), s.flagged ? "  FLAGGED" : "", s.note.empty() ? "" : "  ", s.note.c_str());
-      e << line;
-    }
-  }
-  const auto& w = d.working;
-  if (!d.filter.steps.empty()) {
-    // The working resolution ran as a filter step; say what spacing it chose.
-    if (w.spacing > 0)
-      std::snprintf(line, sizeof line, "  (working spacing %.2f mm = extent %.0f mm / samples across%s)\n",
-                    w.spacing * 1000, w.extent * 1000, w.subsampled ? "" : "; no denser than that: kept");
-    else line[0] = '\0';
-  } else if (w.spacing > 0)
-    std::snprintf(line, sizeof line, "  %-18s %7zu -> %7zu  (spacing %.2f mm = extent %.0f mm / samples across%s)\n",
-                  "working-resolution", w.before, w.after, w.spacing * 1000, w.extent * 1000,
-                  w.subsampled ? "" : "; no denser than that: kept");
-  else std::snprintf(line, sizeof line, "  %-18s off\n", "working-resolution");
-  e << line;
-  std::snprintf(line, sizeof line, "  => %zu points, resolution %.2f mm, K = %d keypoints\n", d.points,
-                d.resolution * 1000, d.keypointCount());
-  e << line;
-  return e.str();
-}
-
 int runDescribe(const DescribeArgs& a) {
   if (a.cache || !a.shard.empty()) {
     if (a.inputs.size() != 1 || !isDataset(a.inputs.front()))
@@ -151,10 +80,10 @@ int runDescribe(const DescribeArgs& a) {
       const std::string& file = list.files[i];
       try {
         const ViewDescriptor d = describeView(loadCloud(file), options);
-        rows[i] = csvRow(file, d);
+        rows[i] = describeCsvRow(file, d);
         low[i] = d.low_keypoints ? d.keypointCount() : 0;
         flags[i] = d.filter.flaggedSummary();
-        if (a.explain) explained[i] = explanation(file, d);
+        if (a.explain) explained[i] = filterExplanation(file, d);
       } catch (const Error& e) {
         const std::string msg = e.what();
         errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
@@ -171,7 +100,7 @@ int runDescribe(const DescribeArgs& a) {
   progress.finish();
 
   std::ostringstream csv;
-  csv << csvHeader(options.features, options.histogram.bins) << "\n";
+  csv << describeCsvHeader(options.features, options.histogram.bins) << "\n";
   std::size_t good = 0, flagged = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (rows[i]) {

@@ -1,9 +1,5 @@
 #include "learning_options.h"
 
-#include <sstream>
-
-#include "keyturn/core/error.h"
-
 namespace keyturn::app {
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
@@ -22,17 +18,6 @@ void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
   cmd.add_option("--batch", p.mlp.batch, "Network: mini-batch size")->capture_default_str();
   cmd.add_flag("--sigmoid-output", p.mlp.sigmoid_output,
                "Network: the paper's sigmoid output layer (default: softmax with cross-entropy)");
-}
-
-std::vector<std::string> featureSetBlocks(const std::string& set) {
-  std::vector<std::string> out;
-  std::stringstream ss(set);
-  for (std::string b; std::getline(ss, b, '+');) {
-    if (b.empty()) throw Error("feature set '" + set + "': empty part");
-    out.push_back(b);
-  }
-  if (out.empty()) throw Error("empty feature set");
-  return out;
 }
 
 std::vector<std::string> splitList(const std::string& list) {

@@ -8,8 +8,6 @@ namespace keyturn::app {
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p);
 
-// "kpd2+gkpd2" → {"kpd2", "gkpd2"}; names are checked against the cache later.
-std::vector<std::string> featureSetBlocks(const std::string& set);
 // Splits on spaces and commas: "kpd2 kpd2+kpa3,esf" → three sets.
 std::vector<std::string> splitList(const std::string& list);
 

@@ -1,21 +1,14 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
-#include <algorithm>
-#include <chrono>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
-#include <set>
 
 #include "commands.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
-#include "keyturn/core/error.h"
-#include "keyturn/learning/feature_spec.h"
-#include "keyturn/learning/model_file.h"
-#include "keyturn/learning/protocols.h"
+#include "keyturn/learning/model_training.h"
 #include "learning_options.h"
 #include "view_files.h"
 
@@ -33,23 +26,10 @@ struct TrainArgs {
 int runTrain(const TrainArgs& a) {
   const learning::LabelKind kind = learning::parseLabelKind(a.label);
   const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
-  const learning::Labels labels = learning::labelRows(t, kind);
-  learning::Model m;
-  m.info.params = a.params;
-  m.info.params.kind = a.classifier;
-  m.info.blocks = featureSetBlocks(a.features);
-  m.info.spec = t.spec;
-  m.info.classes = labels.names;
-  const std::vector<int>& y = labels.of_row;
-  std::vector<std::size_t> all(t.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const learning::Matrix x = t.select(m.info.blocks, all);
-  m.info.inputs = static_cast<int>(x.cols());
-  m.info.class_means = learning::classMeans(x, y, static_cast<int>(m.info.classes.size()));
-  m.classifier = learning::makeClassifier(m.info.params);
-  const auto t0 = std::chrono::steady_clock::now();
-  m.classifier->fit(x, y, static_cast<int>(m.info.classes.size()));
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  learning::ClassifierParams params = a.params;
+  params.kind = a.classifier;
+  double s = 0;
+  const learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s);
   learning::saveModel(a.out, m);
   if (!a.quiet)
     std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views, "
@@ -75,42 +55,21 @@ int runClassify(const ClassifyArgs& a) {
     errors = list.errors;
     std::vector<learning::LabelledView> views;
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
-    // The model's own parameters, and only its blocks.
-    const DescriptorOptions options = learning::descriptorOptionsFromSpec(m.info.spec, a.model + "/model.json");
-    std::vector<std::string> blocks;
-    for (const auto& b : m.info.blocks)
-      if (std::find(blocks.begin(), blocks.end(), b) == blocks.end()) blocks.push_back(b);
     DescribeProgressLine progress(a.quiet || views.size() < 2);
-    t = learning::featureLayout(blocks, options);
-    t.rows = learning::describeViews(views, options, t, a.jobs, &progress);
+    t = learning::describeForModel(m, views, a.jobs, &progress, a.model + "/model.json");
     for (const auto& row : t.rows)
       if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
   }
-  const auto diff = learning::specDifferences(m.info.spec, t.spec);
-  if (!diff.empty()) {
-    std::string msg = a.model + ": the model was trained on features computed another way (";
-    for (std::size_t i = 0; i < diff.size(); ++i) msg += (i ? "; " : "") + diff[i];
-    throw Error(msg + "): describe the views with the model's parameters");
-  }
-  std::vector<std::size_t> usable;
-  for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (t.rows[i].keypoints >= 0 || t.rows[i].problem.empty()) usable.push_back(i);
   nlohmann::json js = nlohmann::json::array();
-  if (!usable.empty()) {
-    const learning::Matrix p = m.classifier->predictProba(t.select(m.info.blocks, usable));
-    for (std::size_t k = 0; k < usable.size(); ++k) {
-      const auto& row = t.rows[usable[k]];
-      Eigen::Index best = 0;
-      p.row(static_cast<Eigen::Index>(k)).maxCoeff(&best);
-      nlohmann::json probs;
-      for (std::size_t c = 0; c < m.info.classes.size(); ++c) probs[m.info.classes[c]] = p(static_cast<Eigen::Index>(k), static_cast<Eigen::Index>(c));
-      js.push_back({{"view", row.id}, {"class", m.info.classes[static_cast<std::size_t>(best)]},
-                    {"probability", p(static_cast<Eigen::Index>(k), best)}, {"keypoints", row.keypoints},
-                    {"probabilities", probs}});
-      if (!a.json)
-        std::cout << row.id << "\t" << m.info.classes[static_cast<std::size_t>(best)] << "\t" << std::fixed
-                  << std::setprecision(3) << p(static_cast<Eigen::Index>(k), best) << "\tK=" << row.keypoints << "\n";
-    }
+  for (const auto& c : learning::classifyRows(m, t, a.model)) {
+    const std::string& cls = m.info.classes[static_cast<std::size_t>(c.best)];
+    nlohmann::json probs;
+    for (std::size_t k = 0; k < m.info.classes.size(); ++k) probs[m.info.classes[k]] = c.probabilities[k];
+    js.push_back({{"view", c.view}, {"class", cls}, {"probability", c.probabilities[static_cast<std::size_t>(c.best)]},
+                  {"keypoints", c.keypoints}, {"probabilities", probs}});
+    if (!a.json)
+      std::cout << c.view << "\t" << cls << "\t" << std::fixed << std::setprecision(3)
+                << c.probabilities[static_cast<std::size_t>(c.best)] << "\tK=" << c.keypoints << "\n";
   }
   if (a.json) std::cout << js.dump(2) << "\n";
   for (const auto& e : errors) std::cerr << "keyturn classify: " << e << "\n";

@@ -272,4 +272,15 @@ VerifyReport Dataset::verify(const std::string& root) {
   return rep;
 }
 
+void removeDatasetWithoutViews(const std::string& root) {
+  bool has_views = false;
+  try {
+    has_views = !Dataset::readManifest(root).empty();
+  } catch (const Error&) {
+    // no manifest yet
+  }
+  std::error_code ec;
+  if (!has_views) std::filesystem::remove_all(root, ec);
+}
+
 }  // namespace keyturn::rig

@@ -191,4 +191,15 @@ FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const s
   return out;
 }
 
+std::vector<std::string> featureSetBlocks(const std::string& set) {
+  std::vector<std::string> out;
+  std::stringstream ss(set);
+  for (std::string b; std::getline(ss, b, '+');) {
+    if (b.empty()) throw Error("feature set '" + set + "': empty part");
+    out.push_back(b);
+  }
+  if (out.empty()) throw Error("empty feature set");
+  return out;
+}
+
 }  // namespace keyturn::learning

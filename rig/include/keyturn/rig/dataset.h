@@ -67,6 +67,10 @@ class Dataset {
   std::vector<ViewRecord> views_;
 };
 
+// Removes a dataset folder that holds no views (no manifest, or one without rows): what a capture
+// that failed before its first view leaves, which verify would otherwise call a good, empty dataset.
+void removeDatasetWithoutViews(const std::string& root);
+
 std::string manifestHeader();
 std::string sha256File(const std::string& path);  // lowercase hex; throws keyturn::Error
 

@@ -33,6 +33,10 @@ struct FeatureTable {
   int blockSize(const std::string& block) const;  // 0 when absent
 };
 
+// "kpd2+gkpd2" → {"kpd2", "gkpd2"}: a feature set's blocks, concatenated in this order (names are
+// checked against a table by select). Throws keyturn::Error for an empty set or part.
+std::vector<std::string> featureSetBlocks(const std::string& set);
+
 // Writes atomically (temporary name, fsync, rename).
 void saveFeatureTable(const std::string& path, const FeatureTable& table);
 // Throws keyturn::Error "<path>: line N: …" on any malformed content.
