@@ -16,7 +16,7 @@
 #include "keyturn/sim/tof_view.h"
 #include "keyturn/ui/report_plots.h"
 #include "progress.h"
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 #ifndef KEYTURN_DATA_DIR
 #define KEYTURN_DATA_DIR "data"

@@ -2,12 +2,10 @@
 // bins of every requested keypoint/shape function. Files run in parallel; a bad
 // file is reported and skipped, the good rows are still written, and the exit
 // code says something failed.
-#include <atomic>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "commands.h"
 #include "dataset_features.h"
@@ -15,9 +13,10 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/parallel_for.h"
 #include "keyturn/core/view_report.h"
 #include "progress.h"
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 namespace keyturn::app {
 namespace {
@@ -39,14 +38,7 @@ bool isDataset(const std::string& path) {
 
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
-  int shard = 0, shards = 1;
-  if (!a.shard.empty()) {
-    char slash = 0;
-    std::istringstream in(a.shard);
-    if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
-      throw Error("--shard " + a.shard + ": expected I/N, e.g. 3/16");
-    --shard;
-  }
+  const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : learning::parseShard(a.shard);
   const std::string& dataset = a.inputs.front();
   DescribeProgressLine progress(a.quiet);
   const learning::FeatureCache cache{dataset, datasetViews(dataset), a.flags.options, a.jobs, &progress};
@@ -71,32 +63,23 @@ int runDescribe(const DescribeArgs& a) {
   std::vector<int> low(n, 0);
   std::vector<std::string> flags(n), explained(n);
 
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned jobs = static_cast<unsigned>(a.jobs > 0 ? a.jobs : static_cast<int>(hw));
   Progress progress("describe", n, !a.quiet && n > 1);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < n; i = next++) {
-      const std::string& file = list.files[i];
-      try {
-        const ViewDescriptor d = describeView(loadCloud(file), options);
-        rows[i] = describeCsvRow(file, d);
-        low[i] = d.low_keypoints ? d.keypointCount() : 0;
-        flags[i] = d.filter.flaggedSummary();
-        if (a.explain) explained[i] = filterExplanation(file, d);
-      } catch (const Error& e) {
-        const std::string msg = e.what();
-        errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
-      } catch (const std::exception& e) {
-        errors[i] = file + ": unexpected failure: " + e.what();
-      }
-      progress.advance();
+  parallelFor(n, a.jobs, [&](std::size_t i) {
+    const std::string& file = list.files[i];
+    try {
+      const ViewDescriptor d = describeView(loadCloud(file), options);
+      rows[i] = describeCsvRow(file, d);
+      low[i] = d.low_keypoints ? d.keypointCount() : 0;
+      flags[i] = d.filter.flaggedSummary();
+      if (a.explain) explained[i] = filterExplanation(file, d);
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
+    } catch (const std::exception& e) {
+      errors[i] = file + ": unexpected failure: " + e.what();
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<std::size_t>(jobs, n); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    progress.advance();
+  });
   progress.finish();
 
   std::ostringstream csv;

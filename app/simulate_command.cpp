@@ -4,10 +4,9 @@
 #include <chrono>
 #include <csignal>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
-#include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
 #include "keyturn/rig/dataset_simulation.h"
 #include "progress.h"
 
@@ -24,26 +23,11 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
-std::vector<double> parseList(const std::string& text, const char* what) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string tok;
-  while (std::getline(ss, tok, ',')) {
-    try {
-      out.push_back(std::stod(tok));
-    } catch (const std::exception&) {
-      throw Error(std::string(what) + ": '" + tok + "' is not a number");
-    }
-  }
-  if (out.empty()) throw Error(std::string(what) + ": empty");
-  return out;
-}
-
 int runSimulate(const SimulateArgs& a) {
   rig::DatasetSimulation sim;
   sim.out = a.out;
   sim.objects = rig::readObjectList(a.objects);
-  sim.elevations = parseList(a.elevations, "--elevations");
+  sim.elevations = parseNumberList(a.elevations, "--elevations");
   sim.step_deg = a.step;
   sim.seed = a.seed;
   sim.stop = &g_stop;

@@ -10,7 +10,7 @@
 #include "descriptor_options.h"
 #include "keyturn/learning/model_training.h"
 #include "learning_options.h"
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 namespace keyturn::app {
 namespace {

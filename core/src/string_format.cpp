@@ -2,6 +2,10 @@
 
 #include <cstdarg>
 #include <cstdio>
+#include <sstream>
+#include <stdexcept>
+
+#include "keyturn/core/error.h"
 
 namespace keyturn {
 
@@ -19,6 +23,22 @@ void appendFormat(std::string& out, const char* format, ...) {
     out.resize(at + static_cast<std::size_t>(n));
   }
   va_end(again);
+}
+
+std::vector<double> parseNumberList(const std::string& text, const std::string& what) {
+  std::vector<double> out;
+  std::stringstream ss(text);
+  for (std::string tok; std::getline(ss, tok, ',');) {
+    try {
+      std::size_t used = 0;
+      out.push_back(std::stod(tok, &used));
+      if (used != tok.size()) throw std::invalid_argument(tok);
+    } catch (const std::exception&) {
+      throw Error(what + ": '" + tok + "' is not a number");
+    }
+  }
+  if (out.empty()) throw Error(what + ": no number given");
+  return out;
 }
 
 }  // namespace keyturn

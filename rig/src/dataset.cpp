@@ -283,4 +283,20 @@ void removeDatasetWithoutViews(const std::string& root) {
   if (!has_views) std::filesystem::remove_all(root, ec);
 }
 
+std::string VerifyReport::text(const std::string& root) const {
+  std::ostringstream out;
+  auto list = [&out](const char* what, const std::vector<std::string>& v) {
+    for (const auto& f : v) out << what << ": " << f << "\n";
+  };
+  list("missing", missing);
+  list("corrupt", corrupt);
+  list("orphan", orphans);
+  list("duplicate", duplicates);
+  list("bad manifest row", bad_rows);
+  out << root << ": " << views << " views, " << missing.size() << " missing, " << corrupt.size() << " corrupt, "
+      << orphans.size() << " orphan, " << duplicates.size() << " duplicate files"
+      << (good() ? " — OK" : ok() ? " — EMPTY (no views)" : " — PROBLEMS") << "\n";
+  return out.str();
+}
+
 }  // namespace keyturn::rig

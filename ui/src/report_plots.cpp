@@ -2,6 +2,7 @@
 
 #include <filesystem>
 
+#include "keyturn/core/error.h"
 #include "keyturn/ui/confusion_plot.h"
 #include "keyturn/ui/line_chart.h"
 
@@ -11,7 +12,9 @@ void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
   namespace fs = std::filesystem;
   const auto pathOf = [&dir](const std::string& file) {
     const fs::path p = fs::path(dir) / file;
-    if (!p.parent_path().empty()) fs::create_directories(p.parent_path());
+    std::error_code ec;
+    if (!p.parent_path().empty() && !fs::is_directory(p.parent_path()) && !fs::create_directories(p.parent_path(), ec))
+      throw Error(p.parent_path().string() + ": cannot create the folder (" + ec.message() + ")");
     return p.string();
   };
   for (const auto& c : plots.confusions) saveConfusionPng({c.title, c.labels, c.counts}, pathOf(c.file));

@@ -1,0 +1,29 @@
+#include "keyturn/rig/dataset_views.h"
+
+#include <filesystem>
+
+#include "keyturn/core/error.h"
+#include "keyturn/rig/dataset.h"
+
+namespace keyturn::rig {
+
+std::vector<learning::LabelledView> datasetViews(const std::string& root,
+                                                 const std::function<void(const std::string&)>& skipped) {
+  namespace fs = std::filesystem;
+  if (!fs::is_regular_file(fs::path(root) / "manifest.csv"))
+    throw Error(root + ": not a keyturn dataset (no manifest.csv)");
+  std::vector<std::string> bad;
+  std::vector<learning::LabelledView> out;
+  for (const auto& r : Dataset::readManifest(root, &bad)) {
+    const std::string pcd = r.pcd();
+    if (pcd.empty()) continue;
+    out.push_back({pcd.substr(0, pcd.size() - 4), (fs::path(root) / pcd).string(), r.key.cls, r.key.instance,
+                   r.key.elevation});
+  }
+  if (skipped)
+    for (const auto& b : bad) skipped(b);
+  if (out.empty()) throw Error(root + ": the dataset has no views");
+  return out;
+}
+
+}  // namespace keyturn::rig
