@@ -29,7 +29,6 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // First thing: a signal during start-up (slow on a loaded machine) closes the window as soon as it exists.
   keyturn::studio::catchQuitSignals();
   Args a;
   CLI::App cli("keyturn studio: live ToF capture on a turntable rig and keypoint-based recognition");
