@@ -3,20 +3,20 @@
 // ISSKeypoint3D, ESF and VFH timed on the same filtered cloud in the same run.
 // A view that cannot be read or described is named on stderr (and as an "error"
 // entry in --json); the others are still timed, and the exit status is then 1.
-// --scaling times the chain against input size instead (bench_scaling.h).
+// --scaling times the chain against input size instead (keyturn/bench/scaling.h).
 #include <cstdio>
-#include <functional>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "bench_scaling.h"
-#include "bench_view.h"
 #include "commands.h"
 #include "descriptor_options.h"
+#include "keyturn/bench/scaling.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/sim/tof_view.h"
-#include "view_files.h"
+#include "keyturn/ui/report_plots.h"
+#include "progress.h"
+#include "keyturn/core/view_files.h"
 
 #ifndef KEYTURN_DATA_DIR
 #define KEYTURN_DATA_DIR "data"
@@ -25,16 +25,28 @@
 namespace keyturn::app {
 namespace {
 
+using bench::BenchRuns;
+
 struct BenchArgs {
   std::vector<std::string> files;
   BenchRuns runs;
   bool json = false;
   bool no_builtin = false;
   bool scaling = false;
-  std::vector<std::size_t> sizes = defaultScalingSizes();
+  std::vector<std::size_t> sizes = bench::defaultScalingSizes();
   std::string plot;
   DescriptorFlags flags;
 };
+
+// A progress line per timed view.
+bench::RunProgress progressLines() {
+  auto bar = std::make_shared<std::unique_ptr<Progress>>();
+  return [bar](const std::string& label, int done, int total) {
+    if (done == 0) *bar = std::make_unique<Progress>(label, static_cast<std::size_t>(total), true);
+    else (*bar)->advance();
+    if (done == total) (*bar)->finish();
+  };
+}
 
 Cloud builtinView() {
   const sim::Mesh mug = sim::makeMugMesh();
@@ -44,58 +56,25 @@ Cloud builtinView() {
   return renderer.render(view);
 }
 
-std::string withoutPrefix(const std::string& msg, const std::string& name) {
-  const std::string prefix = name + ": ";
-  return msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;
-}
-
-// One view timed, or its failure as {"name", "error"} (already reported on stderr).
-nlohmann::json benchOrError(const std::string& name, const std::function<Cloud()>& load, const BenchRuns& runs,
-                            const DescriptorOptions& options) {
-  std::string error;
-  try {
-    return benchView(name, load(), runs, options);
-  } catch (const Error& e) {
-    error = withoutPrefix(e.what(), name);  // loadCloud's messages start with the file already
-  } catch (const std::exception& e) {
-    error = std::string("unexpected failure: ") + e.what();
-  }
-  std::cerr << "keyturn bench: " << name << ": " << error << "\n";
-  return {{"name", name}, {"error", error}};
-}
-
-int runBench(const BenchArgs& a) {
-  const DescriptorOptions options = a.flags.toOptions();
-  nlohmann::json views = nlohmann::json::array();
-  int failed = 0;
-  if (!a.no_builtin) views.push_back(benchOrError("builtin:mug", builtinView, a.runs, options));
+int runBench(BenchArgs a) {
+  a.runs.progress = progressLines();
+  std::vector<bench::ViewToTime> views;
+  if (!a.no_builtin) views.push_back({"builtin:mug", builtinView, ""});
   const ViewFileList list = collectViewFiles(a.files);
-  for (const auto& e : list.errors) {  // "ARGUMENT: what is wrong"
-    std::cerr << "keyturn bench: " << e << "\n";
-    std::string arg = e;
+  for (const auto& e : list.errors)  // "ARGUMENT: what is wrong"
     for (const auto& in : a.files)
-      if (e.rfind(in + ": ", 0) == 0) arg = in;
-    views.push_back({{"name", arg}, {"error", withoutPrefix(e, arg)}});
-  }
-  for (const auto& f : list.files)
-    views.push_back(benchOrError(f, [&f] { return loadCloud(f); }, a.runs, options));
+      if (e.rfind(in + ": ", 0) == 0) views.push_back({in, nullptr, e.substr(in.size() + 2)});
+  for (const auto& f : list.files) views.push_back({f, [f] { return loadCloud(f); }, ""});
   if (views.empty()) throw Error("nothing to benchmark (--no-builtin and no files)");
-  for (const auto& v : views) failed += v.contains("error");
-  if (a.json) {
-    // The first view that was timed at the top level (as before), every view in "views".
-    nlohmann::json out = nlohmann::json::object();
-    for (const auto& v : views)
-      if (!v.contains("error")) {
-        out = v;
-        break;
-      }
-    out["views"] = views;
-    out["failed"] = failed;
-    std::cout << out.dump(2) << "\n";
-  } else {
-    for (const auto& v : views)
-      if (!v.contains("error")) printViewTable(v);
-  }
+  const nlohmann::json out = bench::benchViews(views, a.runs, a.flags.toOptions(),
+                                               [](const std::string& name, const std::string& error) {
+                                                 std::cerr << "keyturn bench: " << name << ": " << error << "\n";
+                                               });
+  if (a.json) std::cout << out.dump(2) << "\n";
+  else
+    for (const auto& v : out["views"])
+      if (!v.contains("error")) std::fputs(bench::viewTable(v).c_str(), stdout);
+  const int failed = out["failed"].get<int>();
   if (failed)
     std::cerr << "keyturn bench: " << failed << " of " << views.size() << " views could not be timed\n";
   return failed ? 1 : 0;
@@ -103,14 +82,20 @@ int runBench(const BenchArgs& a) {
 
 int runScalingCommand(const BenchArgs& a) {
   if (a.files.size() > 1) throw Error("bench --scaling takes one frame (or none: the shipped Kinect frame)");
-  ScalingArgs s;
+  bench::ScalingArgs s;
   s.file = a.files.empty() ? std::string(KEYTURN_DATA_DIR) + "/frames/mosd_learn0.pcd" : a.files[0];
   s.sizes = a.sizes;
   s.runs = a.runs;
-  s.runs.progress = !a.json;
-  s.json = a.json;
-  s.plot = a.plot;
-  return runScaling(s, a.flags.toOptions());
+  if (!a.json) s.runs.progress = progressLines();
+  s.warn = [](const std::string& line) { std::cerr << "keyturn bench --scaling: " << line << "\n"; };
+  const nlohmann::json out = bench::runScaling(s, a.flags.toOptions());
+  if (a.json) std::cout << out.dump(2) << "\n";
+  else std::fputs(bench::scalingTable(out).c_str(), stdout);
+  if (!a.plot.empty()) {
+    ui::saveReportPlots({{bench::scalingPlot(out, a.plot)}, {}}, "");
+    if (!a.json) std::printf("\nplot: %s\n", a.plot.c_str());
+  }
+  return out["failed"].get<int>() ? 1 : 0;
 }
 
 }  // namespace

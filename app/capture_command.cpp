@@ -4,17 +4,14 @@
 #include <atomic>
 #include <csignal>
 #include <filesystem>
-#include <fstream>
 #include <iostream>
 
 #include "commands.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
-#include "keyturn/rig/devices.h"
-#include "keyturn/core/durable_file.h"
+#include "keyturn/rig/capture_rig.h"
 #include "keyturn/rig/sidecars.h"
-#include "keyturn/rig/simulated_rig.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -24,91 +21,43 @@ std::atomic<bool> g_stop{false};
 void onSignal(int) { g_stop = true; }
 
 struct CaptureArgs {
-  std::string camera = "sim", pose = "sim", profile = "keyturn-sim";
-  std::string cls, instance, out;
-  double elevation = 30, start = 0, step = 5, range = 360;
-  std::string elevation_label;
-  int frames = 1, discard = 1;
-  double settle = 0.2, tolerance = 0.1;
-  std::string mesh = "builtin:mug";
-  double distance = 0;
-  unsigned long long seed = 1;
+  rig::CaptureDevices devices;  // the simulated camera's options included
+  rig::CaptureOptions o;        // the sequence
+  std::string out, calibration;
   bool quiet = false;
-  std::string calibration;
-  std::string world;
-  double sim_faults = 0;
+  CaptureArgs() { devices.profile = "keyturn-sim"; }
 };
 
 // The calibration file, the pose source (and its profile) and the camera are opened before the
 // dataset is created, so a bad one is named before anything is written.
-int captureSequence(const CaptureArgs& a) {
-  rig::CaptureOptions o;
+int captureSequence(CaptureArgs a) {
+  rig::CaptureOptions& o = a.o;
   if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
-  rig::SimulatedRig simrig;                         // owns the simulated devices, when used
-  std::unique_ptr<drivers::TofCamera> real_camera;  // or the real ones
-  std::unique_ptr<drivers::PoseSource> real_pose;
-  drivers::TofCamera* camera = nullptr;
-  drivers::PoseSource* pose = nullptr;
-  if (a.camera == "sim") {
-    rig::SimulatedRigOptions so;
-    so.dir = a.out + "/.sim";
-    so.camera.mesh = a.mesh;
-    so.camera.elevation_deg = a.elevation;
-    so.camera.distance = a.distance;
-    so.camera.seed = a.seed;
-    so.camera.fault_rate = a.sim_faults;
-    so.simulated_pose = a.pose == "sim";
-    so.world = a.world;
-    simrig = rig::openSimulatedRig(so);
-    camera = simrig.camera.get();
-    o.camera_from_turntable_zero = simrig.camera_from_turntable;  // exact in simulation
-  } else {
-    (void)rig::parseCameraSpec(a.camera);
-    if (a.pose == "sim") throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
-    real_pose = rig::openPoseSource(a.pose, a.profile);  // before the camera: a missing profile is said at once
-    real_camera = rig::openCamera(a.camera, "");
-    camera = real_camera.get();
-  }
-  if (a.pose == "sim") {
-    if (!simrig.turntable) throw Error("--pose sim needs --camera sim: the simulated table and camera share one world");
-    pose = simrig.turntable.get();
-  } else {
-    if (!real_pose) real_pose = rig::openPoseSource(a.pose, a.profile);
-    pose = real_pose.get();
-  }
+  a.devices.sim.dir = a.out + "/.sim";
+  a.devices.sim.camera.elevation_deg = o.elevation_deg;
+  rig::CaptureRig capture_rig(a.devices);
+  o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
   rig::Dataset dataset(a.out);
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
     o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
   }
-
-  o.cls = a.cls;
-  o.instance = a.instance;
-  o.elevation_deg = a.elevation;
-  o.elevation_label = a.elevation_label.empty() ? std::to_string(static_cast<int>(std::lround(a.elevation)))
-                                                : a.elevation_label;
-  o.start_deg = a.start;
-  o.step_deg = a.step;
-  o.range_deg = a.range;
-  o.frames = a.frames;
-  o.discard_frames = a.discard;
-  o.settle_s = a.settle;
-  o.tolerance_deg = a.tolerance;
+  if (o.elevation_label.empty()) o.elevation_label = std::to_string(static_cast<int>(std::lround(o.elevation_deg)));
   o.stop = &g_stop;
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
 
   const std::size_t total = rig::sequenceAngles(o).size();
-  Progress progress("capture " + a.cls + "/" + a.instance + " e" + o.elevation_label, total, !a.quiet);
-  const rig::CaptureReport rep = rig::runCapture(*camera, *pose, dataset, o,
+  Progress progress("capture " + o.cls + "/" + o.instance + " e" + o.elevation_label, total, !a.quiet);
+  const rig::CaptureReport rep = rig::runCapture(capture_rig.camera(), capture_rig.pose(), dataset, o,
                                                  [&](const rig::CaptureProgress&) { progress.advance(); });
   progress.finish();
   std::cerr << "keyturn capture: " << rep.written << " views written, " << rep.skipped << " already there"
             << (rep.redos ? ", " + std::to_string(rep.redos) + " redone (table moved)" : "") << " → " << a.out << "\n";
-  if (simrig.turntable)
-    std::cerr << "keyturn capture: simulated turntable: " << simrig.turntable->server().requests() << " requests, "
-              << simrig.turntable->server().faultsInjected() << " faults injected\n";
-  if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(camera))
+  if (const auto* table = capture_rig.simulatedTurntable())
+    std::cerr << "keyturn capture: simulated turntable: " << table->server().requests() << " requests, "
+              << table->server().faultsInjected() << " faults injected\n";
+  if (const auto* sr = dynamic_cast<const drivers::Sr4000Camera*>(&capture_rig.camera()))
     std::cerr << "keyturn capture: camera reopened " << sr->reconnects() << " times\n";
   if (rep.stopped) {
     std::cerr << "keyturn capture: stopped; run the same command again to resume\n";
@@ -124,34 +73,15 @@ int runCapture(const CaptureArgs& a) {
   try {
     return captureSequence(a);
   } catch (const Error&) {
-    bool has_views = false;
-    try {
-      has_views = !rig::Dataset::readManifest(a.out).empty();
-    } catch (const Error&) {
-      // no manifest yet
-    }
-    std::error_code ec;
-    if (fresh && !has_views) std::filesystem::remove_all(a.out, ec);
+    if (fresh) rig::removeDatasetWithoutViews(a.out);
     throw;
   }
 }
 
 int runVerify(const std::string& root) {
   const rig::VerifyReport r = rig::Dataset::verify(root);
-  auto list = [](const char* what, const std::vector<std::string>& v) {
-    for (const auto& f : v) std::cout << what << ": " << f << "\n";
-  };
-  list("missing", r.missing);
-  list("corrupt", r.corrupt);
-  list("orphan", r.orphans);
-  list("duplicate", r.duplicates);
-  list("bad manifest row", r.bad_rows);
-  // A dataset without views is not a good one (a capture that never took its first view).
-  const bool ok = r.ok() && r.views > 0;
-  std::cout << root << ": " << r.views << " views, " << r.missing.size() << " missing, " << r.corrupt.size()
-            << " corrupt, " << r.orphans.size() << " orphan, " << r.duplicates.size() << " duplicate files"
-            << (ok ? " — OK" : r.ok() ? " — EMPTY (no views)" : " — PROBLEMS") << "\n";
-  return ok ? 0 : 1;
+  std::cout << r.text(root);
+  return r.good() ? 0 : 1;
 }
 
 }  // namespace
@@ -159,32 +89,32 @@ int runVerify(const std::string& root) {
 Command addCaptureCommand(CLI::App& app) {
   auto a = std::make_shared<CaptureArgs>();
   auto* cmd = app.add_subcommand("capture", "Capture a turntable sequence into a dataset (resumable)");
-  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
-  cmd->add_option("--pose", a->pose, "sim, modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
+  cmd->add_option("--camera", a->devices.camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
+  cmd->add_option("--pose", a->devices.pose, "sim, modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
       ->capture_default_str();
-  cmd->add_option("--profile", a->profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
+  cmd->add_option("--profile", a->devices.profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
       ->capture_default_str();
-  cmd->add_option("--class", a->cls, "Object class")->required();
-  cmd->add_option("--instance", a->instance, "Object instance")->required();
-  cmd->add_option("--elevation", a->elevation, "Camera elevation above the turntable (°)")->capture_default_str();
-  cmd->add_option("--elevation-label", a->elevation_label, "Label of this elevation (default: the degrees)");
-  cmd->add_option("--start", a->start, "First angle (°)")->capture_default_str();
-  cmd->add_option("--step", a->step, "Angle step (°)")->capture_default_str();
-  cmd->add_option("--range", a->range, "Angles covered (°)")->capture_default_str();
-  cmd->add_option("--frames", a->frames, "Frames per view (per-pixel median)")->capture_default_str();
-  cmd->add_option("--discard", a->discard, "Frames discarded after the table settles")->capture_default_str();
-  cmd->add_option("--settle", a->settle, "Time the pose must stay within tolerance (s)")->capture_default_str();
-  cmd->add_option("--tolerance", a->tolerance, "Pose tolerance (°)")->capture_default_str();
-  cmd->add_option("--mesh", a->mesh, "Simulated camera: the object's mesh (PLY/OBJ/STL/OFF), builtin:mug or builtin:sphere-target")
+  cmd->add_option("--class", a->o.cls, "Object class")->required();
+  cmd->add_option("--instance", a->o.instance, "Object instance")->required();
+  cmd->add_option("--elevation", a->o.elevation_deg, "Camera elevation above the turntable (°)")->capture_default_str();
+  cmd->add_option("--elevation-label", a->o.elevation_label, "Label of this elevation (default: the degrees)");
+  cmd->add_option("--start", a->o.start_deg, "First angle (°)")->capture_default_str();
+  cmd->add_option("--step", a->o.step_deg, "Angle step (°)")->capture_default_str();
+  cmd->add_option("--range", a->o.range_deg, "Angles covered (°)")->capture_default_str();
+  cmd->add_option("--frames", a->o.frames, "Frames per view (per-pixel median)")->capture_default_str();
+  cmd->add_option("--discard", a->o.discard_frames, "Frames discarded after the table settles")->capture_default_str();
+  cmd->add_option("--settle", a->o.settle_s, "Time the pose must stay within tolerance (s)")->capture_default_str();
+  cmd->add_option("--tolerance", a->o.tolerance_deg, "Pose tolerance (°)")->capture_default_str();
+  cmd->add_option("--mesh", a->devices.sim.camera.mesh, "Simulated camera: the object's mesh (PLY/OBJ/STL/OFF), builtin:mug or builtin:sphere-target")
       ->capture_default_str();
-  cmd->add_option("--distance", a->distance, "Simulated camera: distance to the object (m); 0 = operator placement");
-  cmd->add_option("--seed", a->seed, "Simulated camera: noise seed")->capture_default_str();
+  cmd->add_option("--distance", a->devices.sim.camera.distance, "Simulated camera: distance to the object (m); 0 = operator placement");
+  cmd->add_option("--seed", a->devices.sim.camera.seed, "Simulated camera: noise seed")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Dataset folder")->required();
   cmd->add_flag("--quiet,-q", a->quiet, "No progress bar");
-  cmd->add_option("--sim-faults", a->sim_faults,
+  cmd->add_option("--sim-faults", a->devices.sim.camera.fault_rate,
                   "Simulated devices: probability of a random fault per camera acquisition and per turntable request")
       ->check(CLI::Range(0.0, 1.0));
-  cmd->add_option("--world", a->world,
+  cmd->add_option("--world", a->devices.sim.world,
                   "Simulated camera with a separately running `keyturn sim turntable --world FILE`: the shared world file");
   cmd->add_option("--calibration", a->calibration,
                   "Axis calibration from keyturn calibrate-axis: gives every view its camera-from-turntable "

@@ -2,12 +2,10 @@
 // bins of every requested keypoint/shape function. Files run in parallel; a bad
 // file is reported and skipped, the good rows are still written, and the exit
 // code says something failed.
-#include <atomic>
 #include <filesystem>
 #include <iostream>
 #include <optional>
 #include <sstream>
-#include <thread>
 
 #include "commands.h"
 #include "dataset_features.h"
@@ -15,9 +13,11 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/parallel_for.h"
 #include "keyturn/core/view_explanation.h"
+#include "keyturn/core/view_report.h"
 #include "progress.h"
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 namespace keyturn::app {
 namespace {
@@ -39,14 +39,7 @@ bool isDataset(const std::string& path) {
 
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
-  int shard = 0, shards = 1;
-  if (!a.shard.empty()) {
-    char slash = 0;
-    std::istringstream in(a.shard);
-    if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
-      throw Error("--shard " + a.shard + ": expected I/N, e.g. 3/16");
-    --shard;
-  }
+  const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : learning::parseShard(a.shard);
   const std::string& dataset = a.inputs.front();
   DescribeProgressLine progress(a.quiet);
   const learning::FeatureCache cache{dataset, datasetViews(dataset), a.flags.options, a.jobs, &progress};
@@ -54,42 +47,6 @@ int runDescribeDataset(const DescribeArgs& a) {
                                       : (learning::loadOrDescribeCache(cache), learning::featureCachePath(dataset, cache.options));
   if (!a.quiet) std::cerr << "keyturn describe: feature cache → " << path << "\n";
   return 0;
-}
-
-std::string csvHeader(const std::vector<Feature>& features, int bins) {
-  std::ostringstream h;
-  h << "file,points,keypoints,low_keypoints,unreachable_keypoints,unreachable_pairs,resolution_mm,"
-       "input_kind,input_points,crop_removed,jump_edges_removed,support_plane_removed,cluster_removed,"
-       "outliers_removed,working_spacing_mm,working_removed,filter_flag";
-  for (Feature f : features)
-    for (int b = 0; b < bins; ++b) h << ',' << featureName(f) << '_' << b;
-  return h.str();
-}
-
-std::string csvQuote(const std::string& s) {
-  if (s.find_first_of(",\"\n") == std::string::npos) return s;
-  std::string q = "\"";
-  for (char c : s) q += c == '"' ? std::string("\"\"") : std::string(1, c);
-  return q + "\"";
-}
-
-std::string csvRow(const std::string& file, const ViewDescriptor& d) {
-  std::ostringstream r;
-  r.precision(6);
-  r << csvQuote(file) << ',' << d.points << ',' << d.keypointCount() << ',' << (d.low_keypoints ? 1 : 0)
-    << ',' << d.unreachable_keypoints << ',' << d.unreachable_pairs << ',' << d.resolution * 1000.0;
-  r << ',' << (d.filter.steps.empty() ? "unfiltered" : inputKindName(d.filter.kind)) << ',' << d.input_points;
-  for (const char* step : {"crop", "jump-edges", "support-plane", "cluster", "outliers"}) {
-    std::size_t removed = 0;
-    for (const auto& s : d.filter.steps)
-      if (s.name == step) removed = s.removed();
-    r << ',' << removed;
-  }
-  r << ',' << d.working.spacing * 1000.0 << ',' << d.working.before - d.working.after << ','
-    << csvQuote(d.filter.flaggedSummary());
-  for (const auto& pdf : d.pdfs)
-    for (double v : pdf) r << ',' << v;
-  return r.str();
 }
 
 int runDescribe(const DescribeArgs& a) {
@@ -107,36 +64,27 @@ int runDescribe(const DescribeArgs& a) {
   std::vector<int> low(n, 0);
   std::vector<std::string> flags(n), explained(n);
 
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned jobs = static_cast<unsigned>(a.jobs > 0 ? a.jobs : static_cast<int>(hw));
   Progress progress("describe", n, !a.quiet && n > 1);
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t i = next++; i < n; i = next++) {
-      const std::string& file = list.files[i];
-      try {
-        const ViewDescriptor d = describeView(loadCloud(file), options);
-        rows[i] = csvRow(file, d);
-        low[i] = d.low_keypoints ? d.keypointCount() : 0;
-        flags[i] = d.filter.flaggedSummary();
-        if (a.explain) explained[i] = explainView(file, d);
-      } catch (const Error& e) {
-        const std::string msg = e.what();
-        errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
-      } catch (const std::exception& e) {
-        errors[i] = file + ": unexpected failure: " + e.what();
-      }
-      progress.advance();
+  parallelFor(n, a.jobs, [&](std::size_t i) {
+    const std::string& file = list.files[i];
+    try {
+      const ViewDescriptor d = describeView(loadCloud(file), options);
+      rows[i] = describeCsvRow(file, d);
+      low[i] = d.low_keypoints ? d.keypointCount() : 0;
+      flags[i] = d.filter.flaggedSummary();
+      if (a.explain) explained[i] = explainView(file, d);
+    } catch (const Error& e) {
+      const std::string msg = e.what();
+      errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
+    } catch (const std::exception& e) {
+      errors[i] = file + ": unexpected failure: " + e.what();
     }
-  };
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<std::size_t>(jobs, n); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    progress.advance();
+  });
   progress.finish();
 
   std::ostringstream csv;
-  csv << csvHeader(options.features, options.histogram.bins) << "\n";
+  csv << describeCsvHeader(options.features, options.histogram.bins) << "\n";
   std::size_t good = 0, flagged = 0;
   for (std::size_t i = 0; i < n; ++i) {
     if (rows[i]) {

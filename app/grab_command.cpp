@@ -1,6 +1,5 @@
 // keyturn grab: frames from an SR4000 (or the simulated one) to an organized
 // PCD plus 16-bit PNGs of raw distance, amplitude and confidence.
-#include <cmath>
 #include <iostream>
 
 #include "commands.h"
@@ -26,19 +25,12 @@ struct GrabArgs {
   std::string mode;
 };
 
-int modulationIndex(double mhz) {
-  for (int f = 0; f < 12; ++f)
-    if (std::abs(drivers::modulationMHz(f) - mhz) < 1e-6) return f;
-  throw Error("--modulation: " + std::to_string(mhz) +
-              " MHz is not an SR4000 frequency (40, 30, 21, 20, 19, 60, 15, 10, 29, 31, 14.5, 15.5)");
-}
-
 int runGrab(const GrabArgs& a) {
   auto cam = rig::openCamera(a.camera, a.sim_config, a.library);
   drivers::TofSettings s = cam->settings();
   if (a.integration_time >= 0) s.integration_time = static_cast<std::uint8_t>(a.integration_time);
   s.auto_exposure.enabled = !a.no_auto_exposure && a.integration_time < 0;
-  s.modulation_frequency = modulationIndex(a.modulation_mhz);
+  s.modulation_frequency = drivers::modulationIndex(a.modulation_mhz);
   if (a.amplitude_threshold >= 0) s.amplitude_threshold = static_cast<std::uint16_t>(a.amplitude_threshold);
   if (a.distance_offset >= 0) s.distance_offset = static_cast<std::uint16_t>(a.distance_offset);
   if (!a.mode.empty()) {

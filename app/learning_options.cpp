@@ -1,9 +1,5 @@
 #include "learning_options.h"
 
-#include <sstream>
-
-#include "keyturn/core/error.h"
-
 namespace keyturn::app {
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {

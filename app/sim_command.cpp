@@ -19,34 +19,18 @@ void onSignal(int) { g_stop = true; }
 
 struct SimArgs {
   std::string tcp = "127.0.0.1:1502";
-  bool rtu = false;
-  int unit = 1;
-  std::string world;
-  double speed = 60, accel = 120, settle = 0.05, backlash = 0.05;
-  int no_reply_every = 0, exception_every = 0, drop_every = 0;
-  bool never_reach = false;
+  sim::TurntableServerOptions o;  // bound to the options (motion, faults, unit, world)
   double duration = 0;
 };
 
-int runSimTurntable(const SimArgs& a) {
-  sim::TurntableServerOptions o;
-  o.rtu = a.rtu;
-  if (!a.rtu) {
+int runSimTurntable(SimArgs a) {
+  sim::TurntableServerOptions& o = a.o;
+  if (!o.rtu) {
     const auto colon = a.tcp.rfind(':');
     if (colon == std::string::npos) throw Error("--modbus-tcp: expected ADDRESS:PORT, got '" + a.tcp + "'");
     o.tcp_address = a.tcp.substr(0, colon);
     o.tcp_port = std::atoi(a.tcp.c_str() + colon + 1);
   }
-  o.unit_id = a.unit;
-  o.world_file = a.world;
-  o.motion.max_speed_deg_s = a.speed;
-  o.motion.max_accel_deg_s2 = a.accel;
-  o.motion.settle_s = a.settle;
-  o.motion.backlash_deg = a.backlash;
-  o.faults.no_reply_every = a.no_reply_every;
-  o.faults.exception_every = a.exception_every;
-  o.faults.drop_every = a.drop_every;
-  o.faults.never_reach = a.never_reach;
   sim::TurntableServer server(o);
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
@@ -70,17 +54,17 @@ Command addSimCommand(CLI::App& app) {
   auto* tt = sim->add_subcommand("turntable", "Serve the simulated turntable over Modbus TCP or RTU");
   tt->add_option("--modbus-tcp", a->tcp, "ADDRESS:PORT to listen on (loopback unless told otherwise)")
       ->capture_default_str();
-  tt->add_flag("--modbus-rtu", a->rtu, "Serve RTU on a new pseudo-terminal instead (its path is printed)");
-  tt->add_option("--unit", a->unit, "Modbus unit id")->capture_default_str()->check(CLI::Range(1, 247));
-  tt->add_option("--world", a->world, "Shared world file the simulated camera reads the angle from");
-  tt->add_option("--speed", a->speed, "Maximum speed (°/s)")->capture_default_str();
-  tt->add_option("--accel", a->accel, "Maximum acceleration (°/s²)")->capture_default_str();
-  tt->add_option("--settle", a->settle, "Settling time with encoder jitter after arrival (s)")->capture_default_str();
-  tt->add_option("--backlash", a->backlash, "Lost motion on reversal (°)")->capture_default_str();
-  tt->add_option("--no-reply-every", a->no_reply_every, "Fault: ignore every Nth request");
-  tt->add_option("--exception-every", a->exception_every, "Fault: answer every Nth request with exception 4");
-  tt->add_option("--drop-every", a->drop_every, "Fault: close the connection on every Nth request");
-  tt->add_flag("--never-reach", a->never_reach, "Fault: stop 0.5° short and never report in position");
+  tt->add_flag("--modbus-rtu", a->o.rtu, "Serve RTU on a new pseudo-terminal instead (its path is printed)");
+  tt->add_option("--unit", a->o.unit_id, "Modbus unit id")->capture_default_str()->check(CLI::Range(1, 247));
+  tt->add_option("--world", a->o.world_file, "Shared world file the simulated camera reads the angle from");
+  tt->add_option("--speed", a->o.motion.max_speed_deg_s, "Maximum speed (°/s)")->capture_default_str();
+  tt->add_option("--accel", a->o.motion.max_accel_deg_s2, "Maximum acceleration (°/s²)")->capture_default_str();
+  tt->add_option("--settle", a->o.motion.settle_s, "Settling time with encoder jitter after arrival (s)")->capture_default_str();
+  tt->add_option("--backlash", a->o.motion.backlash_deg, "Lost motion on reversal (°)")->capture_default_str();
+  tt->add_option("--no-reply-every", a->o.faults.no_reply_every, "Fault: ignore every Nth request");
+  tt->add_option("--exception-every", a->o.faults.exception_every, "Fault: answer every Nth request with exception 4");
+  tt->add_option("--drop-every", a->o.faults.drop_every, "Fault: close the connection on every Nth request");
+  tt->add_flag("--never-reach", a->o.faults.never_reach, "Fault: stop 0.5° short and never report in position");
   tt->add_option("--duration", a->duration, "Stop after this many seconds (0 = until interrupted)");
   return {sim, [a] { return runSimTurntable(*a); }};
 }

@@ -1,23 +1,14 @@
-// keyturn simulate: the SR4K-D style dataset generator. Runs the real capture
-// path (drivers, Modbus, libmesasr-sim) on the simulated rig for every object of
-// a CSV list at every elevation. Simulated motion and settling shrink far below
-// real time; resumable like capture.
+// keyturn simulate: the SR4K-D style dataset generator (rig/dataset_simulation.h);
+// resumable like capture.
 #include <atomic>
 #include <chrono>
 #include <csignal>
-#include <filesystem>
-#include <fstream>
 #include <iostream>
-#include <sstream>
 
 #include "commands.h"
-#include "keyturn/core/error.h"
-#include "keyturn/rig/capture.h"
-#include "keyturn/rig/object_list.h"
-#include "keyturn/rig/simulated_rig.h"
+#include "keyturn/core/string_format.h"
+#include "keyturn/rig/dataset_simulation.h"
 #include "progress.h"
-
-namespace fs = std::filesystem;
 
 namespace keyturn::app {
 namespace {
@@ -32,66 +23,24 @@ struct SimulateArgs {
   bool quiet = false;
 };
 
-std::vector<double> parseList(const std::string& text, const char* what) {
-  std::vector<double> out;
-  std::stringstream ss(text);
-  std::string tok;
-  while (std::getline(ss, tok, ',')) {
-    try {
-      out.push_back(std::stod(tok));
-    } catch (const std::exception&) {
-      throw Error(std::string(what) + ": '" + tok + "' is not a number");
-    }
-  }
-  if (out.empty()) throw Error(std::string(what) + ": empty");
-  return out;
-}
-
 int runSimulate(const SimulateArgs& a) {
-  const auto objects = rig::readObjectList(a.objects);
-  const auto elevations = parseList(a.elevations, "--elevations");
-  for (const auto& o : objects)
-    if (!fs::exists(o.mesh)) throw Error(a.objects + ": " + o.cls + "/" + o.instance + ": no mesh at " + o.mesh);
-  rig::Dataset dataset(a.out);
+  rig::DatasetSimulation sim;
+  sim.out = a.out;
+  sim.objects = rig::readObjectList(a.objects);
+  sim.elevations = parseNumberList(a.elevations, "--elevations");
+  sim.step_deg = a.step;
+  sim.seed = a.seed;
+  sim.stop = &g_stop;
+  sim.checkMeshes(a.objects);
   std::signal(SIGINT, onSignal);
   std::signal(SIGTERM, onSignal);
-
-  rig::CaptureOptions base;
-  base.step_deg = a.step;
-  base.settle_s = 0.0;       // the simulated table reports only where it is
-  base.discard_frames = 0;   // and the simulated sensor needs no warm-up frames
-  base.stop = &g_stop;
-  const std::size_t per = rig::sequenceAngles(base).size();
-  const std::size_t total = per * objects.size() * elevations.size();
-  Progress progress("simulate", total, !a.quiet);
+  Progress progress("simulate", sim.views(), !a.quiet);
   const auto t0 = std::chrono::steady_clock::now();
-  std::size_t written = 0, skipped = 0;
-  for (const auto& obj : objects) {
-    for (double el : elevations) {
-      if (g_stop) break;
-      rig::SimulatedRigOptions so;
-      so.dir = a.out + "/.sim";
-      so.camera.mesh = obj.mesh;
-      so.camera.elevation_deg = el;
-      so.camera.seed = a.seed;
-      so.fast = true;
-      rig::SimulatedRig simrig = rig::openSimulatedRig(so);
-      rig::CaptureOptions o = base;
-      o.cls = obj.cls;
-      o.instance = obj.instance;
-      o.elevation_deg = el;
-      o.elevation_label = std::to_string(static_cast<int>(std::lround(el)));
-      o.camera_from_turntable_zero = simrig.camera_from_turntable;
-      const auto rep = rig::runCapture(*simrig.camera, *simrig.turntable, dataset, o,
-                                       [&](const rig::CaptureProgress&) { progress.advance(); });
-      written += rep.written;
-      skipped += rep.skipped;
-    }
-  }
+  const rig::CaptureReport rep = rig::simulateDataset(sim, [&] { progress.advance(); });
   progress.finish();
   const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-  std::cerr << "keyturn simulate: " << written << " views written, " << skipped << " already there, in "
-            << formatDuration(s) << " (" << (s > 0 ? written / s : 0.0) << " views/s) → " << a.out << "\n";
+  std::cerr << "keyturn simulate: " << rep.written << " views written, " << rep.skipped << " already there, in "
+            << formatDuration(s) << " (" << (s > 0 ? rep.written / s : 0.0) << " views/s) → " << a.out << "\n";
   if (g_stop) {
     std::cerr << "keyturn simulate: stopped; run the same command again to resume\n";
     return 130;

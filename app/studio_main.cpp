@@ -6,46 +6,17 @@
 //                                  run 20 s, print the measured rates as JSON, save the window
 #include <CLI/CLI.hpp>
 #include <QApplication>
-#include <QScreen>
-#include <QTimer>
-#include <atomic>
-#include <csignal>
-#include <cstdio>
 #include <cstdlib>
 #include <iostream>
 
-#include "keyturn/studio/studio_window.h"
 #include "keyturn/studio/studio_rig_factory.h"
+#include "keyturn/studio/studio_session.h"
 
 #ifndef KEYTURN_DATA_DIR
 #define KEYTURN_DATA_DIR "data"
 #endif
 
 namespace {
-
-std::atomic<bool> g_quit{false};
-void onQuitSignal(int) { g_quit = true; }
-
-// Ctrl-C and SIGTERM close the window as its close button does (settings saved, devices closed,
-// the simulator's temporary folder removed) instead of killing the process mid-frame. A SIGINT
-// ignored from the start (a background job of a script) stays ignored. Installed first thing in
-// main, so a signal during start-up (slow on a loaded machine) closes the window as soon as it exists.
-void catchQuitSignals() {
-  struct sigaction sa {};
-  sa.sa_handler = onQuitSignal;
-  sigemptyset(&sa.sa_mask);
-  struct sigaction old {};
-  if (::sigaction(SIGINT, nullptr, &old) == 0 && old.sa_handler != SIG_IGN) ::sigaction(SIGINT, &sa, nullptr);
-  ::sigaction(SIGTERM, &sa, nullptr);
-}
-
-void quitOnSignals(QWidget& window) {
-  auto* poll = new QTimer(&window);
-  QObject::connect(poll, &QTimer::timeout, &window, [&window] {
-    if (g_quit.exchange(false)) window.close();
-  });
-  poll->start(50);
-}
 
 struct Args {
   bool simulated = false;
@@ -58,7 +29,7 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
-  catchQuitSignals();
+  keyturn::studio::catchQuitSignals();
   Args a;
   CLI::App cli("keyturn studio: live ToF capture on a turntable rig and keypoint-based recognition");
   cli.add_flag("--simulated", a.simulated, "Start with the simulated SR4000 and turntable connected and the built-in model");
@@ -84,18 +55,11 @@ int main(int argc, char** argv) {
   const std::string data = KEYTURN_DATA_DIR;
   const std::string objects_csv = data + "/objects/objects.csv";
   keyturn::studio::StudioRigFactory factory(objects_csv);
-  if (!a.object.empty()) {
-    // Refused here: the window would otherwise fall back to the object used last.
-    std::string known;
-    bool found = false;
-    for (const auto& o : factory.simObjects()) {
-      found = found || o.instance == a.object;
-      known += (known.empty() ? "" : ", ") + o.instance;
-    }
-    if (!found) {
-      std::cerr << "keyturn-studio: --object " << a.object << ": not in " << objects_csv << " (" << known << ")\n";
-      return 1;
-    }
+  // Refused here: the window would otherwise fall back to the object used last.
+  if (const std::string bad = keyturn::studio::unknownSimObject(factory.simObjects(), a.object, objects_csv);
+      !a.object.empty() && !bad.empty()) {
+    std::cerr << "keyturn-studio: " << bad << "\n";
+    return 1;
   }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM")) {
     std::cerr << "keyturn-studio: no display (DISPLAY is not set): run it on a desktop, or headless as "
@@ -114,31 +78,7 @@ int main(int argc, char** argv) {
   o.geodesic_paths = a.paths;
   keyturn::studio::StudioWindow window(factory, o);
   window.show();
-  quitOnSignals(window);
-
-  keyturn::studio::StudioRates start;
-  if (a.measure > 0) {
-    const double warmup_s = 3.0;
-    QTimer::singleShot(static_cast<int>(warmup_s * 1000), &window, [&] { start = window.rates(); });
-    QTimer::singleShot(static_cast<int>((warmup_s + a.measure) * 1000), &window, [&] {
-      const auto end = window.rates();
-      const double frames = static_cast<double>(end.frames - start.frames) / a.measure;
-      const double results = static_cast<double>(end.results - start.results) / a.measure;
-      std::printf("{\"seconds\": %.1f, \"camera_fps\": %.2f, \"recognition_fps\": %.2f, \"latency_ms\": %.1f, "
-                  "\"describe_ms\": %.1f, \"dropped\": %ld, \"threads\": %d, \"class\": \"%s\", \"agreement\": %.2f}\n",
-                  a.measure, frames, results, end.latency_ms, end.describe_ms, end.dropped - start.dropped, a.threads,
-                  window.recognisedClass().toStdString().c_str(), window.recognisedAgreement());
-      std::fflush(stdout);
-      // From the display, not grab(): the 3D view is a native OpenGL window grab() cannot see.
-      QScreen* screen = window.screen();
-      const QRect g = window.frameGeometry();
-      if (!a.screenshot.empty() &&
-          !(screen ? screen->grabWindow(0, g.x(), g.y(), g.width(), g.height()) : window.grab())
-               .save(QString::fromStdString(a.screenshot)))
-        std::cerr << "keyturn-studio: cannot write " << a.screenshot << "\n";
-      window.close();
-      app.quit();
-    });
-  }
+  keyturn::studio::closeOnQuitSignal(window);
+  if (a.measure > 0) keyturn::studio::measureThenQuit(window, a.measure, a.threads, a.screenshot);
   return app.exec();
 }

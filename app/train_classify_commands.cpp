@@ -1,8 +1,6 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
-#include <chrono>
-#include <filesystem>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -10,12 +8,10 @@
 #include "commands.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
-#include "keyturn/core/error.h"
-#include "keyturn/learning/model_file.h"
 #include "keyturn/learning/model_predictions.h"
-#include "keyturn/learning/protocols.h"
+#include "keyturn/learning/model_training.h"
 #include "learning_options.h"
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 namespace keyturn::app {
 namespace {
@@ -31,23 +27,10 @@ struct TrainArgs {
 int runTrain(const TrainArgs& a) {
   const learning::LabelKind kind = learning::parseLabelKind(a.label);
   const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
-  const learning::Labels labels = learning::labelRows(t, kind);
-  learning::Model m;
-  m.info.params = a.params;
-  m.info.params.kind = a.classifier;
-  m.info.blocks = learning::featureSetBlocks(a.features);
-  m.info.spec = t.spec;
-  m.info.classes = labels.names;
-  const std::vector<int>& y = labels.of_row;
-  std::vector<std::size_t> all(t.rows.size());
-  for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
-  const learning::Matrix x = t.select(m.info.blocks, all);
-  m.info.inputs = static_cast<int>(x.cols());
-  m.info.class_means = learning::classMeans(x, y, static_cast<int>(m.info.classes.size()));
-  m.classifier = learning::makeClassifier(m.info.params);
-  const auto t0 = std::chrono::steady_clock::now();
-  m.classifier->fit(x, y, static_cast<int>(m.info.classes.size()));
-  const double s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  learning::ClassifierParams params = a.params;
+  params.kind = a.classifier;
+  double s = 0;
+  const learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s);
   learning::saveModel(a.out, m);
   if (!a.quiet)
     std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views, "
@@ -73,10 +56,8 @@ int runClassify(const ClassifyArgs& a) {
     errors = list.errors;
     std::vector<learning::LabelledView> views;
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
-    // The model's own parameters, and only its blocks.
     DescribeProgressLine progress(a.quiet || views.size() < 2);
-    t = learning::modelLayout(m, a.model);
-    t.rows = learning::describeViews(views, learning::modelOptions(m, a.model), t, a.jobs, &progress);
+    t = learning::describeForModel(m, views, a.jobs, &progress, a.model);
     for (const auto& row : t.rows)
       if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
   }

@@ -1,9 +1,7 @@
 // keyturn turntable: read the pose of a Modbus turntable or encoder, and move,
 // home or stop a motorised one.
-#include <chrono>
 #include <cmath>
 #include <cstdio>
-#include <thread>
 
 #include "commands.h"
 #include "keyturn/core/error.h"
@@ -28,16 +26,7 @@ int runTurntable(const TurntableArgs& a) {
   if (!std::isnan(a.move_to)) t.moveTo(a.move_to);
   if (a.home) t.home();
   if (a.stop) t.stop();
-  drivers::Pose p = t.read();
-  if (moving_cmd) {
-    const auto end = std::chrono::steady_clock::now() + std::chrono::duration<double>(a.wait);
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    for (p = t.read(); !p.in_position && std::chrono::steady_clock::now() < end; p = t.read())
-      std::this_thread::sleep_for(std::chrono::milliseconds(20));
-    if (!p.in_position)
-      throw Error(t.describe() + ": not in position after " + std::to_string(a.wait) + " s (at " +
-                  std::to_string(p.turntable_deg) + "°)");
-  }
+  const drivers::Pose p = moving_cmd ? drivers::waitInPosition(t, a.wait) : t.read();
   std::printf("%.3f deg  moving=%s  in_position=%s\n", p.turntable_deg, p.moving ? "yes" : "no",
               p.in_position ? "yes" : "no");
   return 0;

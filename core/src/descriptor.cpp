@@ -84,7 +84,8 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o, Poin
   return out;
 }
 
-ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o, double min_resolution) {
+ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o, double min_resolution,
+                                      bool with_geodesic_paths) {
   if (o.features.empty()) throw Error("no features requested");
   ViewDescriptor out;
   out.features = o.features;
@@ -117,7 +118,8 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
 
   LocalCompleteGraph graph;
   const bool need_graph = wants(o.features, isGeodesicFeature);
-  if (need_graph) {
+  const bool paths = with_geodesic_paths && need_kp;
+  if (need_graph || paths) {
     GraphOptions go = o.graph;
     go.curvature_weights = std::find(o.features.begin(), o.features.end(), Feature::GKPCD2) != o.features.end();
     graph = buildLocalCompleteGraph(set, search, out.resolution, go);
@@ -180,6 +182,10 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   out.pdfs = pdfsFor(keypoints, true, &geo);
   out.unreachable_keypoints = geo.unreachable_from_centroid;
   out.unreachable_pairs = geo.unreachable_pairs;
+  if (paths) {
+    out.geodesic_paths = centroidGeodesicPolylines(graph, set, keypoints);
+    out.times.geodesic += clock.lap();
+  }
   if (o.random_keypoints_twin && need_kp) {
     // The same number of keypoints drawn uniformly from the filtered points:
     // what the keypoint functions give without ISS's choice of points.

@@ -307,15 +307,7 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
 
   if (which & kGkpd1) {
     // GKPD1: from the graph vertex nearest the centroid of the view.
-    const Eigen::Vector3f c = set.centroid();
-    float best = kInf;
-    for (int v = 0; v < n; ++v) {
-      const float d = (set.points[v] - c).squaredNorm();
-      if (d < best) {
-        best = d;
-        res.centroid_vertex = v;
-      }
-    }
+    res.centroid_vertex = centroidVertex(set);
     dj.run(res.centroid_vertex, false, k, [&](int v, float e) {
       if (slot[v] < 0) return false;
       res.gkpd1.push_back(e);
@@ -348,30 +340,28 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   return res;
 }
 
-std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const PointSet& set,
-                                                                    const std::vector<int>& keypoints,
-                                                                    double resolution, const GraphOptions& options) {
-  std::vector<std::vector<Eigen::Vector3f>> out;
-  const auto& points = set.points;
-  if (points.empty() || keypoints.empty()) return out;
-  const RadiusSearch search(set);
-  GraphOptions lengths_only = options;
-  lengths_only.curvature_weights = false;
-  const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, resolution, lengths_only);
+int centroidVertex(const PointSet& set) {
   const Eigen::Vector3f c = set.centroid();
-  int source = 0;
+  int vertex = -1;
   float best = kInf;
-  for (std::size_t v = 0; v < points.size(); ++v) {
-    const float d = (points[v] - c).squaredNorm();
+  for (std::size_t v = 0; v < set.points.size(); ++v) {
+    const float d = (set.points[v] - c).squaredNorm();
     if (d < best) {
       best = d;
-      source = static_cast<int>(v);
+      vertex = static_cast<int>(v);
     }
   }
-  for (const auto& path : shortestPaths(graph, source, keypoints)) {
+  return vertex;
+}
+
+std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const LocalCompleteGraph& graph, const PointSet& set,
+                                                                    const std::vector<int>& keypoints) {
+  std::vector<std::vector<Eigen::Vector3f>> out;
+  if (set.points.empty() || keypoints.empty() || graph.vertexCount() != set.points.size()) return out;
+  for (const auto& path : shortestPaths(graph, centroidVertex(set), keypoints)) {
     if (path.empty()) continue;
     std::vector<Eigen::Vector3f> line;
-    for (int v : path) line.push_back(points[static_cast<std::size_t>(v)]);
+    for (int v : path) line.push_back(set.points[static_cast<std::size_t>(v)]);
     out.push_back(std::move(line));
   }
   return out;

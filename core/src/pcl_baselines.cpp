@@ -1,13 +1,6 @@
 #include "keyturn/core/pcl_baselines.h"
 
-#include <fcntl.h>
-#include <sys/wait.h>
-#include <unistd.h>
-
-#include <cerrno>
 #include <cmath>
-#include <cstdint>
-#include <cstring>
 
 #include <pcl/features/esf.h>
 #include <pcl/features/normal_3d.h>
@@ -19,6 +12,7 @@
 #include <pcl/search/kdtree.h>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/worker_process.h"
 
 namespace keyturn {
 namespace {
@@ -127,51 +121,10 @@ static std::vector<float> ourCvfhInProcess(const PointSet& set, double normal_ra
 // PCL 1.13's OUR-CVFH aborts on some views (an out-of-range histogram index in
 // computeRFAndShapeDistribution: an assertion in Debian's build, a stray write
 // without one) and no input check we can make predicts it. It runs in a forked
-// child: the histogram comes back through a pipe, a crash becomes an error.
+// child (worker_process.h): the histogram comes back, a crash becomes an error.
 std::vector<float> pclOurCvfh(const PointSet& set, double normal_radius) {
-  int fds[2];
-  if (::pipe(fds) != 0) throw Error("OUR-CVFH: cannot create a pipe");
-  const pid_t child = ::fork();
-  if (child < 0) {
-    ::close(fds[0]);
-    ::close(fds[1]);
-    throw Error("OUR-CVFH: cannot fork");
-  }
-  if (child == 0) {
-    ::close(fds[0]);
-    // PCL's assertion text would reach the user's terminal; the parent reports instead.
-    const int null_fd = ::open("/dev/null", O_WRONLY);
-    if (null_fd >= 0) ::dup2(null_fd, STDERR_FILENO);
-    const std::vector<float> h = ourCvfhInProcess(set, normal_radius);
-    const std::uint32_t n = static_cast<std::uint32_t>(h.size());
-    bool ok = ::write(fds[1], &n, sizeof n) == sizeof n;
-    const auto bytes = static_cast<ssize_t>(h.size() * sizeof(float));
-    if (ok && n) ok = ::write(fds[1], h.data(), static_cast<std::size_t>(bytes)) == bytes;
-    ::_exit(ok ? 0 : 3);
-  }
-  ::close(fds[1]);
-  std::vector<char> data;
-  char buf[4096];
-  for (ssize_t got; (got = ::read(fds[0], buf, sizeof buf)) != 0;) {
-    if (got < 0 && errno == EINTR) continue;
-    if (got < 0) break;
-    data.insert(data.end(), buf, buf + got);
-  }
-  ::close(fds[0]);
-  int status = 0;
-  while (::waitpid(child, &status, 0) < 0 && errno == EINTR) {
-  }
-  if (WIFSIGNALED(status))
-    throw Error("PCL's OUR-CVFH crashed on this view (signal " + std::to_string(WTERMSIG(status)) +
-                ", PCL 1.13 computeRFAndShapeDistribution)");
-  std::uint32_t n = 0;
-  if (!WIFEXITED(status) || WEXITSTATUS(status) != 0 || data.size() < sizeof n)
-    throw Error("OUR-CVFH: the worker process failed");
-  std::memcpy(&n, data.data(), sizeof n);
-  if (data.size() != sizeof n + n * sizeof(float)) throw Error("OUR-CVFH: short result from the worker process");
-  std::vector<float> h(n);
-  if (n) std::memcpy(h.data(), data.data() + sizeof n, n * sizeof(float));
-  return h;
+  return inWorkerProcess([&] { return ourCvfhInProcess(set, normal_radius); }, "OUR-CVFH",
+                         "PCL's OUR-CVFH crashed on this view", "PCL 1.13 computeRFAndShapeDistribution");
 }
 
 }  // namespace keyturn

@@ -1,10 +1,22 @@
 #include "keyturn/drivers/tof_camera.h"
 
+#include <cmath>
+#include <string>
+
+#include "keyturn/core/error.h"
+
 namespace keyturn::drivers {
 
 double modulationMHz(int f) {
   static const double mhz[] = {40, 30, 21, 20, 19, 60, 15, 10, 29, 31, 14.5, 15.5};
   return f >= 0 && f < 12 ? mhz[f] : 0.0;
+}
+
+int modulationIndex(double mhz) {
+  for (int f = 0; f < 12; ++f)
+    if (std::abs(modulationMHz(f) - mhz) < 1e-6) return f;
+  throw Error("--modulation: " + std::to_string(mhz) +
+              " MHz is not an SR4000 frequency (40, 30, 21, 20, 19, 60, 15, 10, 29, 31, 14.5, 15.5)");
 }
 
 double nonAmbiguousRange(int f) {

@@ -272,4 +272,31 @@ VerifyReport Dataset::verify(const std::string& root) {
   return rep;
 }
 
+void removeDatasetWithoutViews(const std::string& root) {
+  bool has_views = false;
+  try {
+    has_views = !Dataset::readManifest(root).empty();
+  } catch (const Error&) {
+    // no manifest yet
+  }
+  std::error_code ec;
+  if (!has_views) std::filesystem::remove_all(root, ec);
+}
+
+std::string VerifyReport::text(const std::string& root) const {
+  std::ostringstream out;
+  auto list = [&out](const char* what, const std::vector<std::string>& v) {
+    for (const auto& f : v) out << what << ": " << f << "\n";
+  };
+  list("missing", missing);
+  list("corrupt", corrupt);
+  list("orphan", orphans);
+  list("duplicate", duplicates);
+  list("bad manifest row", bad_rows);
+  out << root << ": " << views << " views, " << missing.size() << " missing, " << corrupt.size() << " corrupt, "
+      << orphans.size() << " orphan, " << duplicates.size() << " duplicate files"
+      << (good() ? " — OK" : ok() ? " — EMPTY (no views)" : " — PROBLEMS") << "\n";
+  return out.str();
+}
+
 }  // namespace keyturn::rig

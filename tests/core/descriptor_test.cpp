@@ -9,6 +9,8 @@
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
+#include "keyturn/core/geodesic.h"
+#include "keyturn/core/radius_search.h"
 #include "keyturn/core/working_resolution.h"
 #include "keyturn/sim/tof_view.h"
 #include "support/synthetic_clouds.h"
@@ -73,6 +75,29 @@ TEST(Descriptor, ConnectedSurfaceHasEveryPairReachable) {
     mean_g += gkpd2[b] * (b + 0.5) * w_g;
   }
   EXPECT_GT(mean_g, mean_e);
+}
+
+TEST(Descriptor, HandsBackItsGeodesicPathsOnlyWhenAsked) {
+  DescriptorOptions o;
+  o.filter = false;
+  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))));
+  EXPECT_TRUE(describeFilteredPoints(set, o).geodesic_paths.empty());
+  const ViewDescriptor d = describeFilteredPoints(set, o, 0.0, true);
+  // One path per reachable keypoint (the cube is connected: all 8), ending at that keypoint,
+  // and the same polylines the graph built from scratch gives.
+  ASSERT_EQ(d.geodesic_paths.size(), 8u);
+  for (std::size_t k = 0; k < d.geodesic_paths.size(); ++k)
+    EXPECT_TRUE(d.geodesic_paths[k].back().isApprox(d.keypoints[k])) << k;
+  const RadiusSearch search(set);
+  const LocalCompleteGraph graph = buildLocalCompleteGraph(set, search, d.resolution, o.graph);
+  const auto again = centroidGeodesicPolylines(graph, set, d.keypoint_index);
+  ASSERT_EQ(again.size(), d.geodesic_paths.size());
+  for (std::size_t k = 0; k < again.size(); ++k) EXPECT_EQ(again[k].size(), d.geodesic_paths[k].size()) << k;
+  // Without a geodesic feature the graph is built for the paths alone; the PDFs are unchanged.
+  o.features = {Feature::KPD2};
+  const ViewDescriptor kpd2 = describeFilteredPoints(set, o, 0.0, true);
+  EXPECT_EQ(kpd2.geodesic_paths.size(), 8u);
+  EXPECT_EQ(kpd2.pdfs, describeFilteredPoints(set, o).pdfs);
 }
 
 TEST(Descriptor, SameViewSameDescriptor) {

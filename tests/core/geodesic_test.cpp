@@ -146,7 +146,7 @@ TEST(Geodesic, PathsFollowTheSurfaceAndSumToTheDistance) {
 TEST(Geodesic, CentroidPolylinesEndAtEachReachableKeypoint) {
   const CylinderGraph c;
   const std::vector<int> kp = {cylinderVertex(0, 0), cylinderVertex(kAround / 2, 40), cylinderVertex(10, 20)};
-  const auto lines = centroidGeodesicPolylines(c.set, kp, c.res, GraphOptions());
+  const auto lines = centroidGeodesicPolylines(c.graph, c.set, kp);
   ASSERT_EQ(lines.size(), 3u);
   for (std::size_t i = 0; i < kp.size(); ++i) {
     ASSERT_GE(lines[i].size(), 2u);
@@ -155,7 +155,10 @@ TEST(Geodesic, CentroidPolylinesEndAtEachReachableKeypoint) {
     EXPECT_TRUE(lines[i].front().isApprox(lines[0].front()));
     EXPECT_NEAR(std::hypot(lines[i].front().x(), lines[i].front().y()), kR, 1e-4);
     EXPECT_NEAR(lines[i].front().z(), kH / 2, 0.01);
+    EXPECT_TRUE(lines[i].front().isApprox(c.set.points[static_cast<std::size_t>(centroidVertex(c.set))]));
   }
+  // A graph of other points is not this view's: no paths rather than paths through the wrong vertices.
+  EXPECT_TRUE(centroidGeodesicPolylines(LocalCompleteGraph(), c.set, kp).empty());
 }
 
 TEST(Geodesic, WithoutCurvatureWeightsTheLengthsAreTheSame) {

@@ -15,11 +15,9 @@
 
 #include <utility>
 
-#include "image_panel.h"
 #include "keyturn/rig/dataset.h"
 #include "keyturn/rig/sidecars.h"
 #include "keyturn/studio/studio_window.h"
-#include "stability.h"
 #include "keyturn/studio/studio_rig_factory.h"
 
 using namespace keyturn;
@@ -317,33 +315,6 @@ class StudioTest : public QObject {
     QVERIFY(rates);
     QVERIFY(rates->isVisible());
     QVERIFY(rates->mapTo(&w, QPoint(0, rates->height())).y() <= w.height());
-  }
-
-  void stabilityIsTheShareAgreeingWithTheMostFrequentClass() {
-    Stability s(4);
-    QCOMPARE(s.mode(), -1);
-    for (int l : {1, 2, 2, 3, 2}) s.add(l);  // window keeps 2, 2, 3, 2
-    QCOMPARE(s.frames(), 4);
-    QCOMPARE(s.mode(), 2);
-    QCOMPARE(s.agreeing(), 3);
-    QCOMPARE(s.agreement(), 0.75);
-    s.add(3);  // 2, 3, 2, 3: a tie goes to the newest
-    QCOMPARE(s.mode(), 3);
-  }
-
-  void distanceImageScaleIsInMetres() {
-    // One pixel with no return, then 1000, 1020, …, 3000 counts at 1 mm per count:
-    // the scale spans the valid pixels' 2nd to 98th percentile, in metres.
-    std::vector<std::uint16_t> raw = {0};
-    for (int v = 1000; v <= 3000; v += 20) raw.push_back(static_cast<std::uint16_t>(v));
-    ImageScale scale;
-    const QImage img = distanceImage(raw, static_cast<int>(raw.size()), 1, 0.001, &scale);
-    QCOMPARE(img.size(), QSize(102, 1));
-    QCOMPARE(img.pixelColor(0, 0), QColor(Qt::black));  // no return stays black
-    QVERIFY2(std::abs(scale.lo - 1.04) < 1e-9, qPrintable(QString::number(scale.lo)));
-    QVERIFY2(std::abs(scale.hi - 2.96) < 1e-9, qPrintable(QString::number(scale.hi)));
-    QCOMPARE(scale.unit, QString("m"));
-    QVERIFY(img.pixelColor(1, 0) != img.pixelColor(101, 0));  // near and far differ
   }
 };
 

@@ -1,5 +1,7 @@
 #include "keyturn/learning/evaluation.h"
 
+#include "keyturn/core/parallel_for.h"
+
 #include <atomic>
 #include <chrono>
 #include <cmath>
@@ -41,41 +43,33 @@ Evaluation evaluateFolds(const FeatureTable& table, const std::vector<std::strin
   ev.folds.resize(folds.size());
   ev.confusion.assign(static_cast<std::size_t>(classes), std::vector<int>(static_cast<std::size_t>(classes), 0));
   std::mutex mutex;
-  std::atomic<std::size_t> next{0};
   ClassifierParams per_worker = params;
   per_worker.xgboost.threads = 1;  // parallel over folds instead
-  auto worker = [&] {
-    for (std::size_t i = next++; i < folds.size(); i = next++) {
-      const Fold& fold = folds[i];
-      FoldOutcome out;
-      out.name = fold.name;
-      out.train_views = fold.train.size();
-      out.test_views = fold.test.size();
-      std::vector<int> y;
-      for (auto r : fold.train) y.push_back(labels[r]);
-      const auto t0 = std::chrono::steady_clock::now();
-      auto clf = makeClassifier(per_worker);
-      clf->fit(table.select(blocks, fold.train), y, classes);
-      const auto t1 = std::chrono::steady_clock::now();
-      const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
-      const auto t2 = std::chrono::steady_clock::now();
-      out.train_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-      out.predict_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
-      std::lock_guard<std::mutex> lock(mutex);
-      for (std::size_t k = 0; k < fold.test.size(); ++k) {
-        const int truth = labels[fold.test[k]];
-        out.correct += predicted[k] == truth;
-        ++ev.confusion[static_cast<std::size_t>(truth)][static_cast<std::size_t>(predicted[k])];
-      }
-      ev.folds[i] = out;
-      if (fold_done) fold_done();
+  parallelFor(folds.size(), jobs, [&](std::size_t i) {
+    const Fold& fold = folds[i];
+    FoldOutcome out;
+    out.name = fold.name;
+    out.train_views = fold.train.size();
+    out.test_views = fold.test.size();
+    std::vector<int> y;
+    for (auto r : fold.train) y.push_back(labels[r]);
+    const auto t0 = std::chrono::steady_clock::now();
+    auto clf = makeClassifier(per_worker);
+    clf->fit(table.select(blocks, fold.train), y, classes);
+    const auto t1 = std::chrono::steady_clock::now();
+    const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
+    const auto t2 = std::chrono::steady_clock::now();
+    out.train_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+    out.predict_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+    std::lock_guard<std::mutex> lock(mutex);
+    for (std::size_t k = 0; k < fold.test.size(); ++k) {
+      const int truth = labels[fold.test[k]];
+      out.correct += predicted[k] == truth;
+      ++ev.confusion[static_cast<std::size_t>(truth)][static_cast<std::size_t>(predicted[k])];
     }
-  };
-  std::vector<std::thread> pool;
-  const int n = std::max(1, jobs > 0 ? jobs : static_cast<int>(std::thread::hardware_concurrency()));
-  for (int t = 1; t < std::min<int>(n, static_cast<int>(folds.size())); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    ev.folds[i] = out;
+    if (fold_done) fold_done();
+  });
   return ev;
 }
 

@@ -8,10 +8,12 @@
 #include <functional>
 #include <map>
 #include <regex>
+#include <sstream>
 #include <thread>
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/parallel_for.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/learning/feature_spec.h"
@@ -114,30 +116,21 @@ std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, con
                                      DescribeProgress* progress) {
   std::vector<FeatureRow> rows(which.size());
   if (progress) progress->begin(which.size());
-  std::atomic<std::size_t> next{0};
-  auto worker = [&] {
-    for (std::size_t k = next++; k < which.size(); k = next++) {
-      const LabelledView& v = views[which[k]];
-      try {
-        rows[k] = describeCloud(loadCloud(v.path), options, layout);
-      } catch (const Error& e) {
-        rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
-        rows[k].keypoints = -1;
-        rows[k].problem = e.what();
-      }
-      rows[k].id = v.id;
-      rows[k].cls = v.cls;
-      rows[k].instance = v.instance;
-      rows[k].elevation = v.elevation;
-      if (progress) progress->viewDone();
+  parallelFor(which.size(), jobs, [&](std::size_t k) {
+    const LabelledView& v = views[which[k]];
+    try {
+      rows[k] = describeCloud(loadCloud(v.path), options, layout);
+    } catch (const Error& e) {
+      rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
+      rows[k].keypoints = -1;
+      rows[k].problem = e.what();
     }
-  };
-  const unsigned hw = std::max(1u, std::thread::hardware_concurrency());
-  const unsigned n = jobs > 0 ? static_cast<unsigned>(jobs) : hw;
-  std::vector<std::thread> pool;
-  for (unsigned t = 1; t < std::min<std::size_t>(n, which.size()); ++t) pool.emplace_back(worker);
-  worker();
-  for (auto& t : pool) t.join();
+    rows[k].id = v.id;
+    rows[k].cls = v.cls;
+    rows[k].instance = v.instance;
+    rows[k].elevation = v.elevation;
+    if (progress) progress->viewDone();
+  });
   if (progress) progress->end();
   return rows;
 }
@@ -211,6 +204,15 @@ std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, co
   std::vector<std::size_t> all(views.size());
   for (std::size_t i = 0; i < all.size(); ++i) all[i] = i;
   return describeSome(views, all, options, layout, jobs, progress);
+}
+
+std::pair<int, int> parseShard(const std::string& text) {
+  int shard = 0, shards = 1;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
+    throw Error("--shard " + text + ": expected I/N, e.g. 3/16");
+  return {shard - 1, shards};
 }
 
 std::string describeCacheShard(const FeatureCache& c, int shard, int shards) {

@@ -19,6 +19,13 @@ FeatureTable modelLayout(const Model& model, const std::string& source) {
   return featureLayout(blocks, modelOptions(model, source));
 }
 
+FeatureTable describeForModel(const Model& model, const std::vector<LabelledView>& views, int jobs,
+                              DescribeProgress* progress, const std::string& source) {
+  FeatureTable t = modelLayout(model, source);
+  t.rows = describeViews(views, modelOptions(model, source), t, jobs, progress);
+  return t;
+}
+
 std::vector<Prediction> predictRows(const Model& model, const FeatureTable& t, const std::string& source) {
   const auto diff = specDifferences(model.info.spec, t.spec);
   if (!diff.empty()) {

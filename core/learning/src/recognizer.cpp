@@ -38,7 +38,7 @@ Recognizer::Recognizer(DescriptorOptions options) : source_("(no model)"), optio
 
 Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadModel(dir), dir); }
 
-Recognition Recognizer::describe(const Cloud& cloud) const {
+Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) const {
   const auto t0 = std::chrono::steady_clock::now();
   Recognition r;
   // Prepare (filter, working resolution) here, then describe those points: they are what a
@@ -48,7 +48,7 @@ Recognition Recognizer::describe(const Cloud& cloud) const {
   r.filtered = std::move(prepared.points);
   r.filter_ms = msSince(t0);
   const auto t1 = std::chrono::steady_clock::now();
-  r.descriptor = describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor());
+  r.descriptor = describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor(), with_geodesic_paths);
   r.describe_ms = msSince(t1);
   for (const auto& pdf : r.descriptor.pdfs)
     for (double v : pdf) r.features.push_back(static_cast<float>(v));
@@ -56,9 +56,9 @@ Recognition Recognizer::describe(const Cloud& cloud) const {
   return r;
 }
 
-Recognition Recognizer::recognize(const Cloud& cloud) const {
+Recognition Recognizer::recognize(const Cloud& cloud, bool with_geodesic_paths) const {
   const auto t0 = std::chrono::steady_clock::now();
-  Recognition r = describe(cloud);
+  Recognition r = describe(cloud, with_geodesic_paths);
   if (!hasModel()) return r;
   const auto t2 = std::chrono::steady_clock::now();
   Matrix x(1, static_cast<Eigen::Index>(r.features.size()));

@@ -55,10 +55,9 @@ void RecognitionPool::work() {
       out->error = "no recogniser";
     } else {
       try {
-        auto r = std::make_shared<learning::Recognition>(rec->recognize(frame->cloud));
-        if (paths_)
-          out->geodesic_paths = centroidGeodesicPolylines(r->filtered, r->descriptor.keypoint_index,
-                                                          r->descriptor.resolution, rec->options().graph);
+        // The descriptor hands back the paths on the graph it built (no second build).
+        auto r = std::make_shared<learning::Recognition>(rec->recognize(frame->cloud, paths_));
+        out->geodesic_paths = std::move(r->descriptor.geodesic_paths);
         out->recognition = std::move(r);
       } catch (const std::exception& e) {
         out->error = e.what();

@@ -70,6 +70,9 @@ struct ViewDescriptor {
   StageTimes times;
   FilterReport filter;               // what each filter step removed (describeView only)
   WorkingResolutionReport working;   // the working resolution (describeView only)
+  // Only when asked for (with_geodesic_paths), for display: GKPD1's paths on the graph the
+  // descriptor built, from the vertex nearest the centroid to each reachable keypoint.
+  std::vector<std::vector<Eigen::Vector3f>> geodesic_paths;
 
   int keypointCount() const { return static_cast<int>(keypoints.size()); }
   std::vector<double> featureVector() const;  // PDFs concatenated
@@ -85,7 +88,9 @@ ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options
 // `min_resolution`: a floor for the resolution the radii are multiples of. A view subsampled to
 // the working spacing s has a mean neighbour distance below s (the kept points are irregular), so
 // its radii are taken in multiples of s, as for a view measured at spacing s (PreparedView::resolutionFloor).
+// with_geodesic_paths: also hand back geodesic_paths (the graph is built for them when no
+// geodesic feature is asked for).
 ViewDescriptor describeFilteredPoints(const PointSet& filtered, const DescriptorOptions& options,
-                                      double min_resolution = 0.0);
+                                      double min_resolution = 0.0, bool with_geodesic_paths = false);
 
 }  // namespace keyturn

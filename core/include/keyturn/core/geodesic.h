@@ -66,10 +66,12 @@ std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int sour
 std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int source,
                                             const std::vector<int>& targets);
 
-// For display: the GKPD1 paths of a view, from the point nearest the centroid to
-// each keypoint (indices into `set`), as polylines. Builds the view's graph.
-std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const PointSet& set,
-                                                                    const std::vector<int>& keypoints,
-                                                                    double resolution, const GraphOptions& options);
+// The graph vertex nearest the set's centroid: where GKPD1's paths start.
+int centroidVertex(const PointSet& set);
+
+// For display: the GKPD1 paths of a view on its graph (the one the descriptor built), from the
+// vertex nearest the centroid to each reachable keypoint (indices into `set`), as polylines.
+std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const LocalCompleteGraph& graph, const PointSet& set,
+                                                                    const std::vector<int>& keypoints);
 
 }  // namespace keyturn

@@ -30,4 +30,9 @@ class PoseSource {
   [[noreturn]] void unsupported(const char* what) const;
 };
 
+// After a move command: reads the pose until it is in position (every 20 ms, after a first 20 ms
+// for the command to land). Throws keyturn::Error naming the device, the wait and the angle
+// when it is not in position within timeout_s.
+Pose waitInPosition(PoseSource& pose, double timeout_s);
+
 }  // namespace keyturn::drivers

@@ -35,6 +35,8 @@ struct TofSettings {
 // Non-ambiguous range c / (2 f) in metres for a ModulationFrq index; 0 if unknown.
 double nonAmbiguousRange(int modulation_frequency);
 double modulationMHz(int modulation_frequency);
+// The SR4000 frequency index of mhz; throws keyturn::Error naming --modulation and the choices.
+int modulationIndex(double mhz);
 
 struct TofFrame {
   std::uint32_t width = 0, height = 0;

@@ -46,6 +46,10 @@ struct VerifyReport {
   std::size_t views = 0;
   std::vector<std::string> missing, corrupt, orphans, duplicates, bad_rows;
   bool ok() const { return missing.empty() && corrupt.empty() && orphans.empty() && duplicates.empty() && bad_rows.empty(); }
+  // A dataset without views is not a good one (a capture that never took its first view).
+  bool good() const { return ok() && views > 0; }
+  // What keyturn verify prints: one line per problem file, then the counts and OK / EMPTY / PROBLEMS.
+  std::string text(const std::string& root) const;
 };
 
 class Dataset {
@@ -66,6 +70,10 @@ class Dataset {
   std::string root_;
   std::vector<ViewRecord> views_;
 };
+
+// Removes a dataset folder that holds no views (no manifest, or one without rows): what a capture
+// that failed before its first view leaves, which verify would otherwise call a good, empty dataset.
+void removeDatasetWithoutViews(const std::string& root);
 
 std::string manifestHeader();
 std::string sha256File(const std::string& path);  // lowercase hex; throws keyturn::Error

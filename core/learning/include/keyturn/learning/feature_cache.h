@@ -7,6 +7,7 @@
 // i ≡ I mod N) are written beside it and merged when all are present.
 #include <cstddef>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "keyturn/core/descriptor.h"
@@ -56,6 +57,9 @@ struct FeatureCache {
   int jobs = 0;
   DescribeProgress* progress = nullptr;
 };
+
+// "I/N" (I counts from 1, as array jobs do) → {I - 1, N}. Throws keyturn::Error naming --shard.
+std::pair<int, int> parseShard(const std::string& text);
 
 // Describes the shard's views (i % shards == shard) into their shard file; returns its path.
 std::string describeCacheShard(const FeatureCache& cache, int shard, int shards);

@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "keyturn/core/descriptor.h"
+#include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/model_file.h"
 
@@ -15,6 +16,9 @@ namespace keyturn::learning {
 DescriptorOptions modelOptions(const Model& model, const std::string& source);
 // An empty table of the model's blocks (each once) carrying its parameters' specification.
 FeatureTable modelLayout(const Model& model, const std::string& source);
+// The views described into the model's layout with its parameters (rows as describeViews makes them).
+FeatureTable describeForModel(const Model& model, const std::vector<LabelledView>& views, int jobs,
+                              DescribeProgress* progress, const std::string& source);
 
 struct Prediction {
   std::size_t row = 0;               // index into the table's rows

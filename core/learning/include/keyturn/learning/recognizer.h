@@ -38,10 +38,11 @@ class Recognizer {
   const DescriptorOptions& options() const { return options_; }
   // Throws keyturn::Error for a cloud the chain cannot describe (too few
   // points or keypoints): the caller shows it and goes on with the next frame.
-  // Without a model it only describes.
-  Recognition recognize(const Cloud& cloud) const;
+  // Without a model it only describes. with_geodesic_paths: the descriptor also hands back
+  // its geodesic paths for display (ViewDescriptor::geodesic_paths).
+  Recognition recognize(const Cloud& cloud, bool with_geodesic_paths = false) const;
   // The same without classifying (points, descriptor, features only).
-  Recognition describe(const Cloud& cloud) const;
+  Recognition describe(const Cloud& cloud, bool with_geodesic_paths = false) const;
 
  private:
   Model model_;

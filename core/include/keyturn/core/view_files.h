@@ -3,7 +3,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::app {
+namespace keyturn {
 
 struct ViewFileList {
   std::vector<std::string> files;   // in argument order, folders sorted
@@ -13,4 +13,4 @@ struct ViewFileList {
 // Folders contribute every .pcd/.ply below them (recursively, sorted).
 ViewFileList collectViewFiles(const std::vector<std::string>& inputs);
 
-}  // namespace keyturn::app
+}  // namespace keyturn

@@ -1,4 +1,4 @@
-#include "bench_view.h"
+#include "keyturn/bench/view_timing.h"
 
 #include <algorithm>
 #include <chrono>
@@ -6,12 +6,13 @@
 #include <cstdio>
 #include <vector>
 
+#include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
-#include "progress.h"
-#include "speed_ratio.h"
+#include "keyturn/bench/speed_ratio.h"
+#include "keyturn/core/string_format.h"
 
-namespace keyturn::app {
+namespace keyturn::bench {
 namespace {
 
 struct Spread {
@@ -75,15 +76,15 @@ nlohmann::json benchView(const std::string& name, const Cloud& cloud, const Benc
   std::vector<std::vector<double>> samples(std::size(stages));
   std::vector<double> cpu;
   ViewDescriptor d;
-  Progress progress("bench " + name, static_cast<std::size_t>(runs.repetitions), runs.progress);
+  const std::string label = "bench " + name;
+  if (runs.progress) runs.progress(label, 0, runs.repetitions);
   for (int r = 0; r < runs.repetitions; ++r) {
     const double c0 = threadCpuMs();
     d = describeView(cloud, options);
     cpu.push_back(threadCpuMs() - c0);
     for (std::size_t s = 0; s < std::size(stages); ++s) samples[s].push_back(d.times.*stages[s].field);
-    progress.advance();
+    if (runs.progress) runs.progress(label, r + 1, runs.repetitions);
   }
-  progress.finish();
 
   json j;
   j["name"] = name;
@@ -127,34 +128,68 @@ nlohmann::json benchView(const std::string& name, const Cloud& cloud, const Benc
   return j;
 }
 
-void printViewTable(const nlohmann::json& v) {
-  std::printf("\n%s: %zu px, %zu valid → %zu points after filtering, resolution %.2f mm, K = %d keypoints\n",
+nlohmann::json benchViews(const std::vector<ViewToTime>& views, const BenchRuns& runs,
+                          const DescriptorOptions& options, const ViewFailure& failed) {
+  nlohmann::json all = nlohmann::json::array();
+  int failures = 0;
+  for (const auto& v : views) {
+    std::string error = v.error;
+    if (error.empty()) {
+      try {
+        all.push_back(benchView(v.name, v.load(), runs, options));
+        continue;
+      } catch (const Error& e) {
+        const std::string prefix = v.name + ": ", msg = e.what();
+        error = msg.rfind(prefix, 0) == 0 ? msg.substr(prefix.size()) : msg;  // loadCloud's messages name the file
+      } catch (const std::exception& e) {
+        error = std::string("unexpected failure: ") + e.what();
+      }
+    }
+    if (failed) failed(v.name, error);
+    all.push_back({{"name", v.name}, {"error", error}});
+    ++failures;
+  }
+  nlohmann::json out = nlohmann::json::object();
+  for (const auto& v : all)
+    if (!v.contains("error")) {
+      out = v;
+      break;
+    }
+  out["views"] = all;
+  out["failed"] = failures;
+  return out;
+}
+
+std::string viewTable(const nlohmann::json& v) {
+  std::string t;
+  appendFormat(t, "\n%s: %zu px, %zu valid → %zu points after filtering, resolution %.2f mm, K = %d keypoints\n",
               v["name"].get<std::string>().c_str(), v["frame_pixels"].get<std::size_t>(),
               v["input_points"].get<std::size_t>(), v["points"].get<std::size_t>(),
               v["resolution_mm"].get<double>(), v["keypoints"].get<int>());
-  std::printf("  %-22s %9s %9s %9s   (ms, %d runs, 1 thread)\n", "stage", "median", "min", "max",
+  appendFormat(t, "  %-22s %9s %9s %9s   (ms, %d runs, 1 thread)\n", "stage", "median", "min", "max",
               v["repetitions"].get<int>());
   const char* order[] = {"filter", "resolution", "iss", "kpd", "graph", "gkpd", "osada", "histogram", "total"};
   for (const char* k : order) {
     const auto& s = v["stages"][k];
-    std::printf("  %-22s %9.3f %9.3f %9.3f\n", k, s["median_ms"].get<double>(), s["min_ms"].get<double>(),
+    appendFormat(t, "  %-22s %9.3f %9.3f %9.3f\n", k, s["median_ms"].get<double>(), s["min_ms"].get<double>(),
                 s["max_ms"].get<double>());
   }
   const auto& c = v["stages"]["total_cpu"];
-  std::printf("  %-22s %9.3f %9.3f %9.3f   (this thread's CPU time: what a loaded machine's wall clock hides)\n",
+  appendFormat(t, "  %-22s %9.3f %9.3f %9.3f   (this thread's CPU time: what a loaded machine's wall clock hides)\n",
               "total, CPU time", c["median_ms"].get<double>(), c["min_ms"].get<double>(), c["max_ms"].get<double>());
   const double total = v["total_ms"].get<double>();
   const struct { const char* key; const char* label; } pcl[] = {
       {"pcl_iss", "PCL ISSKeypoint3D"}, {"pcl_esf", "PCL ESF"}, {"pcl_vfh", "PCL VFH (+normals)"}};
   for (const auto& p : pcl) {
     const auto& s = v["stages"][p.key];
-    std::printf("  %-22s %9.3f %9.3f %9.3f   keyturn total = %.2f× this\n", p.label,
+    appendFormat(t, "  %-22s %9.3f %9.3f %9.3f   keyturn total = %.2f× this\n", p.label,
                 s["median_ms"].get<double>(), s["min_ms"].get<double>(), s["max_ms"].get<double>(),
                 s["median_ms"].get<double>() > 0 ? total / s["median_ms"].get<double>() : 0.0);
   }
-  std::printf("  keyturn ISS vs PCL ISSKeypoint3D: %s (median %.3f vs %.3f ms; PCL found %d keypoints)\n",
+  appendFormat(t, "  keyturn ISS vs PCL ISSKeypoint3D: %s (median %.3f vs %.3f ms; PCL found %d keypoints)\n",
               v["iss_vs_pcl"].get<std::string>().c_str(), v["iss_ms"].get<double>(),
               v["pcl_iss_ms"].get<double>(), v["pcl_iss_keypoints"].get<int>());
+  return t;
 }
 
-}  // namespace keyturn::app
+}  // namespace keyturn::bench

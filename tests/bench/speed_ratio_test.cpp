@@ -1,10 +1,10 @@
-#include "speed_ratio.h"
+#include "keyturn/bench/speed_ratio.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 
-using keyturn::app::speedComparison;
+using keyturn::bench::speedComparison;
 
 TEST(SpeedComparison, FasterWhenOursIsShorter) {
   EXPECT_EQ(speedComparison(4.25, 18.1), "4.3× faster");

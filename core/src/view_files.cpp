@@ -1,11 +1,11 @@
-#include "view_files.h"
+#include "keyturn/core/view_files.h"
 
 #include <algorithm>
 #include <filesystem>
 
 namespace fs = std::filesystem;
 
-namespace keyturn::app {
+namespace keyturn {
 
 namespace {
 bool isViewFile(const fs::path& p) {
@@ -36,4 +36,4 @@ ViewFileList collectViewFiles(const std::vector<std::string>& inputs) {
   return out;
 }
 
-}  // namespace keyturn::app
+}  // namespace keyturn

@@ -1,9 +1,9 @@
-#include "speed_ratio.h"
+#include "keyturn/bench/speed_ratio.h"
 
 #include <cmath>
 #include <cstdio>
 
-namespace keyturn::app {
+namespace keyturn::bench {
 
 std::string speedComparison(double ours_ms, double theirs_ms) {
   if (!(ours_ms > 0) || !(theirs_ms > 0) || !std::isfinite(ours_ms) || !std::isfinite(theirs_ms))
@@ -18,4 +18,4 @@ std::string speedComparison(double ours_ms, double theirs_ms) {
   return buf;
 }
 
-}  // namespace keyturn::app
+}  // namespace keyturn::bench

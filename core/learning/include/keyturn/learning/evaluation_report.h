@@ -1,0 +1,62 @@
+#pragma once
+// keyturn evaluate's run and report (docs/results.md, the paper's Table 2):
+// accuracy (mean ± spread over folds) per bin count, feature set, classifier and
+// protocol on one dataset's views, written as CSV, JSON and Markdown, with the
+// plots the Markdown links to (confusion matrices of the best rows, per-class
+// PDFs, the bin sweep).
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/classifier.h"
+#include "keyturn/learning/evaluation.h"
+#include "keyturn/learning/feature_table.h"
+#include "keyturn/learning/protocols.h"
+#include "keyturn/core/report_plots.h"
+
+namespace keyturn::learning {
+
+struct EvaluationPlan {
+  std::string dataset;                      // named in the report
+  std::vector<std::string> feature_sets;    // "kpd2+gkpd2" …
+  std::vector<std::string> classifiers, protocols;
+  std::vector<int> bins;
+  std::uint64_t split_seed = 7;
+  ClassifierParams params;                  // kind is each row's classifier
+  int jobs = 0;
+  int low_keypoints = 0;                    // "views with K < low_keypoints" in the summary
+};
+
+struct EvaluationRow {
+  int bins = 0;
+  std::string protocol, features, classifier;
+  const Protocol* proto = nullptr;
+  Evaluation ev;
+};
+
+struct EvaluationRun {
+  EvaluationPlan plan;
+  std::map<int, FeatureTable> tables;       // per bin count
+  std::map<int, double> describe_s;         // time to describe (or load) each table
+  std::vector<std::unique_ptr<Protocol>> protocols;
+  std::vector<EvaluationRow> rows;
+  double total_s = 0;                       // from prepareEvaluation to the end of evaluateRows
+  std::size_t totalFolds() const;
+};
+
+// Checks the plan (at least one of each, classifier and block names), gets each bin count's
+// table from describe(bins) and lays out the rows. Throws keyturn::Error naming what is wrong.
+EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe);
+// Trains and tests every row's folds; fold_done after each.
+void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done = nullptr);
+
+struct EvaluationReport {
+  std::string csv, json, markdown;  // report.csv, report.json, report.md
+  ReportPlots plots;                // confusion/*.png, pdfs/*.png, bins_*.png
+};
+EvaluationReport evaluationReport(const EvaluationRun& run);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,221 @@
+#include "keyturn/learning/evaluation_report.h"
+
+#include <algorithm>
+#include <chrono>
+#include <iomanip>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double secondsSince(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+std::string pct(double v) {
+  std::ostringstream s;
+  s << std::fixed << std::setprecision(1) << 100.0 * v;
+  return s.str();
+}
+
+ClassifierParams paramsOf(const EvaluationPlan& plan, const std::string& classifier) {
+  ClassifierParams p = plan.params;
+  p.kind = classifier;
+  return p;
+}
+
+// Mean ± 1 sd of a block's PDF over each class's views, one plot per class.
+void addClassPdfPlots(const FeatureTable& t, const Labels& labels, const std::string& block, ReportPlots& plots) {
+  for (const auto& c : classPdfs(t, labels, block)) {
+    CurvePlot chart;
+    chart.file = "pdfs/" + fileSafeName(block + "_" + c.label) + ".png";
+    chart.title = block + " of " + c.label + " (" + std::to_string(c.views) + " views): mean ± 1 sd";
+    chart.x_label = "bin";
+    chart.y_label = "probability";
+    CurveSeries mean{"mean", {}, {}}, hi{"+1 sd", {}, {}}, lo{"-1 sd", {}, {}};
+    for (std::size_t b = 0; b < c.mean.size(); ++b) {
+      for (auto* s : {&mean, &hi, &lo}) s->x.push_back(static_cast<double>(b));
+      mean.y.push_back(c.mean[b]);
+      hi.y.push_back(c.mean[b] + c.sd[b]);
+      lo.y.push_back(std::max(0.0, c.mean[b] - c.sd[b]));
+    }
+    chart.series = {mean, hi, lo};
+    chart.y_min = 0;
+    chart.width = 640;
+    chart.height = 400;
+    plots.curves.push_back(chart);
+  }
+}
+
+}  // namespace
+
+std::size_t EvaluationRun::totalFolds() const {
+  std::size_t n = 0;
+  for (const auto& r : rows) n += r.proto->folds.size();
+  return n;
+}
+
+EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe) {
+  const auto start = Clock::now();
+  if (plan.feature_sets.empty() || plan.classifiers.empty() || plan.protocols.empty() || plan.bins.empty())
+    throw Error("evaluate needs at least one feature set, classifier and protocol");
+  for (const auto& c : plan.classifiers) makeClassifier(paramsOf(plan, c));  // unknown names fail before any work
+  EvaluationRun run;
+  run.plan = plan;
+  for (int bins : plan.bins) {
+    const auto t0 = Clock::now();
+    run.tables[bins] = describe(bins);
+    run.describe_s[bins] = secondsSince(t0);
+    const FeatureTable& t = run.tables[bins];
+    for (const auto& set : plan.feature_sets)
+      for (const auto& b : featureSetBlocks(set))
+        if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
+    for (const auto& pn : plan.protocols) {
+      run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed)));
+      for (const auto& set : plan.feature_sets)
+        for (const auto& c : plan.classifiers) run.rows.push_back({bins, pn, set, c, run.protocols.back().get(), {}});
+    }
+  }
+  run.total_s = secondsSince(start);
+  return run;
+}
+
+void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done) {
+  const auto start = Clock::now();
+  for (auto& r : run.rows)
+    r.ev = evaluateFolds(run.tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row,
+                         static_cast<int>(r.proto->labels.names.size()), r.proto->folds,
+                         paramsOf(run.plan, r.classifier), run.plan.jobs, fold_done);
+  run.total_s += secondsSince(start);
+}
+
+EvaluationReport evaluationReport(const EvaluationRun& run) {
+  const EvaluationPlan& a = run.plan;
+  const auto& rows = run.rows;
+  EvaluationReport report;
+
+  // CSV and JSON: every row.
+  std::ostringstream csv;
+  csv << "bins,protocol,label,features,classifier,folds,test_views,accuracy_mean,accuracy_std,"
+         "train_ms_per_view,predict_ms_per_view\n";
+  nlohmann::json js;
+  js["dataset"] = a.dataset;
+  js["seconds"] = run.total_s;
+  for (const auto& r : rows) {
+    std::size_t tested = 0;
+    nlohmann::json folds = nlohmann::json::array();
+    for (const auto& f : r.ev.folds) {
+      tested += f.test_views;
+      folds.push_back({{"name", f.name}, {"accuracy", f.accuracy()}, {"train_views", f.train_views},
+                       {"test_views", f.test_views}});
+    }
+    csv << r.bins << ',' << r.protocol << ',' << r.proto->labels.kindName() << ',' << r.features << ',' << r.classifier
+        << ',' << r.ev.folds.size() << ',' << tested << ',' << r.ev.mean() << ',' << r.ev.stddev() << ','
+        << r.ev.trainMsPerView() << ',' << r.ev.predictMsPerView() << '\n';
+    js["rows"].push_back({{"bins", r.bins}, {"protocol", r.protocol}, {"label", r.proto->labels.kindName()},
+                          {"features", r.features}, {"classifier", r.classifier}, {"accuracy_mean", r.ev.mean()},
+                          {"accuracy_std", r.ev.stddev()}, {"train_ms_per_view", r.ev.trainMsPerView()},
+                          {"predict_ms_per_view", r.ev.predictMsPerView()}, {"folds", folds}});
+  }
+  report.csv = csv.str();
+  report.json = js.dump(2) + "\n";
+
+  // Markdown: one Table-2-style table per bin count.
+  std::ostringstream md;
+  md << "# keyturn evaluate: " << a.dataset << "\n\n";
+  for (int bins : a.bins) {
+    const FeatureTable& t = run.tables.at(bins);
+    const TableSummary s = summarise(t, a.low_keypoints);
+    const double describe_s = run.describe_s.at(bins);
+    md << "## " << bins << " bins\n\n"
+       << s.views << " views; ISS keypoints K per view: median " << s.k_median << " (" << s.k_min << "–" << s.k_max
+       << "), " << s.low << " views with K < " << a.low_keypoints << ", " << s.failed
+       << " views without keypoint features. Features described in " << std::fixed << std::setprecision(1)
+       << describe_s << " s (" << std::setprecision(1) << 1000.0 * describe_s / std::max<std::size_t>(1, s.views)
+       << " ms/view wall; 0 when cached).\n\n";
+    std::vector<std::string> missing;
+    for (const auto& [b, n] : s.missing)
+      if (n) missing.push_back(b + " " + std::to_string(n));
+    if (!missing.empty()) {
+      md << "Views missing a block (kept in every protocol; XGBoost treats the values as missing, the network as 0): ";
+      for (std::size_t i = 0; i < missing.size(); ++i) md << (i ? ", " : "") << missing[i];
+      md << ".\n\n";
+    }
+    md << "Accuracy % (mean ± sd over folds). Labels: instance for kfold and leave-elevation, category for "
+          "leave-instance.\n\n| features |";
+    for (const auto& pn : a.protocols)
+      for (const auto& c : a.classifiers) md << ' ' << c << " " << pn << " |";
+    md << "\n|---|";
+    for (std::size_t i = 0; i < a.protocols.size() * a.classifiers.size(); ++i) md << "---|";
+    md << "\n";
+    for (const auto& set : a.feature_sets) {
+      md << "| " << set << " |";
+      for (const auto& pn : a.protocols)
+        for (const auto& c : a.classifiers)
+          for (const auto& r : rows)
+            if (r.bins == bins && r.protocol == pn && r.features == set && r.classifier == c)
+              md << ' ' << pct(r.ev.mean()) << " ± " << pct(r.ev.stddev()) << " |";
+      md << "\n";
+    }
+    md << "\n";
+  }
+  md << "Train time per training view (mean over rows): ";
+  for (const auto& c : a.classifiers) {
+    double ms = 0;
+    int n = 0;
+    for (const auto& r : rows)
+      if (r.classifier == c) ms += r.ev.trainMsPerView(), ++n;
+    md << c << " " << std::setprecision(3) << ms / std::max(1, n) << " ms; ";
+  }
+  md << "\nTotal wall time " << std::setprecision(0) << run.total_s << " s.\n\n";
+
+  // Confusion matrices of the best row per protocol (and bin count).
+  md << "## Confusion matrices (best row per protocol)\n\n";
+  for (const auto& pn : a.protocols)
+    for (int bins : a.bins) {
+      const EvaluationRow* best = nullptr;
+      for (const auto& r : rows)
+        if (r.protocol == pn && r.bins == bins && (!best || r.ev.mean() > best->ev.mean())) best = &r;
+      if (!best) continue;
+      const std::string file = "confusion/" + fileSafeName(pn + "_" + std::to_string(bins) + "bins") + ".png";
+      report.plots.confusions.push_back(
+          {file, pn + ": " + best->features + ", " + best->classifier + " (" + pct(best->ev.mean()) + "%)",
+           best->proto->labels.names, best->ev.confusion});
+      md << "- " << pn << ", " << bins << " bins: " << best->features << " with " << best->classifier << " → ["
+         << file << "](" << file << ")\n";
+    }
+
+  // Per-class PDFs (instances) of the paper's main functions and a baseline.
+  const FeatureTable& t0 = run.tables.at(a.bins.front());
+  const Labels by_instance = labelRows(t0, LabelKind::Instance);
+  for (const std::string block : {"kpd2", "gkpd2", "kpa3", "d2"}) addClassPdfPlots(t0, by_instance, block, report.plots);
+  md << "\nPer-class PDFs (mean ± 1 sd over each instance's views): `pdfs/`.\n";
+
+  // Bin-count sweep (the paper's Fig. 20).
+  if (a.bins.size() > 1) {
+    for (const auto& pn : a.protocols)
+      for (const auto& c : a.classifiers) {
+        CurvePlot chart;
+        chart.file = "bins_" + fileSafeName(c + "_" + pn) + ".png";
+        chart.title = "Accuracy vs bins, " + c + ", " + pn;
+        chart.x_label = "bins";
+        chart.y_label = "accuracy %";
+        for (const auto& set : a.feature_sets) {
+          CurveSeries s{set, {}, {}};
+          for (const auto& r : rows)
+            if (r.protocol == pn && r.classifier == c && r.features == set)
+              s.x.push_back(r.bins), s.y.push_back(100.0 * r.ev.mean());
+          chart.series.push_back(s);
+        }
+        report.plots.curves.push_back(chart);
+        md << "- bin sweep " << c << ", " << pn << ": [" << chart.file << "](" << chart.file << ")\n";
+      }
+  }
+  report.markdown = md.str();
+  return report;
+}
+
+}  // namespace keyturn::learning

@@ -1,0 +1,42 @@
+#include "keyturn/sim/view_series.h"
+
+#include <cmath>
+#include <cstdio>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+#include "keyturn/sim/tof_view.h"
+
+namespace keyturn::sim {
+
+std::string seriesFileName(const std::string& pattern, double angle, bool several) {
+  const auto at = pattern.find("{angle}");
+  if (at == std::string::npos) {
+    if (several) throw Error("--out must contain {angle} when several angles are rendered");
+    return pattern;
+  }
+  char buf[16];
+  std::snprintf(buf, sizeof buf, "%03d", static_cast<int>(std::lround(angle)));
+  return pattern.substr(0, at) + buf + pattern.substr(at + 7);
+}
+
+void renderSeries(const ViewSeries& s,
+                  const std::function<void(const std::string&, const Cloud&, double, double)>& written) {
+  const Mesh mesh = loadMeshOrBuiltin(s.mesh);
+  TofViewRenderer renderer(mesh);
+  const double distance = s.distance > 0 ? s.distance : operatorDistance(mesh);
+  for (std::size_t i = 0; i < s.angles.size(); ++i) {
+    SceneView v;
+    v.turntable_deg = s.angles[i];
+    v.elevation_deg = s.elevation_deg;
+    v.distance = distance;
+    v.seed = s.seed + i;
+    v.noise = s.noise;
+    const Cloud c = renderer.render(v);
+    const std::string path = seriesFileName(s.out, s.angles[i], s.angles.size() > 1);
+    saveCloud(path, c);
+    if (written) written(path, c, distance, s.angles[i]);
+  }
+}
+
+}  // namespace keyturn::sim

@@ -1,0 +1,154 @@
+// The learning library's runs behind evaluate, train, classify and consistency,
+// on a small table whose answers are known: two instances with different PDFs.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdio>
+#include <random>
+#include <sstream>
+
+#include "keyturn/learning/consistency.h"
+#include "keyturn/learning/evaluation_report.h"
+#include "keyturn/learning/model_predictions.h"
+#include "keyturn/learning/model_training.h"
+#include "support/error_of.h"
+
+using namespace keyturn;
+using namespace keyturn::learning;
+using keyturn::test::errorOf;
+
+namespace {
+
+// Instance "a" has its mass in bin 0, "b" in bin 3; per-view noise, 12 views each at 30° steps.
+FeatureTable twoInstances() {
+  FeatureTable t;
+  t.blocks = {"kpd2"};
+  t.sizes = {4};
+  t.spec = {{"bins", "4"}};
+  std::mt19937 rng(1);
+  std::uniform_real_distribution<float> noise(0.f, 0.05f);
+  for (const std::string inst : {"a", "b"})
+    for (int v = 0; v < 12; ++v) {
+      FeatureRow r;
+      r.id = "cup/" + inst + "/e30/a" + std::to_string(30 * v);
+      r.cls = "cup";
+      r.instance = inst;
+      r.elevation = "30";
+      r.keypoints = 20;
+      r.values = {0.1f + noise(rng), 0.1f + noise(rng), 0.1f + noise(rng), 0.1f + noise(rng)};
+      r.values[inst == "a" ? 0 : 3] += 0.6f;
+      t.rows.push_back(r);
+    }
+  return t;
+}
+
+ClassifierParams quick() {
+  ClassifierParams p;
+  p.xgboost.rounds = 30;
+  p.xgboost.threads = 1;
+  return p;
+}
+
+}  // namespace
+
+TEST(EvaluationReport, EveryFileSaysWhatTheRunMeasured) {
+  EvaluationPlan plan;
+  plan.dataset = "cups";
+  plan.feature_sets = {"kpd2"};
+  plan.classifiers = {"xgboost"};
+  plan.protocols = {"kfold3"};
+  plan.bins = {4};
+  plan.params = quick();
+  std::vector<int> described;
+  EvaluationRun run = prepareEvaluation(plan, [&](int bins) {
+    described.push_back(bins);
+    return twoInstances();
+  });
+  EXPECT_EQ(described, std::vector<int>{4});
+  ASSERT_EQ(run.rows.size(), 1u);
+  EXPECT_EQ(run.totalFolds(), 3u);
+  int folds = 0;
+  evaluateRows(run, [&] { ++folds; });
+  EXPECT_EQ(folds, 3);
+  const Evaluation& ev = run.rows[0].ev;
+  EXPECT_GE(ev.mean(), 0.9);  // well separated (XGBoost on 16 training rows may miss one)
+  const EvaluationReport r = evaluationReport(run);
+  // Every file says what the run measured.
+  std::ostringstream row;
+  row << "\n4,kfold3,instance,kpd2,xgboost,3,24," << ev.mean() << ',' << ev.stddev() << ',';
+  EXPECT_NE(r.csv.find(row.str()), std::string::npos) << r.csv;
+  char cell[64];
+  std::snprintf(cell, sizeof cell, "| kpd2 | %.1f ± %.1f |", 100 * ev.mean(), 100 * ev.stddev());
+  EXPECT_NE(r.markdown.find(cell), std::string::npos) << r.markdown;
+  EXPECT_NE(r.markdown.find("24 views; ISS keypoints K per view: median 20 (20–20)"), std::string::npos) << r.markdown;
+  EXPECT_NE(r.markdown.find("[confusion/kfold3_4bins.png](confusion/kfold3_4bins.png)"), std::string::npos);
+  EXPECT_NE(r.json.find("\"test_views\": 8"), std::string::npos);
+  ASSERT_EQ(r.plots.confusions.size(), 1u);
+  EXPECT_EQ(r.plots.confusions[0].file, "confusion/kfold3_4bins.png");
+  EXPECT_EQ(r.plots.confusions[0].counts, ev.confusion);
+  EXPECT_EQ(ev.confusion[0][0] + ev.confusion[0][1], 12);  // every view of a tested once
+  EXPECT_GE(ev.confusion[0][0] + ev.confusion[1][1], 22);
+  ASSERT_EQ(r.plots.curves.size(), 2u);  // kpd2 of each instance (the table has no gkpd2, kpa3, d2); one bin count, no sweep
+  EXPECT_EQ(r.plots.curves[0].file, "pdfs/kpd2_a.png");
+  EXPECT_NEAR(r.plots.curves[0].series[0].y[0], 0.725, 0.03);  // instance a's mean mass in bin 0
+}
+
+TEST(EvaluationReport, BadPlansAreRefusedBeforeAnyWork) {
+  EvaluationPlan plan;
+  plan.feature_sets = {"kpd2+esf"};
+  plan.classifiers = {"xgboost"};
+  plan.protocols = {"kfold3"};
+  plan.bins = {4};
+  EXPECT_EQ(errorOf([&] { prepareEvaluation(plan, [](int) { return twoInstances(); }); }),
+            "feature set 'kpd2+esf': unknown block 'esf'");
+  plan.classifiers = {"svm"};
+  bool described = false;
+  EXPECT_NE(errorOf([&] { prepareEvaluation(plan, [&](int) { described = true; return twoInstances(); }); }), "");
+  EXPECT_FALSE(described);
+}
+
+TEST(ModelTraining, AModelClassifiesItsOwnViewsAndRefusesOtherFeatures) {
+  const FeatureTable t = twoInstances();
+  double fit_s = -1;
+  const Model m = trainModel(t, {"kpd2"}, LabelKind::Instance, quick(), &fit_s);
+  EXPECT_GE(fit_s, 0.0);
+  EXPECT_EQ(m.info.classes, (std::vector<std::string>{"a", "b"}));
+  EXPECT_EQ(m.info.inputs, 4);
+  EXPECT_EQ(m.info.spec, t.spec);
+  const auto c = predictRows(m, t, "m");
+  ASSERT_EQ(c.size(), t.rows.size());
+  for (std::size_t i = 0; i < c.size(); ++i) {
+    EXPECT_EQ(c[i].row, i);
+    EXPECT_EQ(m.info.classes[static_cast<std::size_t>(c[i].best)], t.rows[i].instance) << t.rows[i].id;
+    EXPECT_NEAR(c[i].probabilities[0] + c[i].probabilities[1], 1.0, 1e-5);
+  }
+  FeatureTable other = t;
+  other.spec["bins"] = "8";
+  EXPECT_EQ(errorOf([&] { predictRows(m, other, "m"); }),
+            "m: the model was trained on features computed another way (bins: model 4, features 8): describe the "
+            "views with the model's parameters");
+}
+
+TEST(Consistency, ZeroForAnUnchangedViewAndGrowingWithTheChange) {
+  FeatureTable t = twoInstances();
+  for (auto& r : t.rows) r.values = {0.7f, 0.1f, 0.1f, 0.1f};
+  t.rows[3].values = {0.1f, 0.1f, 0.1f, 0.7f};  // a/a90 looks like the other instance
+  ConsistencyQuery q{"cup/a", "", {"kpd2"}, Dissimilarity::Bhattacharyya, "bhattacharyya"};
+  const ConsistencyReport r = consistency(t, q, "cups");
+  std::istringstream csv(r.csv);
+  std::string line;
+  std::getline(csv, line);
+  EXPECT_EQ(line, "elevation,angle_deg,keypoints,kpd2");
+  std::vector<double> d;
+  while (std::getline(csv, line)) d.push_back(std::stod(line.substr(line.rfind(',') + 1)));
+  ASSERT_EQ(d.size(), 12u);
+  EXPECT_DOUBLE_EQ(d[0], 0.0);
+  EXPECT_NEAR(d[1], 0.0, 1e-6);
+  EXPECT_GT(d[3], 0.3);
+  ASSERT_EQ(r.plots.curves.size(), 1u);
+  EXPECT_EQ(r.plots.curves[0].file, "consistency_e30.png");
+  EXPECT_EQ(r.plots.curves[0].series[0].y.size(), 12u);
+  EXPECT_EQ(errorOf([&] { consistency(t, {"cup/z", "", {"kpd2"}}, "cups"); }), "cups: no views of cup/z");
+  EXPECT_EQ(errorOf([&] { objectParts("cup"); }), "--object cup: expected CLASS/INSTANCE");
+  EXPECT_EQ(errorOf([&] { consistency(t, {"cup/a", "", {"d2"}}, "cups"); }), "the feature cache has no 'd2' block");
+}

@@ -1,0 +1,118 @@
+// The rig's jobs behind keyturn simulate, capture and calibrate-axis: a dataset
+// generated on the simulated rig (and resumed), the devices of a capture opened
+// by name, a failed capture's empty folder removed, a sequence that is no
+// sphere target's refused.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "keyturn/core/error.h"
+#include "keyturn/rig/axis_calibration_run.h"
+#include "keyturn/rig/capture_rig.h"
+#include "keyturn/rig/dataset_simulation.h"
+#include "support/error_of.h"
+
+namespace fs = std::filesystem;
+using namespace keyturn;
+using keyturn::test::errorOf;
+
+namespace {
+
+fs::path freshDir(const std::string& name) {
+  const fs::path d = fs::temp_directory_path() / ("keyturn_rig_sim_" + std::to_string(::getpid()) + "_" + name);
+  fs::remove_all(d);
+  return d;
+}
+
+rig::DatasetSimulation mugAt(const fs::path& out) {
+  rig::DatasetSimulation s;
+  s.out = out.string();
+  s.objects = {{"mug", "builtin", "builtin:mug"}};
+  s.elevations = {30, 45};
+  s.step_deg = 120;
+  return s;
+}
+
+}  // namespace
+
+TEST(DatasetSimulation, WritesEveryViewOnceAndResumes) {
+  const fs::path out = freshDir("resume");
+  const rig::DatasetSimulation s = mugAt(out);
+  EXPECT_EQ(s.views(), 6u);  // 1 object × 2 elevations × 3 angles
+  std::size_t told = 0;
+  const rig::CaptureReport first = rig::simulateDataset(s, [&] { ++told; });
+  EXPECT_EQ(first.written, 6u);
+  EXPECT_EQ(told, 6u);
+  const rig::VerifyReport v = rig::Dataset::verify(out.string());
+  EXPECT_TRUE(v.ok());
+  EXPECT_EQ(v.views, 6u);
+  const auto rows = rig::Dataset::readManifest(out.string());
+  ASSERT_EQ(rows.size(), 6u);
+  EXPECT_EQ(rows.back().key.elevation, "45");
+  const rig::CaptureReport again = rig::simulateDataset(s);
+  EXPECT_EQ(again.written, 0u);
+  EXPECT_EQ(again.skipped, 6u);
+  fs::remove_all(out);
+}
+
+TEST(DatasetSimulation, AMissingMeshIsNamedWithItsObject) {
+  rig::DatasetSimulation s = mugAt(freshDir("mesh"));
+  s.objects = {{"cup", "blue", "/nonexistent/cup.ply"}};
+  EXPECT_EQ(errorOf([&] { s.checkMeshes("objects.csv"); }), "objects.csv: cup/blue: no mesh at /nonexistent/cup.ply");
+}
+
+TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
+  const fs::path dir = freshDir("devices");
+  rig::CaptureDevices d;
+  d.sim.dir = (dir / ".sim").string();
+  rig::CaptureRig simulated(d);
+  ASSERT_NE(simulated.simulatedTurntable(), nullptr);
+  EXPECT_TRUE(simulated.cameraFromTurntable().has_value());
+  EXPECT_EQ(simulated.camera().acquire().cloud.width, 176u);  // an SR4000 frame
+  d.camera = "usb";
+  EXPECT_EQ(errorOf([&] { rig::CaptureRig real(d); }),
+            "--pose sim needs --camera sim: the simulated table and camera share one world");
+  d.camera = "firewire";
+  EXPECT_EQ(errorOf([&] { rig::CaptureRig bad(d); }), "camera 'firewire': expected sim, usb, usb:SERIAL or eth:IP");
+  fs::remove_all(dir);
+}
+
+TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
+  const fs::path empty = freshDir("empty");
+  { rig::Dataset d(empty.string()); }  // dataset.json and an empty manifest, as a failed capture leaves them
+  ASSERT_TRUE(fs::exists(empty));
+  rig::removeDatasetWithoutViews(empty.string());
+  EXPECT_FALSE(fs::exists(empty));
+  const fs::path full = freshDir("full");
+  rig::DatasetSimulation s = mugAt(full);
+  s.elevations = {30};
+  rig::simulateDataset(s);
+  rig::removeDatasetWithoutViews(full.string());
+  EXPECT_EQ(rig::Dataset::readManifest(full.string()).size(), 3u);
+  fs::remove_all(full);
+}
+
+TEST(AxisCalibrationRun, TooFewViewsAndAnObjectThatIsNoTargetAreRefused) {
+  const fs::path out = freshDir("axis");
+  rig::DatasetSimulation s = mugAt(out);
+  s.elevations = {30};
+  rig::simulateDataset(s);
+  rig::AxisSequence q{out.string(), "mug", "builtin", "45"};
+  EXPECT_EQ(errorOf([&] { rig::calibrateAxisFromDataset(q, {}, {}); }),
+            out.string() + ": axis calibration needs at least 3 views, found 0");
+  q.elevation = "30";
+  std::vector<std::size_t> progress;
+  const std::string msg = errorOf([&] {
+    rig::calibrateAxisFromDataset(q, {}, [&](std::size_t done, std::size_t views) {
+      EXPECT_EQ(views, 3u);
+      progress.push_back(done);
+    });
+  });
+  EXPECT_EQ(progress, (std::vector<std::size_t>{0, 1, 2, 3}));
+  // The mug is no ball standing off the axis: refused rather than written.
+  EXPECT_EQ(msg.rfind(out.string() + ": ", 0), 0u) << msg;
+  EXPECT_TRUE(msg.find("not a sphere-target sequence") != std::string::npos ||
+              msg.find("the sphere target was found in only") != std::string::npos)
+      << msg;
+  fs::remove_all(out);
+}

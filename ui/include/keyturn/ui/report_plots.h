@@ -1,0 +1,13 @@
+#pragma once
+// The plots a report links to (core/report_plots.h) drawn as PNG files in
+// the report's folder (sub-folders made as needed; dir "" for files named as they are).
+#include <string>
+
+#include "keyturn/core/report_plots.h"
+
+namespace keyturn::ui {
+
+// Throws keyturn::Error naming the file that cannot be written.
+void saveReportPlots(const ReportPlots& plots, const std::string& dir);
+
+}  // namespace keyturn::ui

@@ -1,0 +1,34 @@
+#include "keyturn/ui/report_plots.h"
+
+#include <filesystem>
+
+#include "keyturn/core/error.h"
+#include "keyturn/ui/confusion_plot.h"
+#include "keyturn/ui/line_chart.h"
+
+namespace keyturn::ui {
+
+void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
+  namespace fs = std::filesystem;
+  const auto pathOf = [&dir](const std::string& file) {
+    const fs::path p = fs::path(dir) / file;
+    std::error_code ec;
+    if (!p.parent_path().empty() && !fs::is_directory(p.parent_path()) && !fs::create_directories(p.parent_path(), ec))
+      throw Error(p.parent_path().string() + ": cannot create the folder (" + ec.message() + ")");
+    return p.string();
+  };
+  for (const auto& c : plots.confusions) saveConfusionPng({c.title, c.labels, c.counts}, pathOf(c.file));
+  for (const auto& c : plots.curves) {
+    LineChart chart;
+    chart.title = c.title;
+    chart.x_label = c.x_label;
+    chart.y_label = c.y_label;
+    for (const auto& s : c.series) chart.series.push_back({s.name, s.x, s.y});
+    chart.y_min = c.y_min;
+    chart.log_x = c.log_x;
+    chart.log_y = c.log_y;
+    saveChartPng(chart, pathOf(c.file), c.width, c.height);
+  }
+}
+
+}  // namespace keyturn::ui
