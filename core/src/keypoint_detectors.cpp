@@ -19,6 +19,8 @@
 #include <cmath>
 #include <limits>
 #include <numeric>
+#include <set>
+#include <tuple>
 
 namespace keyturn {
 
@@ -82,6 +84,14 @@ std::vector<double> curvature(const PointSet& set, double res) {
   for (std::size_t i = 0; i < n.size() && i < out.size(); ++i)
     out[i] = std::isfinite(n[i].curvature) ? std::abs(n[i].curvature) : 0.0;
   return out;
+}
+
+// The first of each run of keypoints at one position, in order: SIFT reports a point once per scale
+// it is found at, and repeatability counts locations.
+void dropRepeatedPositions(std::vector<Eigen::Vector3f>& kp) {
+  std::set<std::tuple<float, float, float>> seen;
+  kp.erase(std::remove_if(kp.begin(), kp.end(), [&](const Eigen::Vector3f& p) { return !seen.emplace(p.x(), p.y(), p.z()).second; }),
+           kp.end());
 }
 
 float minDistance(const Eigen::Vector3f& p, const std::vector<Eigen::Vector3f>& chosen) {
@@ -172,6 +182,7 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
       break;
     }
   }
+  dropRepeatedPositions(out);
   return out;
 }
 

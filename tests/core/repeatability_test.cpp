@@ -147,13 +147,16 @@ TEST(Repeatability, AnEqualBudgetGivesEachDetectorExactlyK) {
   const PointSet set = PointSet::fromCloud(test::unorganized(pts));
   const double res = cloudResolution(set);
   for (Detector d : {Detector::Iss, Detector::Harris3d, Detector::Sift3d, Detector::Uniform}) {
-    const std::size_t native = detectKeypoints(d, set, res).size();
+    const auto native_kp = detectKeypoints(d, set, res);
+    const std::size_t native = native_kp.size();
+    for (std::size_t i = 0; i < native; ++i)  // SIFT finds some points at two scales: one location, one keypoint
+      for (std::size_t j = i + 1; j < native; ++j) ASSERT_GT((native_kp[i] - native_kp[j]).norm(), 0.f) << detectorName(d) << " native";
     // Below, at and above the detector's own count: cut to its most salient, or completed.
     for (std::size_t k : {std::size_t{5}, native, native + 40}) {
       const auto kp = detectKeypointsAtBudget(d, set, res, static_cast<int>(k));
       EXPECT_EQ(kp.size(), k) << detectorName(d) << " native " << native;
       for (std::size_t i = 0; i < kp.size(); ++i)
-        for (std::size_t j = i + 1; j < kp.size(); ++j) ASSERT_GT((kp[i] - kp[j]).norm(), 0.f) << "a point twice";
+        for (std::size_t j = i + 1; j < kp.size(); ++j) ASSERT_GT((kp[i] - kp[j]).norm(), 0.f) << detectorName(d) << " K " << k << ": point " << j << " repeats point " << i;
     }
     EXPECT_EQ(detectKeypointsAtBudget(d, set, res, static_cast<int>(set.size()) + 10).size(), set.size());
   }
