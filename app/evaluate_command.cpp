@@ -8,7 +8,9 @@
 #include "commands.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
+#include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/core/error.h"
 #include "keyturn/learning/evaluation_report.h"
 #include "keyturn/ui/report_plots.h"
 #include "learning_options.h"
@@ -37,7 +39,15 @@ int runEvaluate(const EvaluateArgs& a) {
   plan.feature_sets = splitList(a.features);
   plan.classifiers = splitList(a.classifiers);
   plan.protocols = splitList(a.protocols);
-  for (const auto& b : splitList(a.bins)) plan.bins.push_back(std::stoi(b));
+  for (const auto& b : splitList(a.bins)) {  // each value checked as --bins is
+    DescriptorOptions checked;
+    try {
+      descriptorParameter("--bins").set(checked, b);
+    } catch (const Error& e) {
+      throw Error(std::string("--bins: ") + e.what());
+    }
+    plan.bins.push_back(checked.histogram.bins);
+  }
   if (plan.bins.empty()) plan.bins.push_back(a.flags.options.histogram.bins);
   plan.split_seed = a.split_seed;
   plan.params = a.params;

@@ -84,10 +84,11 @@ Command addRepeatabilityCommand(CLI::App& app) {
   cmd->add_option("--keypoints", a->study.keypoints, "Equal budget K for every detector (0: ISS's count per view)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   auto& iss = a->study.detector.iss;
-  cmd->add_option("--iss-frame", iss.frame_radius, "ISS scatter radius r_frame (× resolution)")->capture_default_str();
-  cmd->add_option("--iss-nms", iss.nms_radius, "ISS non-maximum radius (× resolution)")->capture_default_str();
+  cmd->add_option("--iss-frame", iss.frame_radius, "ISS scatter radius r_frame (× resolution)")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--iss-nms", iss.nms_radius, "ISS non-maximum radius (× resolution)")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option_function<double>("--iss-gamma", [&iss](double g) { iss.gamma21 = iss.gamma32 = g; },
-                                   "ISS eigenvalue-ratio thresholds γ21 = γ32 (default 0.975)");
+                                   "ISS eigenvalue-ratio thresholds γ21 = γ32 (default 0.975)")
+      ->check(CLI::Range(1e-9, 1.0));
   cmd->add_flag("--force", a->study.force, "Score even when the poses give (almost) no overlap between views");
   cmd->add_flag("--icp", a->study.icp, "Refine each pair's ground truth by ICP (residual reported)");
   cmd->add_flag("--no-filter", a->no_filter, "Use the views as they are");

@@ -1,6 +1,7 @@
 #include "keyturn/core/descriptor_parameters.h"
 
 #include <cerrno>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -25,6 +26,7 @@ double parseNumber(const std::string& t) {
   errno = 0;
   const double v = std::strtod(t.c_str(), &end);
   if (t.empty() || *end != '\0' || errno == ERANGE) throw Error("is not a number: '" + t + "'");
+  if (!std::isfinite(v)) throw Error("is not a finite number: '" + t + "'");  // strtod takes "nan", "inf"
   return v;
 }
 
@@ -157,6 +159,12 @@ std::vector<DescriptorParameter> makeTable() {
 const std::vector<DescriptorParameter>& descriptorParameters() {
   static const std::vector<DescriptorParameter> table = makeTable();
   return table;
+}
+
+const DescriptorParameter& descriptorParameter(const std::string& flag) {
+  for (const auto& p : descriptorParameters())
+    if (p.flag == flag) return p;
+  throw Error("no descriptor parameter " + flag);
 }
 
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options) {

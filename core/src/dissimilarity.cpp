@@ -16,8 +16,15 @@ void requireSameSize(const std::vector<double>& p, const std::vector<double>& q)
 
 double bhattacharyya(const std::vector<double>& p, const std::vector<double>& q) {
   requireSameSize(p, q);
-  double bc = 0.0;
-  for (std::size_t i = 0; i < p.size(); ++i) bc += std::sqrt(std::max(0.0, p[i] * q[i]));
+  double bc = 0.0, mass_p = 0.0, mass_q = 0.0;
+  for (std::size_t i = 0; i < p.size(); ++i) {
+    bc += std::sqrt(std::max(0.0, p[i] * q[i]));
+    mass_p += p[i];
+    mass_q += q[i];
+  }
+  // Over the PDFs' own mass (float PDFs sum to 1 only within ~1e-8): a PDF is then exactly 0
+  // from itself, as sqrt(p·p) is exactly p.
+  if (mass_p > 0 && mass_q > 0) bc /= std::sqrt(mass_p * mass_q);
   return bc <= std::exp(-50.0) ? 50.0 : std::max(0.0, -std::log(bc));
 }
 

@@ -1,12 +1,13 @@
 #include "keyturn/core/durable_file.h"
 
 #include <fcntl.h>
+#include <sys/stat.h>
+#include <stdlib.h>
 #include <unistd.h>
 
 #include <cerrno>
 #include <cstring>
 #include <filesystem>
-#include <fstream>
 
 #include "keyturn/core/error.h"
 
@@ -43,16 +44,35 @@ void syncDirectory(const std::string& dir) { syncPath(dir, O_RDONLY | O_DIRECTOR
 void syncFile(const std::string& path) { syncPath(path, O_RDONLY); }
 
 void writeFileDurably(const std::string& path, const std::string& bytes) {
-  fs::create_directories(parentOf(path));
-  const std::string tmp = path + ".tmp";
-  {
-    std::ofstream f(tmp, std::ios::binary | std::ios::trunc);
-    if (!f) throw Error(path + ": cannot open for writing (" + std::strerror(errno) + ")");
-    f.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    f.flush();
-    if (!f) throw Error(path + ": write failed (" + std::strerror(errno) + ")");
+  std::error_code ec;
+  fs::create_directories(parentOf(path), ec);
+  if (ec) throw Error(path + ": cannot create its folder: " + ec.message());
+  // A temporary of its own beside the target (two processes filling one cache never share one),
+  // removed again when anything fails.
+  std::string tmp = path + ".tmp.XXXXXX";
+  const int fd = ::mkstemp(tmp.data());
+  if (fd < 0) throw Error(path + ": cannot open for writing (" + std::strerror(errno) + ")");
+  const auto fail = [&](const std::string& what) {
+    const std::string reason = std::strerror(errno);
+    ::close(fd);
+    ::unlink(tmp.c_str());
+    throw Error(path + ": " + what + " (" + reason + ")");
+  };
+  if (::fchmod(fd, 0644) != 0) fail("cannot set its permissions");  // mkstemp makes it 0600
+  for (std::size_t done = 0; done < bytes.size();) {
+    const ssize_t n = ::write(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n <= 0) fail("write failed");
+    done += static_cast<std::size_t>(n);
   }
-  commitFile(tmp, path);
+  if (::fsync(fd) != 0) fail("fsync failed");
+  ::close(fd);
+  try {
+    commitFile(tmp, path);
+  } catch (...) {
+    ::unlink(tmp.c_str());
+    throw;
+  }
 }
 
 void appendLineDurably(const std::string& path, const std::string& line) {

@@ -170,9 +170,7 @@ std::vector<PoseListEntry> readTum(const std::string& path, const std::vector<Li
     poses.push_back({v[0], {"", fromTranslationQuaternion(path, l, {v.begin() + 1, v.end()}, false), l.number}});
   }
   std::vector<std::pair<double, std::string>> stamped;  // view timestamp, file
-  std::string source;
   if (!o.views.empty()) {
-    source = o.views;
     const fs::path base = fs::path(o.views).parent_path();
     const auto list = dataLines(o.views, "view list");
     if (list.empty()) throw Error(o.views + ": no views listed");
@@ -197,7 +195,6 @@ std::vector<PoseListEntry> readTum(const std::string& path, const std::vector<Li
       return out;
     }
   } else {
-    source = fs::path(path).parent_path().string();
     const fs::path dir = fs::path(path).parent_path().empty() ? fs::path(".") : fs::path(path).parent_path();
     std::error_code ec;
     for (const auto& e : fs::directory_iterator(dir, ec)) {

@@ -12,26 +12,24 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/radius_search.h"
+#include "keyturn/core/string_format.h"
 
 namespace keyturn {
 
 std::vector<double> parseEpsList(const std::string& s) {
   std::vector<double> out;
-  try {
-    if (s.find(':') != std::string::npos) {
-      double a, b, step;
-      char c1, c2;
-      std::istringstream ss(s);
-      if (!(ss >> a >> c1 >> b >> c2 >> step) || c1 != ':' || c2 != ':' || step <= 0 || b < a) throw std::invalid_argument(s);
-      for (double e = a; e <= b + 1e-9; e += step) out.push_back(e);
-    } else {
-      std::istringstream ss(s);
-      for (std::string t; std::getline(ss, t, ',');) out.push_back(std::stod(t));
-    }
-  } catch (const std::exception&) {
-    throw Error("--eps: expected START:STOP:STEP or a comma list of multiples of the resolution, got '" + s + "'");
+  if (s.find(':') != std::string::npos) {
+    std::string list = s;
+    std::replace(list.begin(), list.end(), ':', ',');
+    const std::vector<double> abc = parseNumberList(list, "--eps");
+    if (abc.size() != 3 || !(abc[2] > 0) || abc[1] < abc[0])
+      throw Error("--eps: expected START:STOP:STEP with START <= STOP and STEP > 0, got '" + s + "'");
+    for (int i = 0; abc[0] + i * abc[2] <= abc[1] + 1e-9; ++i) out.push_back(abc[0] + i * abc[2]);  // no summed rounding
+  } else {
+    out = parseNumberList(s, "--eps");
   }
-  if (out.empty()) throw Error("--eps: no values");
+  for (double e : out)
+    if (!(e > 0) || !std::isfinite(e)) throw Error("--eps: each ε must be a positive multiple of the resolution, got '" + s + "'");
   return out;
 }
 
@@ -69,8 +67,11 @@ std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views
   for (int i = 0; i < static_cast<int>(views.size()); ++i) groups[views[i].group].push_back(i);
   std::vector<std::pair<int, int>> pairs;
   for (auto& [g, idx] : groups) {
+    // By angle, views without one (posed by matrices) after those with one: a strict weak order.
     std::stable_sort(idx.begin(), idx.end(), [&](int x, int y) {
-      return std::isfinite(views[x].angle_deg) && views[x].angle_deg < views[y].angle_deg;
+      const double ax = views[x].angle_deg, ay = views[y].angle_deg;
+      if (std::isfinite(ax) != std::isfinite(ay)) return std::isfinite(ax);
+      return std::isfinite(ax) && ax < ay;
     });
     for (std::size_t i = 0; i < idx.size(); ++i)
       for (std::size_t j = i + 1; j < idx.size(); ++j) {

@@ -273,14 +273,24 @@ VerifyReport Dataset::verify(const std::string& root) {
 }
 
 void removeDatasetWithoutViews(const std::string& root) {
-  bool has_views = false;
-  try {
-    has_views = !Dataset::readManifest(root).empty();
-  } catch (const Error&) {
-    // no manifest yet
-  }
+  // Only what a capture writes before its first view: a folder with anything else in it (a
+  // manifest that is not keyturn's, a user's own files) is left as it is.
   std::error_code ec;
-  if (!has_views) std::filesystem::remove_all(root, ec);
+  for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
+    if (!it->is_regular_file(ec)) continue;
+    const std::string rel = fs::relative(it->path(), root).string();
+    if (rel != "dataset.json" && rel != kManifest && rel != "calibration.json" && rel.rfind(".sim/", 0) != 0) return;
+  }
+  if (ec) return;
+  if (fs::exists(fs::path(root) / kManifest)) {
+    std::vector<std::string> bad;
+    try {
+      if (!Dataset::readManifest(root, &bad).empty() || !bad.empty()) return;  // views, or not keyturn's
+    } catch (const Error&) {
+      return;
+    }
+  }
+  fs::remove_all(root, ec);
 }
 
 std::string VerifyReport::text(const std::string& root) const {

@@ -6,6 +6,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
 
@@ -74,7 +75,7 @@ void MesaSrSimConfig::save(const std::string& path) const {
                                   {"random_rate", faults.random_rate}}}};
   if (!world.empty()) j["world"] = world;
   if (!unplug_file.empty()) j["unplug_file"] = unplug_file;
-  std::ofstream(path) << j.dump(2) << "\n";
+  writeFileDurably(path, j.dump(2) + "\n");  // the simulator re-reads it on every open
 }
 
 double readWorldTurntable(const std::string& path, double fallback) {
@@ -90,8 +91,12 @@ double readWorldTurntable(const std::string& path, double fallback) {
 }
 
 void writeWorldTurntable(const std::string& path, double degrees) {
+  // Rewritten at every turntable step: renamed into place (never torn) but not synced.
   const std::string tmp = path + ".tmp";
-  std::ofstream(tmp) << nlohmann::json{{"turntable_deg", degrees}}.dump() << "\n";
+  std::ofstream out(tmp);
+  out << nlohmann::json{{"turntable_deg", degrees}}.dump() << "\n";
+  out.close();
+  if (!out) throw Error(path + ": cannot write world state");
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) throw Error(path + ": cannot write world state: " + ec.message());

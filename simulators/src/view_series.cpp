@@ -2,7 +2,9 @@
 
 #include <cmath>
 #include <cstdio>
+#include <map>
 
+#include "keyturn/core/checked_integer.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/sim/tof_view.h"
@@ -22,6 +24,13 @@ std::string seriesFileName(const std::string& pattern, double angle, bool severa
 
 void renderSeries(const ViewSeries& s,
                   const std::function<void(const std::string&, const Cloud&, double, double)>& written) {
+  // File names hold the angle rounded to a degree: two angles that round alike would overwrite.
+  std::map<std::string, double> named;
+  for (double angle : s.angles) {
+    const auto [it, fresh] = named.emplace(seriesFileName(s.out, angle, s.angles.size() > 1), angle);
+    if (!fresh)
+      throw Error("angles " + numberText(it->second) + " and " + numberText(angle) + " would both write " + it->first);
+  }
   const Mesh mesh = loadMeshOrBuiltin(s.mesh);
   TofViewRenderer renderer(mesh);
   const double distance = s.distance > 0 ? s.distance : operatorDistance(mesh);

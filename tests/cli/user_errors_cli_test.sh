@@ -37,11 +37,24 @@ check "  and leaves no dataset" test ! -e "$work/gige"
 check "describe --bins 1 exits 1" test $? -eq 1
 check "describe --bins 1 is one line naming the option" grep -q "^keyturn describe: --bins: must be within 2..4096" "$work/bins.err"
 check "  (one line)" one_line "$work/bins.err"
+"$KT" evaluate "$work" --bins 16,0 --out "$work/ev" 2> "$work/evbins.err"
+check "evaluate --bins 16,0 exits 1" test $? -eq 1
+check "evaluate --bins checks each value as describe does" grep -q "^keyturn: --bins: must be within 2..4096, not '0'" "$work/evbins.err"
+check "  (one line)" one_line "$work/evbins.err"
+"$KT" describe --max-range nan "$work/cfg.pcd" 2> "$work/nan.err"
+check "describe --max-range nan exits 1" test $? -eq 1
+check "describe --max-range nan names the option" grep -q "^keyturn describe: --max-range: is not a finite number: 'nan'" "$work/nan.err"
 "$KT" grab --frames 0 --out "$work/x.pcd" 2> "$work/frames.err"
 check "grab --frames 0 exits 1" test $? -eq 1
 check "  (one line)" one_line "$work/frames.err"
 "$KT" describe --help > /dev/null
 check "--help still exits 0" test $? -eq 0
+
+# Two angles that round to one file name would overwrite each other: refused before anything is written.
+"$KT" render builtin:mug --angles 10,10.2 --out "$work/r{angle}.pcd" 2> "$work/render.err"
+check "render of two angles with one file name exits 1" test $? -eq 1
+check "  and names both angles and the file" grep -q "angles 10 and 10.2 would both write .*r010.pcd" "$work/render.err"
+check "  and writes nothing" test ! -e "$work/r010.pcd"
 
 # A mesh is not a view.
 "$KT" describe "$data/objects/mug__ycb_025_mug.ply" -q > /dev/null 2> "$work/mesh.err"

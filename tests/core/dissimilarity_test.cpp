@@ -18,6 +18,15 @@ TEST(Dissimilarity, IdenticalPdfsAreZero) {
   for (auto d : {Dissimilarity::Bhattacharyya, Dissimilarity::ChiSquared, Dissimilarity::L1,
                  Dissimilarity::JensenShannon, Dissimilarity::Emd})
     EXPECT_NEAR(dissimilarity(d, kB, kB), 0.0, 1e-12);
+  // A PDF of floats sums to 1 only within rounding; from itself it is still exactly 0.
+  std::vector<double> f;
+  for (int i = 0; i < 32; ++i) f.push_back(static_cast<float>(1.0 / (3 + i)));
+  double sum = 0;
+  for (double v : f) sum += v;
+  for (double& v : f) v = static_cast<float>(v / sum);
+  for (auto d : {Dissimilarity::Bhattacharyya, Dissimilarity::ChiSquared, Dissimilarity::L1,
+                 Dissimilarity::JensenShannon, Dissimilarity::Emd})
+    EXPECT_EQ(dissimilarity(d, f, f), 0.0) << static_cast<int>(d);
 }
 
 TEST(Dissimilarity, DisjointPdfsHitTheirMaxima) {

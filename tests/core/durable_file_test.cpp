@@ -6,6 +6,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+
+#include <unistd.h>
 
 #include "support/error_of.h"
 
@@ -28,18 +31,17 @@ fs::path fresh(const std::string& name) {
 }  // namespace
 
 TEST(DurableFile, WritesReplacesAndLeavesNoTemporary) {
-  const fs::path d = fresh("keyturn_durable_write");
+  const fs::path d = fresh("keyturn_durable_write_" + std::to_string(::getpid()));
   const fs::path f = d / "sub" / "a.txt";
   writeFileDurably(f.string(), std::string("one\0two", 7));
   EXPECT_EQ(read(f), std::string("one\0two", 7)) << "bytes as given, folders created";
   writeFileDurably(f.string(), "three\n");
   EXPECT_EQ(read(f), "three\n");
-  EXPECT_FALSE(fs::exists(f.string() + ".tmp"));
   EXPECT_EQ(std::distance(fs::directory_iterator(d / "sub"), fs::directory_iterator()), 1);
 }
 
 TEST(DurableFile, AppendsWholeLinesAndCommitsATemporary) {
-  const fs::path d = fresh("keyturn_durable_append");
+  const fs::path d = fresh("keyturn_durable_append_" + std::to_string(::getpid()));
   fs::create_directories(d);
   const std::string log = (d / "m.csv").string();
   appendLineDurably(log, "a,1");
@@ -52,17 +54,29 @@ TEST(DurableFile, AppendsWholeLinesAndCommitsATemporary) {
   EXPECT_FALSE(fs::exists(tmp));
 }
 
-TEST(DurableFile, AFileThatCannotBeWrittenIsOneLineNamingIt) {
-  const fs::path d = fresh("keyturn_durable_fail");
-  fs::create_directories(d / "taken");
-  // A folder where the temporary file would go.
-  fs::create_directories(d / "taken" / "f.txt.tmp");
+TEST(DurableFile, AFileThatCannotBeWrittenIsOneLineNamingItAndLeavesNoTemporary) {
+  const fs::path d = fresh("keyturn_durable_fail_" + std::to_string(::getpid()));
+  fs::create_directories(d);
+  // Its folder cannot be made: a file stands where it would go.
+  std::ofstream(d / "plain") << "x";
+  const std::string under_file = (d / "plain" / "f.txt").string();
+  std::string e = test::errorOf([&] { writeFileDurably(under_file, "x"); });
+  EXPECT_EQ(e.rfind(under_file + ": cannot create its folder", 0), 0u) << e;
+  // It cannot be moved into place: a folder with contents has its name.
+  fs::create_directories(d / "taken" / "f.txt" / "inside");
   const std::string target = (d / "taken" / "f.txt").string();
-  const std::string e = test::errorOf([&] { writeFileDurably(target, "x"); });
-  EXPECT_EQ(e.rfind(target + ": cannot open for writing", 0), 0u) << e;
-  EXPECT_FALSE(fs::exists(target));
+  e = test::errorOf([&] { writeFileDurably(target, "x"); });
+  EXPECT_EQ(e.rfind(target + ": cannot move the written file into place", 0), 0u) << e;
+  EXPECT_EQ(std::distance(fs::directory_iterator(d / "taken"), fs::directory_iterator()), 1) << "the temporary is removed";
   const std::string missing = (d / "none.tmp").string();
   EXPECT_EQ(test::errorOf([&] { commitFile(missing, (d / "none").string()); }).rfind(missing + ": cannot open to sync", 0), 0u);
   EXPECT_NE(test::errorOf([&] { appendLineDurably((d / "no" / "dir.csv").string(), "x"); }).find("cannot open for appending"),
             std::string::npos);
+}
+
+TEST(DurableFile, WrittenFilesAreReadableByOthers) {
+  const fs::path d = fresh("keyturn_durable_mode_" + std::to_string(::getpid()));
+  writeFileDurably((d / "m.json").string(), "{}");
+  EXPECT_EQ(fs::status(d / "m.json").permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
 }

@@ -12,6 +12,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "support/error_of.h"
 #include "support/synthetic_clouds.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 namespace fs = std::filesystem;
@@ -19,7 +20,7 @@ namespace fs = std::filesystem;
 namespace {
 
 std::string write(const std::string& name, const std::string& bytes) {
-  const fs::path dir = fs::temp_directory_path() / "keyturn_ply_reader_test";
+  const fs::path dir = keyturn::test::scratchPath("ply_reader_test");
   fs::create_directories(dir);
   const std::string path = (dir / name).string();
   std::ofstream(path, std::ios::binary) << bytes;

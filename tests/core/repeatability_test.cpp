@@ -10,6 +10,7 @@
 #include "keyturn/core/pose_list.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/repeatability.h"
+#include "keyturn/core/repeatability_study.h"
 #include "support/error_of.h"
 #include "support/synthetic_clouds.h"
 
@@ -170,4 +171,15 @@ TEST(Repeatability, AnEqualBudgetGivesEachDetectorExactlyK) {
   std::sort(sorted.begin(), sorted.end(), less);
   std::sort(budget.begin(), budget.end(), less);
   EXPECT_EQ(sorted, budget);
+}
+
+TEST(Repeatability, EpsListsAreRangesOrListsOfPositiveMultiples) {
+  EXPECT_EQ(parseEpsList("1:3:0.5"), (std::vector<double>{1, 1.5, 2, 2.5, 3}));
+  // 0.1 added ten times is not 1.0: the range is START + i·STEP, so its end is kept.
+  EXPECT_EQ(parseEpsList("0.1:1:0.1").size(), 10u);
+  EXPECT_EQ(parseEpsList("0.5,2"), (std::vector<double>{0.5, 2}));
+  EXPECT_EQ(errorOf([] { parseEpsList("1:x:1"); }), "--eps: 'x' is not a number");
+  EXPECT_EQ(errorOf([] { parseEpsList("1.5x"); }), "--eps: '1.5x' is not a number");
+  EXPECT_EQ(errorOf([] { parseEpsList("3:1:1"); }), "--eps: expected START:STOP:STEP with START <= STOP and STEP > 0, got '3:1:1'");
+  EXPECT_EQ(errorOf([] { parseEpsList("-1,2"); }), "--eps: each ε must be a positive multiple of the resolution, got '-1,2'");
 }

@@ -12,6 +12,7 @@
 
 #include "keyturn/learning/model_file.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn::learning;
 namespace fs = std::filesystem;
@@ -48,7 +49,7 @@ ClassifierParams paramsFor(const std::string& kind) {
 }
 
 fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / "keyturn_learning_test";
+  const fs::path d = keyturn::test::scratchPath("learning_test");
   fs::create_directories(d);
   return d;
 }

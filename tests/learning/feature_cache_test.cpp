@@ -13,6 +13,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using namespace keyturn::learning;
@@ -66,7 +67,7 @@ std::vector<float> block(const FeatureTable& t, const FeatureRow& r, const std::
 }  // namespace
 
 TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
-  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_blocks";
+  const fs::path root = keyturn::test::scratchPath("feature_cache_blocks");
   fs::remove_all(root);
   const auto views = writeViews(root);
   const DescriptorOptions o;
@@ -90,7 +91,7 @@ TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
 // The cache, train and classify describe a view as `keyturn describe` and the studio's
 // recogniser do: the same filtered points, K and PDFs for a full frame with its table.
 TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
-  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_describe";
+  const fs::path root = keyturn::test::scratchPath("feature_cache_describe");
   fs::remove_all(root);
   const auto views = writeViews(root);
   DescriptorOptions o;
@@ -121,7 +122,7 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_EQ(all.width(), 15 * 32 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);
 
-  const fs::path root = fs::temp_directory_path() / "keyturn_feature_cache_refill";
+  const fs::path root = keyturn::test::scratchPath("feature_cache_refill");
   fs::remove_all(root);
   auto views = writeViews(root);
   DescriptorOptions o;
@@ -140,7 +141,7 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_EQ(t3.rows[2].id, views[2].id);
 
   // Shards of another folder merge into the same table.
-  const fs::path sharded = fs::temp_directory_path() / "keyturn_feature_cache_shards";
+  const fs::path sharded = keyturn::test::scratchPath("feature_cache_shards");
   fs::remove_all(sharded);
   Counting shards;
   for (int s = 0; s < 2; ++s) describeCacheShard({sharded.string(), views, o, 1, &shards}, s, 2);

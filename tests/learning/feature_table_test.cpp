@@ -9,6 +9,7 @@
 #include <fstream>
 
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn::learning;
 namespace fs = std::filesystem;
@@ -36,7 +37,7 @@ FeatureTable sample(int first_view, int views) {
 }
 
 std::string path(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / "keyturn_feature_table_test";
+  const fs::path d = keyturn::test::scratchPath("feature_table_test");
   fs::create_directories(d);
   return (d / name).string();
 }

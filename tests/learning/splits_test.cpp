@@ -1,6 +1,8 @@
 // Each protocol's split logic: folds partition the rows, and no instance or
 // elevation leaks from a test fold into its training set.
 #include "keyturn/learning/splits.h"
+#include "keyturn/learning/feature_table.h"
+#include "keyturn/learning/protocols.h"
 
 #include <gtest/gtest.h>
 
@@ -107,4 +109,21 @@ TEST(Splits, DegenerateInputsAreClearErrors) {
             std::string::npos);
   EXPECT_NE(keyturn::test::errorOf([] { leaveOneInstanceOut({"a", "b"}, {"a1", "b1"}); }).find("two instances"),
             std::string::npos);
+}
+
+// Instances numbered per class (SR4K-D style "1", "2") stay different objects; names unique
+// across classes keep their own text (the built-in model's class names).
+TEST(Labels, AnInstanceIsItsClassAndInstance) {
+  keyturn::learning::FeatureTable t;
+  for (const auto& [c, i] : std::vector<std::pair<std::string, std::string>>{
+           {"mug", "1"}, {"bowl", "1"}, {"bowl", "2"}, {"can", "ycb_005"}, {"mug", "1"}}) {
+    keyturn::learning::FeatureRow r;
+    r.cls = c;
+    r.instance = i;
+    t.rows.push_back(r);
+  }
+  const Labels l = labelRows(t, LabelKind::Instance);
+  EXPECT_EQ(l.names, (std::vector<std::string>{"2", "bowl/1", "mug/1", "ycb_005"}));
+  EXPECT_EQ(l.of_row, (std::vector<int>{2, 1, 0, 3, 2}));
+  EXPECT_EQ(labelRows(t, LabelKind::Category).names, (std::vector<std::string>{"bowl", "can", "mug"}));
 }

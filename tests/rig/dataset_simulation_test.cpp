@@ -4,7 +4,9 @@
 // sphere target's refused.
 #include <gtest/gtest.h>
 
+
 #include <filesystem>
+#include <fstream>
 
 #include "keyturn/core/error.h"
 #include "keyturn/rig/axis_calibration_run.h"
@@ -90,6 +92,17 @@ TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
   rig::removeDatasetWithoutViews(full.string());
   EXPECT_EQ(rig::Dataset::readManifest(full.string()).size(), 3u);
   fs::remove_all(full);
+  // A user's folder with files of its own, or a manifest keyturn did not write, is never removed.
+  const fs::path theirs = freshDir("theirs");
+  { rig::Dataset d(theirs.string()); }
+  std::ofstream(theirs / "notes.txt") << "mine";
+  rig::removeDatasetWithoutViews(theirs.string());
+  EXPECT_TRUE(fs::exists(theirs / "notes.txt"));
+  fs::remove(theirs / "notes.txt");
+  std::ofstream(theirs / "manifest.csv", std::ios::trunc) << "id;label\n1;mug\n";
+  rig::removeDatasetWithoutViews(theirs.string());
+  EXPECT_TRUE(fs::exists(theirs / "manifest.csv"));
+  fs::remove_all(theirs);
 }
 
 TEST(AxisCalibrationRun, TooFewViewsAndAnObjectThatIsNoTargetAreRefused) {

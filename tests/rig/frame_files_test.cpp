@@ -8,6 +8,7 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 namespace fs = std::filesystem;
@@ -35,7 +36,7 @@ drivers::TofFrame frame() {
 }  // namespace
 
 TEST(FrameFiles, ThePcdReadsBackAsTheFrameAndThePngsLieBesideIt) {
-  const fs::path d = fs::temp_directory_path() / "keyturn_frame_files";
+  const fs::path d = keyturn::test::scratchPath("frame_files");
   fs::remove_all(d);
   const drivers::TofFrame f = frame();
   const auto written = rig::writeFrameFiles((d / "view.pcd").string(), f);
@@ -54,7 +55,7 @@ TEST(FrameFiles, ThePcdReadsBackAsTheFrameAndThePngsLieBesideIt) {
 }
 
 TEST(FrameFiles, AViewNotNamedPcdIsRefused) {
-  const fs::path d = fs::temp_directory_path() / "keyturn_frame_files_bad";
+  const fs::path d = keyturn::test::scratchPath("frame_files_bad");
   fs::remove_all(d);
   const std::string e = test::errorOf([&] { rig::writeFrameFiles((d / "view.ply").string(), frame()); });
   EXPECT_NE(e.find("view.ply: the view must be written as a .pcd file"), std::string::npos) << e;

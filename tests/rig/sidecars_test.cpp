@@ -7,6 +7,7 @@
 #include <fstream>
 
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 namespace fs = std::filesystem;
@@ -24,7 +25,7 @@ const char* kMatrix = "[[1,0,0,0.1],[0,1,0,0.2],[0,0,1,0.7],[0,0,0,1]]";
 }  // namespace
 
 TEST(Sidecars, ReadTheTransformOrNoneWhenUncalibrated) {
-  const fs::path d = fs::temp_directory_path() / "keyturn_sidecars";
+  const fs::path d = keyturn::test::scratchPath("sidecars");
   fs::remove_all(d);
   const auto m = rig::readViewTransform(write(d / "a.json", std::string("{\"camera_from_turntable\": ") + kMatrix + "}"));
   ASSERT_TRUE(m.has_value());
@@ -41,7 +42,7 @@ TEST(Sidecars, ReadTheTransformOrNoneWhenUncalibrated) {
 }
 
 TEST(Sidecars, EachBadFileIsOneLineNamingIt) {
-  const fs::path d = fs::temp_directory_path() / "keyturn_sidecars_bad";
+  const fs::path d = keyturn::test::scratchPath("sidecars_bad");
   fs::remove_all(d);
   const auto err = [&](const std::string& name, const std::string& text) {
     const std::string p = write(d / name, text);

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <map>
 #include <sstream>
 
@@ -14,7 +16,12 @@ namespace {
 double angleOf(const std::string& id) {
   const auto a = id.rfind("/a");
   if (a == std::string::npos) throw Error(id + ": view name has no turntable angle (…/aANGLE)");
-  return std::stod(id.substr(a + 2));
+  const std::string text = id.substr(a + 2);
+  char* end = nullptr;
+  const double angle = std::strtod(text.c_str(), &end);
+  if (text.empty() || *end != '\0' || !std::isfinite(angle))
+    throw Error(id + ": view name's turntable angle '" + text + "' is not a number (…/aANGLE)");
+  return angle;
 }
 
 std::vector<double> pdfOf(const FeatureTable& t, const FeatureRow& r, const std::string& block) {
@@ -63,7 +70,9 @@ ConsistencyReport consistency(const FeatureTable& t, const ConsistencyQuery& q, 
         const auto p = pdfOf(t, *first, q.blocks[k]), r = pdfOf(t, *row, q.blocks[k]);
         const bool ok = !std::isnan(p.front()) && !std::isnan(r.front());
         const double d = ok ? dissimilarity(q.measure, p, r) : std::nan("");
-        csv << ',' << (ok ? std::to_string(d) : "nan");
+        char text[32];
+        std::snprintf(text, sizeof text, "%.9g", d);  // to_string's 6 decimals write 1e-7 as 0.000000
+        csv << ',' << (ok ? text : "nan");
         chart.series[k].x.push_back(angle);
         chart.series[k].y.push_back(d);
       }

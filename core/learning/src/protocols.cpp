@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <fstream>
+#include <map>
 #include <set>
 
 #include "keyturn/core/error.h"
@@ -16,8 +17,14 @@ LabelKind parseLabelKind(const std::string& name) {
 }
 
 Labels labelRows(const FeatureTable& t, LabelKind kind) {
-  const auto key = [kind](const FeatureRow& r) -> const std::string& {
-    return kind == LabelKind::Category ? r.cls : r.instance;
+  // An instance is (class, instance): datasets that number instances per class ("1", "2", … as
+  // SR4K-D does) would otherwise merge different objects into one label. Its name stays the
+  // instance's own where that is unique across classes, "class/instance" where it is not.
+  std::map<std::string, std::set<std::string>> classes_of;
+  for (const auto& r : t.rows) classes_of[r.instance].insert(r.cls);
+  const auto key = [&](const FeatureRow& r) {
+    if (kind == LabelKind::Category) return r.cls;
+    return classes_of.at(r.instance).size() > 1 ? r.cls + "/" + r.instance : r.instance;
   };
   Labels l;
   l.kind = kind;

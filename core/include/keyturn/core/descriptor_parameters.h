@@ -34,6 +34,8 @@ struct DescriptorParameter {
 };
 
 const std::vector<DescriptorParameter>& descriptorParameters();
+// The row of a command-line flag ("--bins"); throws keyturn::Error for an unknown flag.
+const DescriptorParameter& descriptorParameter(const std::string& flag);
 
 // The parameters' specification entries (the rows with a key).
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options);

@@ -7,7 +7,8 @@
 namespace keyturn {
 
 // jobs ≤ 0: one thread per core; never more threads than items. body runs on several
-// threads at once and must not throw.
+// threads at once. If it throws, no further items are started, the running ones finish,
+// and the first exception is rethrown on the caller's thread.
 void parallelFor(std::size_t n, int jobs, const std::function<void(std::size_t i)>& body);
 
 }  // namespace keyturn

@@ -73,6 +73,7 @@ class Dataset {
 
 // Removes a dataset folder that holds no views (no manifest, or one without rows): what a capture
 // that failed before its first view leaves, which verify would otherwise call a good, empty dataset.
+// A folder holding any other file, or a manifest keyturn cannot read, is kept.
 void removeDatasetWithoutViews(const std::string& root);
 
 std::string manifestHeader();

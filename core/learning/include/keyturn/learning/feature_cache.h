@@ -4,7 +4,7 @@
 // keypoint functions, the same on random keypoints (u_*), Osada's D2/D3/A3 and
 // the peers ESF, VFH and OUR-CVFH — kept in DATASET/.keyturn/features-<hash>.csv,
 // the hash being of the feature specification (feature_spec.h). Shards (views
-// i ≡ I mod N) are written beside it and merged when all are present.
+// i ≡ I−1 mod N for --shard I/N) are written beside it and merged when all are present.
 #include <cstddef>
 #include <string>
 #include <utility>

@@ -1,0 +1,15 @@
+#pragma once
+// A path under the temporary folder for one test: named by the test and this process, so suites
+// of two builds running at once on one machine never share (and delete) each other's files.
+#include <unistd.h>
+
+#include <filesystem>
+#include <string>
+
+namespace keyturn::test {
+
+inline std::filesystem::path scratchPath(const std::string& name) {
+  return std::filesystem::temp_directory_path() / ("keyturn_" + name + "_" + std::to_string(::getpid()));
+}
+
+}  // namespace keyturn::test
