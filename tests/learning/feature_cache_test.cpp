@@ -112,12 +112,12 @@ TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
 }
 
 TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
-  // The default parameters of cache version 4 give this name (tested: a changed default renames the cache).
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-dda34511223692ca.csv");
+  // The default parameters of cache version 5 give this name (tested: a changed default renames the cache).
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-5e524815581379ed.csv");
   DescriptorOptions other;
   other.histogram.bins = 16;
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-dda34511223692ca.shard-2-of-4.csv");
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-5e524815581379ed.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
   EXPECT_EQ(all.width(), 15 * 32 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);

@@ -12,8 +12,9 @@
 
 namespace keyturn::learning {
 
-constexpr int kFeatureCacheVersion = 4;     // 2: 9 significant digits (exact); 3: support rule, working resolution;
-                                             // 4: keypoint blocks of filtered views (3 skipped the filter)
+constexpr int kFeatureCacheVersion = 5;     // 2: 9 significant digits (exact); 3: support rule, working resolution;
+                                             // 4: keypoint blocks of filtered views (3 skipped the filter);
+                                             // 5: working-resolution points thinned to at least s apart
 constexpr double kNormalRadius = 0.012;     // VFH / OUR-CVFH normals, metres (≈ 4 SR4000 pixels at 0.6 m)
 
 std::map<std::string, std::string> featureSpec(const DescriptorOptions& options);
