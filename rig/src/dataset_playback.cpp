@@ -68,10 +68,13 @@ Recording::Recording(std::string root, PlaybackOptions options) : root_(std::mov
   if (views_.empty()) throw Error(manifest + ": no views to play back");
   if (!(options_.rate_fps >= 0) || !std::isfinite(options_.rate_fps))
     throw Error(root_ + ": playback rate " + std::to_string(options_.rate_fps) + " frames/s is not a rate");
+  const std::string sidecar = views_.front().sidecar();
+  const ViewCamera first = sidecar.empty() ? ViewCamera() : readViewCamera(root_ + "/" + sidecar);
+  if (options_.rate_fps == 0 && first.imported)
+    throw Error(manifest + ": imported views (their capture times are the import's) have no recorded rate: choose a playback rate");
   rate_fps_ = options_.rate_fps > 0 ? options_.rate_fps : recordedRate(views_);
   if (!(rate_fps_ > 0))
     throw Error(manifest + ": the views' capture times give no rate (fewer than two distinct): choose a playback rate");
-  const std::string sidecar = views_.front().sidecar();
   if (!sidecar.empty()) {
     const std::string path = root_ + "/" + sidecar;
     if (const auto t = readViewTransform(path)) {
@@ -81,7 +84,7 @@ Recording::Recording(std::string root, PlaybackOptions options) : root_(std::mov
           Eigen::AngleAxisd(-views_.front().measured_deg * M_PI / 180.0, Eigen::Vector3d::UnitZ()).toRotationMatrix();
       camera_from_turntable_ = *t * rz;
     }
-    settings_ = readViewCamera(path).settings;
+    settings_ = first.settings;
   }
 }
 
@@ -126,9 +129,11 @@ drivers::TofFrame Recording::next() {
   if (!held_ && delivered_ > 0) {
     index = shown_ + 1;
     if (index == views_.size()) {
-      if (!options_.loop)
-        throw Error(root_ + "/manifest.csv: end of the recording after its " + std::to_string(views_.size()) +
+      if (!options_.loop) {
+        ended_ = true;
+        throw EndOfRecording(root_ + "/manifest.csv: end of the recording after its " + std::to_string(views_.size()) +
                     " views (not looping)");
+      }
       index = 0;
     }
   }
@@ -165,6 +170,19 @@ void Recording::seek(double deg) {
   }
   shown_ = best;
   held_ = true;
+  ended_ = false;  // a recording that ended plays again from where it was sent
+}
+
+bool Recording::ended() const {
+  std::lock_guard<std::mutex> l(mutex_);
+  return ended_;
+}
+
+void Recording::rewind() {
+  std::lock_guard<std::mutex> l(mutex_);
+  shown_ = 0;
+  delivered_ = 0;
+  held_ = ended_ = false;
 }
 
 void Recording::hold() {

@@ -47,9 +47,12 @@ std::optional<Eigen::Matrix4d> readViewTransform(const std::string& path) {
 
 ViewCamera readViewCamera(const std::string& path) {
   const auto j = parse(path, "view sidecar");
-  if (!j.is_object() || !j.contains("camera") || !j["camera"].is_object()) throw Error(path + ": no camera in the view sidecar");
-  const auto& c = j["camera"];
+  if (!j.is_object()) throw Error(path + ": not a keyturn view sidecar");
   ViewCamera out;
+  out.imported = j.contains("imported_by");
+  if (!j.contains("camera")) return out;  // imported from another tool: no camera recorded
+  const auto& c = j["camera"];
+  if (!c.is_object()) throw Error(path + ": camera is not an object");
   try {
     out.device = c.value("device", std::string());
     out.serial = c.value("serial", std::uint32_t{0});

@@ -126,10 +126,18 @@ TEST_F(Playback, LoopsOrEndsWithTheManifestNamed) {
   for (int i = 0; i < 9; ++i) seen.push_back(looping.acquire().distance[0] - 1000);
   EXPECT_EQ(seen, (std::vector<int>{0, 1, 2, 3, 0, 1, 2, 3, 0}));
 
-  rig::PlaybackCamera once(recording(1000, false));
+  auto rec = recording(1000, false);
+  rig::PlaybackCamera once(rec);
   for (int i = 0; i < 4; ++i) (void)once.acquire();
+  EXPECT_FALSE(rec->ended());
   EXPECT_EQ(errorOf([&] { once.acquire(); }),
             root_ + "/manifest.csv: end of the recording after its 4 views (not looping)");
+  EXPECT_THROW(once.acquire(), rig::EndOfRecording);  // not a camera lost: nothing to reconnect to
+  EXPECT_TRUE(rec->ended());
+  rec->rewind();
+  EXPECT_FALSE(rec->ended());
+  EXPECT_EQ(once.acquire().distance[0], 1000);
+  EXPECT_EQ(once.acquire().sequence, 2u);
 }
 
 TEST_F(Playback, PlaysAtTheRecordedRateOrAChosenOne) {
@@ -213,6 +221,27 @@ TEST_F(Playback, AViewWithoutImagesGetsThemFromItsCloud) {
   EXPECT_EQ(f.confidence[0], 65535);
   EXPECT_EQ(f.settings.integration_time, 30);  // no sidecar: the defaults
   EXPECT_EQ(camera.acquire().distance[0], 1001);
+}
+
+TEST_F(Playback, ImportedViewsPlayAtAChosenRateWithTheDefaultSettings) {
+  // An imported view's sidecar (keyturn import) records no camera, and its capture time is the import's.
+  for (double a : kAngles) {
+    char name[64];
+    std::snprintf(name, sizeof name, "/mug/m1/e30/a%.1f.json", a);
+    std::ifstream in(root_ + name);
+    nlohmann::json j = nlohmann::json::parse(in);
+    j.erase("camera");
+    j["imported_by"] = "keyturn import folders";
+    std::ofstream(root_ + name) << j.dump(2);
+  }
+  EXPECT_EQ(errorOf([&] { recording(0); }), root_ +
+                                                "/manifest.csv: imported views (their capture times are the import's) "
+                                                "have no recorded rate: choose a playback rate");
+  rig::PlaybackCamera camera(recording(5));
+  const drivers::TofFrame f = camera.acquire();
+  EXPECT_EQ(f.distance[0], 1000);  // its PNGs still read
+  EXPECT_EQ(f.device, "");
+  EXPECT_EQ(f.settings.integration_time, drivers::TofSettings().integration_time);
 }
 
 TEST(PlaybackSpec, ParsesTheDatasetAndTheRate) {

@@ -386,6 +386,28 @@ class StudioTest : public QObject {
     QVERIFY2(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, qPrintable(angle->text()));
   }
 
+  void aRecordingPlayedOnceEndsAfterItsViewsWithoutABanner() {
+    ObservedFactory observed(*factory_);
+    StudioOptions o = playback(50);
+    o.playback.loop = false;
+    StudioWindow w(observed, o);
+    w.show();
+    auto* status = w.findChild<QLabel*>("cameraStatus");
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording after its 12 views (not looping)"), 15000);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.rates().frames, 12L);   // every view once, none twice
+    QCOMPARE(observed.opens.load(), 1L);  // the end is not a camera lost: no reconnecting
+    QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
+    // Connect again: it plays from the first view.
+    auto* connect = w.findChild<QPushButton*>("cameraConnect");
+    QTest::mouseClick(connect, Qt::LeftButton);  // disconnect
+    QTRY_COMPARE_WITH_TIMEOUT(connect->text(), QString("Connect"), 5000);
+    QTest::mouseClick(connect, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording"), 15000);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.rates().frames, 24L);
+  }
+
   void settingsPersistAcrossSessions() {
     const std::string ini = dir_.filePath("persist.ini").toStdString();
     {

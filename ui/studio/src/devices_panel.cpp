@@ -381,6 +381,11 @@ void DevicesPanel::cameraFailing(const QString& message) {
   camera_fps_->setText("–");
 }
 
+void DevicesPanel::cameraEnded(const QString& message) {
+  camera_status_->setText(tr("%1 — Disconnect, Connect to play it again").arg(message.toHtmlEscaped()));
+  camera_fps_->setText("–");
+}
+
 void DevicesPanel::poseConnected(const QString& device, bool can_move) {
   pose_on_ = true;
   pose_button_->setText(tr("Disconnect"));

@@ -40,6 +40,7 @@ class DevicesPanel : public QWidget {
   void cameraDisconnected();
   void cameraRate(double fps);
   void cameraFailing(const QString& message);
+  void cameraEnded(const QString& message);
   void poseConnected(const QString& device, bool can_move);
   void poseDisconnected();
   void poseFailing(const QString& message);

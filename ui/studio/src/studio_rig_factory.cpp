@@ -48,6 +48,7 @@ std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const CameraReq
   if (r.kind == Kind::Ethernet) return rig::openCamera("eth:" + r.address, "", "", log);
   if (r.kind == Kind::Playback) {
     auto played = recording(r.playback);
+    if (played->ended()) played->rewind();  // Connect after the end plays it again (the pose follows: same timeline)
     std::lock_guard<std::mutex> l(mutex_);
     camera_from_turntable_ = played->cameraFromTurntable();  // the recorded calibration, for captures from it
     return std::make_unique<rig::PlaybackCamera>(played);

@@ -18,11 +18,18 @@
 #include <string>
 #include <vector>
 
+#include "keyturn/core/error.h"
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
 #include "keyturn/rig/dataset.h"
 
 namespace keyturn::rig {
+
+// The end of a recording that does not loop: not a device lost, so nothing to reconnect to.
+class EndOfRecording : public Error {
+ public:
+  using Error::Error;
+};
 
 struct PlaybackOptions {
   double rate_fps = 0;  // 0: the recorded rate (the median interval between views' capture times)
@@ -43,9 +50,11 @@ class Recording {
   std::string describe() const;  // "recording DATASET (N views, R frames/s, looping)"
 
   // The camera's side: waits until the next frame is due, loads it and makes it the one shown.
-  // Throws keyturn::Error naming the view file that is gone or unreadable, or the manifest at the
-  // end of a recording that does not loop.
+  // Throws keyturn::Error naming the view file that is gone or unreadable, and EndOfRecording
+  // naming the manifest at the end of a recording that does not loop (until rewound).
   drivers::TofFrame next();
+  bool ended() const;
+  void rewind();  // from the first view again, playing (not held)
   // The pose source's side: the pose recorded with the frame shown (the first view's before any).
   drivers::Pose pose() const;
   void seek(double turntable_deg);  // to the nearest recorded angle, and hold
@@ -66,7 +75,7 @@ class Recording {
   mutable std::mutex mutex_;
   std::size_t shown_ = 0;
   std::uint64_t delivered_ = 0;
-  bool held_ = false;
+  bool held_ = false, ended_ = false;
   drivers::TofSettings settings_;
   std::chrono::steady_clock::time_point last_due_;
 };
