@@ -33,6 +33,7 @@ struct CaptureArgs {
 int captureSequence(CaptureArgs a) {
   rig::CaptureOptions& o = a.o;
   if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
+  rig::refusePlaybackInto(a.devices, a.out);
   a.devices.sim.dir = a.out + "/.sim";
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
   rig::CaptureRig capture_rig(a.devices);
@@ -89,8 +90,8 @@ int runVerify(const std::string& root) {
 Command addCaptureCommand(CLI::App& app) {
   auto a = std::make_shared<CaptureArgs>();
   auto* cmd = app.add_subcommand("capture", "Capture a turntable sequence into a dataset (resumable)");
-  cmd->add_option("--camera", a->devices.camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
-  cmd->add_option("--pose", a->devices.pose, "sim, modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
+  cmd->add_option("--camera", a->devices.camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS] (a recording)")->capture_default_str();
+  cmd->add_option("--pose", a->devices.pose, "sim (the simulated or played-back rig's own), modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
       ->capture_default_str();
   cmd->add_option("--profile", a->devices.profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
       ->capture_default_str();

@@ -64,7 +64,7 @@ int runGrab(const GrabArgs& a) {
 Command addGrabCommand(CLI::App& app) {
   auto a = std::make_shared<GrabArgs>();
   auto* cmd = app.add_subcommand("grab", "Grab SR4000 frames to an organized PCD and 16-bit PNGs");
-  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL or eth:IP")->capture_default_str();
+  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS]")->capture_default_str();
   cmd->add_option("--mesasr-lib", a->library,
                   "Path of MESA's libmesasr.so for usb/eth (default: $KEYTURN_MESASR_LIB, then the usual sonames)");
   cmd->add_option("--sim-config", a->sim_config, "Simulator configuration JSON (sets MESASR_SIM_CONFIG)");

@@ -2,6 +2,7 @@
 //
 //   keyturn-studio                 devices as last used (Devices panel)
 //   keyturn-studio --simulated     the simulated rig and the built-in model, connected at once
+//   keyturn-studio --playback DATASET  a dataset replayed as camera and turntable, with the built-in model
 //   keyturn-studio --simulated --measure 20 --screenshot live.png
 //                                  run 20 s, print the measured rates as JSON, save the window
 #include <CLI/CLI.hpp>
@@ -9,6 +10,8 @@
 #include <cstdlib>
 #include <iostream>
 
+#include "keyturn/core/error.h"
+#include "keyturn/rig/dataset_playback.h"
 #include "keyturn/studio/studio_rig_factory.h"
 #include "keyturn/studio/studio_session.h"
 
@@ -20,7 +23,9 @@ namespace {
 
 struct Args {
   bool simulated = false;
-  std::string object, model, dataset, settings, screenshot;
+  std::string object, model, dataset, settings, screenshot, playback;
+  double playback_rate = 0;
+  bool playback_once = false;
   int threads = 2;
   bool start_capture = false, paths = false;
   double measure = 0;
@@ -32,9 +37,16 @@ int main(int argc, char** argv) {
   keyturn::studio::catchQuitSignals();
   Args a;
   CLI::App cli("keyturn studio: live ToF capture on a turntable rig and keypoint-based recognition");
-  cli.add_flag("--simulated", a.simulated, "Start with the simulated SR4000 and turntable connected and the built-in model");
+  auto* simulated = cli.add_flag("--simulated", a.simulated, "Start with the simulated SR4000 and turntable connected and the built-in model");
+  cli.add_option("--playback", a.playback,
+                 "Replay this dataset (captured, simulated or imported) as the camera and the turntable, with the built-in "
+                 "model unless --model")
+      ->excludes(simulated);
+  cli.add_option("--playback-rate", a.playback_rate, "Frames per second of the playback (default: as recorded)")
+      ->check(CLI::PositiveNumber);
+  cli.add_flag("--playback-once", a.playback_once, "Stop at the end of the recording instead of starting over");
   cli.add_option("--object", a.object, "Instance on the simulated turntable (data/objects/objects.csv), e.g. ycb_035_power_drill");
-  cli.add_option("--model", a.model, "Model folder (keyturn train --out …); with --simulated the built-in one by default");
+  cli.add_option("--model", a.model, "Model folder (keyturn train --out …); with --simulated or --playback the built-in one by default");
   cli.add_option("--dataset", a.dataset, "Capture dataset folder");
   cli.add_option("--threads", a.threads, "Recognition threads")->capture_default_str()->check(CLI::Range(1, 16));
   cli.add_flag("--start-capture", a.start_capture, "Start the capture sequence as soon as camera and turntable answer");
@@ -61,6 +73,15 @@ int main(int argc, char** argv) {
     std::cerr << "keyturn-studio: " << bad << "\n";
     return 1;
   }
+  // A recording that cannot be played is said here, in one line, not in a window.
+  if (!a.playback.empty()) {
+    try {
+      keyturn::rig::Recording check(a.playback, {a.playback_rate, !a.playback_once});
+    } catch (const keyturn::Error& e) {
+      std::cerr << "keyturn-studio: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM")) {
     std::cerr << "keyturn-studio: no display (DISPLAY is not set): run it on a desktop, or headless as "
                  "xvfb-run -a keyturn-studio …\n";
@@ -70,7 +91,8 @@ int main(int argc, char** argv) {
   keyturn::studio::StudioOptions o;
   o.simulated = a.simulated;
   o.sim_object = a.object;
-  o.model = a.model.empty() && a.simulated ? data + "/models/sim-objects" : a.model;
+  o.model = a.model.empty() && (a.simulated || !a.playback.empty()) ? data + "/models/sim-objects" : a.model;
+  o.playback = {a.playback, a.playback_rate, !a.playback_once};
   o.dataset = a.dataset;
   o.recognition_threads = a.threads;
   o.settings_file = a.settings;

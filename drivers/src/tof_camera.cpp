@@ -39,7 +39,10 @@ TofFrame medianFrame(const std::vector<TofFrame>& frames) {
   TofFrame out = frames.back();  // settings, device, timestamp of the last frame
   const std::size_t n = out.distance.size();
   for (const auto& f : frames)
-    if (f.distance.size() != n || f.cloud.points.size() != n) throw Error("frames differ in size");
+    if (f.distance.size() != n || f.cloud.points.size() != n || f.amplitude.size() != out.amplitude.size() ||
+        f.confidence.size() != out.confidence.size() || f.cloud.amplitude.size() != out.cloud.amplitude.size() ||
+        f.cloud.confidence.size() != out.cloud.confidence.size())
+      throw Error("frames differ in size");
   std::vector<std::pair<std::uint16_t, std::size_t>> samples;
   for (std::size_t i = 0; i < n; ++i) {
     samples.clear();
@@ -54,10 +57,11 @@ TofFrame medianFrame(const std::vector<TofFrame>& frames) {
     std::nth_element(samples.begin(), mid, samples.end());
     const TofFrame& src = frames[mid->second];
     out.distance[i] = src.distance[i];
-    out.amplitude[i] = src.amplitude[i];
+    // A frame replayed from a cloud without amplitude has no amplitude image.
+    if (!out.amplitude.empty()) out.amplitude[i] = src.amplitude[i];
     if (!out.confidence.empty()) out.confidence[i] = src.confidence[i];
     out.cloud.points[i] = src.cloud.points[i];
-    out.cloud.amplitude[i] = src.cloud.amplitude[i];
+    if (!out.cloud.amplitude.empty()) out.cloud.amplitude[i] = src.cloud.amplitude[i];
     if (!out.cloud.confidence.empty()) out.cloud.confidence[i] = src.cloud.confidence[i];
   }
   return out;

@@ -8,6 +8,7 @@
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/drivers/sr4000_camera.h"
+#include "keyturn/rig/dataset_playback.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/mesh.h"
 
@@ -24,12 +25,14 @@ std::string simulatorLibraryPath() {
 
 drivers::Sr4000Connection parseCameraSpec(const std::string& spec) {
   if (spec != "usb" && spec.rfind("usb:", 0) != 0 && spec.rfind("eth:", 0) != 0)
-    throw Error("camera '" + spec + "': expected sim, usb, usb:SERIAL or eth:IP");
+    throw Error("camera '" + spec + "': expected sim, usb, usb:SERIAL, eth:IP or playback:DATASET");
   return drivers::Sr4000Connection::parse(spec);
 }
 
 std::unique_ptr<drivers::TofCamera> openCamera(const std::string& spec, const std::string& sim_config,
                                                const std::string& library, DeviceLog log) {
+  if (isPlaybackSpec(spec))
+    return std::make_unique<PlaybackCamera>(std::make_shared<Recording>(playbackDataset(spec), playbackOptions(spec)));
   drivers::Sr4000Options options;
   options.log = log ? std::move(log) : [](const std::string& line) { std::cerr << "keyturn: camera: " << line << "\n"; };
   if (spec == "sim") {

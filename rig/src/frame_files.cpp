@@ -1,5 +1,7 @@
 #include "keyturn/rig/frame_files.h"
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <opencv2/core.hpp>
 #include <opencv2/imgcodecs.hpp>
@@ -27,7 +29,60 @@ void writePng16(const std::string& path, const std::vector<std::uint16_t>& img, 
   commitFile(tmp, path);
 }
 
+// Empty when the file is not there; the image when it is, on the cloud's grid.
+std::vector<std::uint16_t> readPng16(const std::string& path, std::uint32_t w, std::uint32_t h) {
+  if (!fs::exists(path)) return {};
+  cv::Mat m;
+  try {
+    m = cv::imread(path, cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception& e) {
+    throw Error(path + ": PNG decoder failed: " + e.what());
+  }
+  if (m.empty()) throw Error(path + ": not a readable PNG");
+  if (m.type() != CV_16UC1) throw Error(path + ": not a 16-bit grey PNG");
+  if (static_cast<std::uint32_t>(m.cols) != w || static_cast<std::uint32_t>(m.rows) != h)
+    throw Error(path + ": " + std::to_string(m.cols) + " × " + std::to_string(m.rows) + " pixels, the cloud has " +
+                std::to_string(w) + " × " + std::to_string(h));
+  std::vector<std::uint16_t> out(static_cast<std::size_t>(w) * h);
+  for (int r = 0; r < m.rows; ++r)
+    std::copy(m.ptr<std::uint16_t>(r), m.ptr<std::uint16_t>(r) + m.cols, out.begin() + static_cast<std::ptrdiff_t>(r) * m.cols);
+  return out;
+}
+
+std::uint16_t clampRaw(double v) { return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 65535.0))); }
+
 }  // namespace
+
+drivers::TofFrame readFrameFiles(const std::string& pcd_path, double range_m) {
+  std::string base = pcd_path;
+  if (base.size() > 4 && base.substr(base.size() - 4) == ".pcd") base.resize(base.size() - 4);
+  else throw Error(pcd_path + ": a frame is read from a .pcd file");
+  drivers::TofFrame f;
+  f.cloud = loadCloud(pcd_path);
+  f.width = f.cloud.width;
+  f.height = f.cloud.height;
+  const std::size_t n = f.cloud.size();
+  f.distance = readPng16(base + "_distance.png", f.width, f.height);
+  f.amplitude = readPng16(base + "_amplitude.png", f.width, f.height);
+  f.confidence = readPng16(base + "_confidence.png", f.width, f.height);
+  if (f.distance.empty() && range_m > 0) {
+    f.distance.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const auto& p = f.cloud.points[i];
+      // A return is never 0 (0 means none), however close.
+      f.distance[i] = Cloud::isValid(p) ? std::max<std::uint16_t>(1, clampRaw(p.norm() / range_m * 65535.0)) : 0;
+    }
+  }
+  if (f.amplitude.empty() && f.cloud.amplitude.size() == n) {
+    f.amplitude.resize(n);
+    for (std::size_t i = 0; i < n; ++i) f.amplitude[i] = clampRaw(f.cloud.amplitude[i]);
+  }
+  if (f.confidence.empty() && f.cloud.confidence.size() == n) {
+    f.confidence.resize(n);
+    for (std::size_t i = 0; i < n; ++i) f.confidence[i] = clampRaw(f.cloud.confidence[i] * 65535.0);
+  }
+  return f;
+}
 
 std::vector<std::string> writeFrameFiles(const std::string& pcd_path, const drivers::TofFrame& f) {
   std::string base = pcd_path;

@@ -45,6 +45,29 @@ std::optional<Eigen::Matrix4d> readViewTransform(const std::string& path) {
   return matrix(path, j["camera_from_turntable"]);
 }
 
+ViewCamera readViewCamera(const std::string& path) {
+  const auto j = parse(path, "view sidecar");
+  if (!j.is_object()) throw Error(path + ": not a keyturn view sidecar");
+  ViewCamera out;
+  out.imported = j.contains("imported_by");
+  if (!j.contains("camera")) return out;  // imported from another tool: no camera recorded
+  const auto& c = j["camera"];
+  if (!c.is_object()) throw Error(path + ": camera is not an object");
+  try {
+    out.device = c.value("device", std::string());
+    out.serial = c.value("serial", std::uint32_t{0});
+    drivers::TofSettings& s = out.settings;
+    if (c.contains("modulation_mhz")) s.modulation_frequency = drivers::modulationIndex(c["modulation_mhz"].get<double>());
+    s.integration_time = c.value("integration_time", s.integration_time);
+    s.auto_exposure.enabled = c.value("auto_exposure", s.auto_exposure.enabled);
+    s.amplitude_threshold = c.value("amplitude_threshold", s.amplitude_threshold);
+    s.acquire_mode = c.value("acquire_mode", s.acquire_mode);
+  } catch (const std::exception& e) {
+    throw Error(path + ": camera: " + e.what());
+  }
+  return out;
+}
+
 Eigen::Matrix4d readAxisCalibration(const std::string& path) {
   const auto j = parse(path, "calibration file");
   if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||

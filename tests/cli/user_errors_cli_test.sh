@@ -29,7 +29,7 @@ check "no files after a failed grab" test ! -e "$work/x.pcd"
 # --camera: every choice is listed, sim included.
 "$KT" capture --camera gige --class a --instance b --out "$work/gige" 2> "$work/gige.err"
 check "an unknown camera exits 1" test $? -eq 1
-check "an unknown camera lists sim" grep -q "camera 'gige': expected sim, usb, usb:SERIAL or eth:IP" "$work/gige.err"
+check "an unknown camera lists sim" grep -q "camera 'gige': expected sim, usb, usb:SERIAL, eth:IP or playback:DATASET" "$work/gige.err"
 check "  and leaves no dataset" test ! -e "$work/gige"
 
 # Out-of-range and missing options: one line, exit 1, like every other error.
@@ -102,6 +102,12 @@ if [ -n "$STUDIO" ]; then
   env -u DISPLAY "$STUDIO" --simulated --object nope 2> "$work/studio.err"
   check "studio --object nope exits 1" test $? -eq 1
   check "studio names the object and the list" grep -q "^keyturn-studio: --object nope: not in .*objects.csv (.*ycb_035_power_drill" "$work/studio.err"
+  env -u DISPLAY "$STUDIO" --playback "$work/no-recording" 2> "$work/playback.err"
+  check "studio --playback of nothing exits 1" test $? -eq 1
+  check "studio names the recording, in one line" test "$(cat "$work/playback.err")" = \
+    "keyturn-studio: $work/no-recording: no such dataset to play back"
+  env -u DISPLAY "$STUDIO" --playback "$work" --simulated 2> "$work/both.err"
+  check "studio --playback with --simulated is refused" test $? -eq 1 -a "$(wc -l < "$work/both.err")" -eq 1
   env -u DISPLAY "$STUDIO" --threads 0 2> "$work/threads.err"
   check "studio --threads 0 is one line, exit 1" test $? -eq 1 -a "$(wc -l < "$work/threads.err")" -eq 1
   # Ctrl-C closes the window as its close button does: exit 0 at once, the simulator's folder removed.

@@ -75,7 +75,7 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
   EXPECT_EQ(errorOf([&] { rig::CaptureRig real(d); }),
             "--pose sim needs --camera sim: the simulated table and camera share one world");
   d.camera = "firewire";
-  EXPECT_EQ(errorOf([&] { rig::CaptureRig bad(d); }), "camera 'firewire': expected sim, usb, usb:SERIAL or eth:IP");
+  EXPECT_EQ(errorOf([&] { rig::CaptureRig bad(d); }), "camera 'firewire': expected sim, usb, usb:SERIAL, eth:IP or playback:DATASET");
   fs::remove_all(dir);
 }
 

@@ -1,5 +1,5 @@
-// keyturn studio against the simulated rig, through the real drivers: connect,
-// live recognition, a short capture sequence, a pulled cable, settings.
+// keyturn studio against the simulated rig, through the real drivers, and against a recording played
+// back: connect, live recognition, a short capture sequence, pause, a pulled cable, settings.
 // Runs under xvfb-run (the 3D view needs an OpenGL context).
 #include <QAction>
 #include <QCheckBox>
@@ -10,12 +10,15 @@
 #include <QListWidget>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QSet>
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <atomic>
 #include <utility>
 
 #include "keyturn/rig/dataset.h"
+#include "keyturn/rig/dataset_simulation.h"
 #include "keyturn/rig/sidecars.h"
 #include "keyturn/studio/studio_window.h"
 #include "keyturn/studio/studio_rig_factory.h"
@@ -24,19 +27,42 @@ using namespace keyturn;
 using namespace keyturn::studio;
 
 namespace {
-// The studio's own devices, except the USB bus: cameras are plugged in and out by the test,
-// and the bus reports a change as the libusb hot-plug watcher does.
-class PluggableUsbFactory final : public RigFactory {
+// Counts the frames a camera delivers, so a test waits on frames rather than on the clock.
+class CountedCamera final : public drivers::TofCamera {
  public:
-  explicit PluggableUsbFactory(RigFactory& real) : real_(real) {}
+  CountedCamera(std::unique_ptr<drivers::TofCamera> camera, std::atomic<long>& acquired)
+      : camera_(std::move(camera)), acquired_(acquired) {}
+  void configure(const drivers::TofSettings& s) override { camera_->configure(s); }
+  drivers::TofSettings settings() const override { return camera_->settings(); }
+  drivers::TofFrame acquire() override {
+    drivers::TofFrame f = camera_->acquire();
+    ++acquired_;
+    return f;
+  }
+  std::string deviceString() const override { return camera_->deviceString(); }
+  std::uint32_t serial() const override { return camera_->serial(); }
+
+ private:
+  std::unique_ptr<drivers::TofCamera> camera_;
+  std::atomic<long>& acquired_;
+};
+
+// The studio's own devices, observed: frames acquired and camera opens counted, and the USB bus
+// replaced (cameras are plugged in and out by the test, and the bus reports a change as the
+// libusb hot-plug watcher does, its polls counted).
+class ObservedFactory final : public RigFactory {
+ public:
+  explicit ObservedFactory(RigFactory& real) : real_(real) {}
   void plug(std::vector<std::pair<unsigned, std::string>> cameras) {
     cameras_ = std::move(cameras);
     changed_ = true;
   }
-  int scans = 0;
+  int scans = 0, polls = 0;
+  std::atomic<long> acquired{0}, opens{0};
 
   std::unique_ptr<drivers::TofCamera> openCamera(const CameraRequest& r, Log log) override {
-    return real_.openCamera(r, std::move(log));
+    ++opens;
+    return std::make_unique<CountedCamera>(real_.openCamera(r, std::move(log)), acquired);
   }
   std::unique_ptr<drivers::PoseSource> openPose(const PoseRequest& r, Log log) override {
     return real_.openPose(r, std::move(log));
@@ -47,13 +73,24 @@ class PluggableUsbFactory final : public RigFactory {
     ++scans;
     return cameras_;
   }
-  bool usbCamerasChanged() override { return std::exchange(changed_, false); }
+  bool usbCamerasChanged() override {
+    ++polls;
+    return std::exchange(changed_, false);
+  }
 
  private:
   RigFactory& real_;
   std::vector<std::pair<unsigned, std::string>> cameras_;
   bool changed_ = false;
 };
+
+// After `frames` more frames than `since` were acquired, every one of them has reached the window
+// (a frame is sent before the next acquisition starts): deliver what is queued.
+bool framesDelivered(ObservedFactory& f, long since, long frames) {
+  if (f.acquired < since + frames + 1) return false;
+  QCoreApplication::processEvents();
+  return true;
+}
 }  // namespace
 
 class StudioTest : public QObject {
@@ -62,6 +99,17 @@ class StudioTest : public QObject {
  private:
   std::unique_ptr<StudioRigFactory> factory_;
   QTemporaryDir dir_;
+
+  // A small recording of the power drill (12 views at 30°, every 30°), made on the simulated rig.
+  QString recording_;
+
+  StudioOptions playback(double rate_fps) {
+    StudioOptions o;
+    o.playback = {recording_.toStdString(), rate_fps, true};
+    o.model = std::string(KEYTURN_DATA_DIR) + "/models/sim-objects";
+    o.settings_file = dir_.filePath("playback.ini").toStdString();
+    return o;
+  }
 
   StudioOptions simulated(const std::string& object) {
     StudioOptions o;
@@ -73,6 +121,15 @@ class StudioTest : public QObject {
   }
 
  private slots:
+  void initTestCase() {
+    recording_ = dir_.filePath("recording");
+    rig::DatasetSimulation sim;
+    sim.out = recording_.toStdString();
+    sim.objects = {{"drill", "ycb_035_power_drill", std::string(KEYTURN_DATA_DIR) + "/objects/drill__ycb_035_power_drill.ply"}};
+    sim.elevations = {30};
+    sim.step_deg = 30;
+    QCOMPARE(rig::simulateDataset(sim).written, std::size_t(12));
+  }
   void init() { factory_ = std::make_unique<StudioRigFactory>(std::string(KEYTURN_DATA_DIR) + "/objects/objects.csv"); }
   void cleanup() { factory_.reset(); }
 
@@ -174,9 +231,10 @@ class StudioTest : public QObject {
 
   void pauseFreezesTheLiveViewAndSnapshotSavesTheFrame() {
     const QString dataset = dir_.filePath("snap");
-    StudioOptions o = simulated("ycb_025_mug");
+    ObservedFactory observed(*factory_);
+    StudioOptions o = playback(50);
     o.dataset = dataset.toStdString();
-    StudioWindow w(*factory_, o);
+    StudioWindow w(observed, o);
     w.show();
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
     QAction* pause = nullptr;
@@ -191,9 +249,10 @@ class StudioTest : public QObject {
     QCOMPARE(snaps.entryList({"*.pcd"}, QDir::Files).size(), 1);
     QCOMPARE(snaps.entryList({"*.png"}, QDir::Files).size(), 3);  // distance, amplitude, confidence
     pause->trigger();
-    QTest::qWait(200);  // frames already queued to the window are dropped
+    // Paused, the window takes none of the next 20 frames the camera delivers (nor any queued before).
     const long frozen = w.rates().frames;
-    QTest::qWait(1000);
+    const long acquired = observed.acquired;
+    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 20), 10000);
     QCOMPARE(w.rates().frames, frozen);
     pause->trigger();
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frozen + 10, 10000);
@@ -225,7 +284,8 @@ class StudioTest : public QObject {
   }
 
   void aPulledCableShowsTheBannerAndTheSessionRecovers() {
-    StudioWindow w(*factory_, simulated("ycb_025_mug"));
+    ObservedFactory observed(*factory_);
+    StudioWindow w(observed, simulated("ycb_025_mug"));
     w.show();
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 10, 15000);
     auto* unplug = w.findChild<QCheckBox*>("simUnplug");
@@ -235,8 +295,12 @@ class StudioTest : public QObject {
     QVERIFY2(w.bannerText().startsWith("Camera stopped answering: "), qPrintable(w.bannerText()));
     QVERIFY2(w.bannerText().contains("SR4000"), qPrintable(w.bannerText()));  // names the device
     const long frames_while_out = w.rates().frames;
-    QTest::qWait(1500);
-    QCOMPARE(w.rates().frames, frames_while_out);  // nothing arrives while unplugged
+    // Nothing arrives while unplugged: not after two attempts to open it again have failed.
+    const long opens = observed.opens;
+    QTRY_VERIFY_WITH_TIMEOUT(observed.opens >= opens + 2, 10000);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.rates().frames, frames_while_out);
+    QVERIFY2(!w.bannerText().isEmpty(), "the banner stays while the camera is out");
     unplug->setChecked(false);
     const long results_while_out = w.rates().results;
     QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), 15000);
@@ -262,7 +326,7 @@ class StudioTest : public QObject {
   }
 
   void theUsbListFollowsCamerasPluggedInAndOut() {
-    PluggableUsbFactory usb(*factory_);
+    ObservedFactory usb(*factory_);
     StudioOptions o;
     o.settings_file = dir_.filePath("usb.ini").toStdString();
     StudioWindow w(usb, o);
@@ -273,8 +337,9 @@ class StudioTest : public QObject {
     QCOMPARE(list->count(), 1);
     QCOMPARE(list->itemText(0), QString("no SwissRanger on USB"));
     const int scans_before = usb.scans;
-    QTest::qWait(1500);
-    QCOMPARE(usb.scans, scans_before);  // no change on the bus: no rescan
+    const int polls = usb.polls;
+    QTRY_VERIFY_WITH_TIMEOUT(usb.polls >= polls + 2, 5000);
+    QCOMPARE(usb.scans, scans_before);  // the bus polled twice, no change on it: no rescan
     usb.plug({{4000123u, "SR4000 serial 4000123 (bus 1, port 2)"}, {4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});
     QTRY_COMPARE_WITH_TIMEOUT(list->count(), 2, 3000);
     QCOMPARE(list->itemData(1).toUInt(), 4000456u);
@@ -284,6 +349,63 @@ class StudioTest : public QObject {
     QCOMPARE(list->itemData(0).toUInt(), 4000456u);
     usb.plug({});
     QTRY_COMPARE_WITH_TIMEOUT(list->itemText(0), QString("no SwissRanger on USB"), 3000);
+  }
+
+  void playsBackARecordingWithLiveRecognition() {
+    ObservedFactory observed(*factory_);
+    StudioWindow w(observed, playback(25));
+    w.show();
+    QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString("ycb_035_power_drill"), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, 20000);
+    QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
+    QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
+    // More frames than the recording holds: it loops.
+    QTRY_VERIFY_WITH_TIMEOUT(observed.acquired > 12, 10000);
+    auto* status = w.findChild<QLabel*>("cameraStatus");
+    QVERIFY2(status->text().contains("recording " + recording_ + " (12 views, 25 frames/s, looping)"), qPrintable(status->text()));
+    // The pose shown is one the recording holds (its measured angles, near every 30°).
+    auto* angle = w.findChild<QLabel*>("poseAngle");
+    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), 5000);
+    // It follows the frames: several recorded angles go by, each near a multiple of 30°.
+    QSet<QString> angles;
+    const auto seen = [&] {
+      angles.insert(angle->text());
+      return angles.size() >= 4;
+    };
+    QTRY_VERIFY_WITH_TIMEOUT(seen(), 10000);
+    for (const QString& a : angles) {
+      const double deg = QString(a).chopped(1).toDouble();
+      QVERIFY2(std::abs(deg - 30.0 * std::round(deg / 30.0)) < 0.2, qPrintable(a));
+    }
+    // Move to seeks the recording and holds there: the pose and the frames stay at 90°.
+    w.findChild<QDoubleSpinBox*>("poseTarget")->setValue(90);
+    QTest::mouseClick(w.findChild<QPushButton*>("poseMoveTo"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, 5000);
+    const long acquired = observed.acquired;
+    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 15), 10000);
+    QVERIFY2(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, qPrintable(angle->text()));
+  }
+
+  void aRecordingPlayedOnceEndsAfterItsViewsWithoutABanner() {
+    ObservedFactory observed(*factory_);
+    StudioOptions o = playback(50);
+    o.playback.loop = false;
+    StudioWindow w(observed, o);
+    w.show();
+    auto* status = w.findChild<QLabel*>("cameraStatus");
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording after its 12 views (not looping)"), 15000);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.rates().frames, 12L);   // every view once, none twice
+    QCOMPARE(observed.opens.load(), 1L);  // the end is not a camera lost: no reconnecting
+    QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
+    // Connect again: it plays from the first view.
+    auto* connect = w.findChild<QPushButton*>("cameraConnect");
+    QTest::mouseClick(connect, Qt::LeftButton);  // disconnect
+    QTRY_COMPARE_WITH_TIMEOUT(connect->text(), QString("Connect"), 5000);
+    QTest::mouseClick(connect, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording"), 15000);
+    QCoreApplication::processEvents();
+    QCOMPARE(w.rates().frames, 24L);
   }
 
   void settingsPersistAcrossSessions() {

@@ -4,6 +4,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/rig/dataset.h"
+#include "keyturn/rig/dataset_playback.h"
 
 namespace keyturn::studio {
 
@@ -69,6 +70,10 @@ void CameraWorker::acquireOne() {
   try {
     auto frame = std::make_shared<drivers::TofFrame>(camera_->acquire());
     emit frameReady(frame);
+  } catch (const rig::EndOfRecording& e) {
+    live_->stop();
+    emit ended(QString::fromStdString(e.what()));
+    return;
   } catch (const std::exception& e) {
     lost(e.what());
     return;

@@ -39,6 +39,7 @@ class CameraWorker : public QObject {
   void frameReady(keyturn::studio::FramePtr frame);
   void openFailed(QString message);  // could not open it (no retries: the user chose it just now)
   void failed(QString message);      // the camera stopped answering; reconnecting
+  void ended(QString message);       // a recording played to its end (no reconnecting)
   void recovered(QString device);
   void logLine(QString line);
   void rate(double frames_per_second);

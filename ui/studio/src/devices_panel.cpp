@@ -34,7 +34,7 @@ QWidget* DevicesPanel::cameraGroup() {
   auto* box = new QGroupBox(tr("Camera"));
   auto* form = new QFormLayout(box);
   camera_kind_ = new QComboBox;
-  camera_kind_->addItems({tr("Simulated SR4000"), tr("USB"), tr("Ethernet")});
+  camera_kind_->addItems({tr("Simulated SR4000"), tr("USB"), tr("Ethernet"), tr("Recording (playback)")});
   camera_kind_->setObjectName("cameraKind");
   form->addRow(tr("Source"), camera_kind_);
 
@@ -57,6 +57,26 @@ QWidget* DevicesPanel::cameraGroup() {
   camera_where_->addWidget(sim_object_);
   camera_where_->addWidget(usb);
   camera_where_->addWidget(address_);
+  // A dataset replayed: its folder, the rate (0 = as recorded) and whether it starts over at the end.
+  auto* playback = new QWidget;
+  auto* playback_row = new QHBoxLayout(playback);
+  playback_row->setContentsMargins(0, 0, 0, 0);
+  playback_dataset_ = new QLineEdit;
+  playback_dataset_->setObjectName("playbackDataset");
+  playback_dataset_->setPlaceholderText(tr("dataset folder"));
+  playback_rate_ = new QDoubleSpinBox;
+  playback_rate_->setObjectName("playbackRate");
+  playback_rate_->setRange(0, 100);
+  playback_rate_->setDecimals(1);
+  playback_rate_->setSuffix(tr(" /s"));
+  playback_rate_->setSpecialValueText(tr("as recorded"));
+  playback_rate_->setToolTip(tr("Frames per second (0: the rate the dataset was recorded at)"));
+  playback_loop_ = new QCheckBox(tr("Loop"));
+  playback_loop_->setChecked(true);
+  playback_row->addWidget(playback_dataset_, 1);
+  playback_row->addWidget(playback_rate_);
+  playback_row->addWidget(playback_loop_);
+  camera_where_->addWidget(playback);
   form->addRow(tr("Device"), camera_where_);
 
   auto_exposure_ = new QCheckBox(tr("Auto exposure"));
@@ -135,7 +155,8 @@ QWidget* DevicesPanel::poseGroup() {
   auto* box = new QGroupBox(tr("Turntable / robot"));
   auto* form = new QFormLayout(box);
   pose_kind_ = new QComboBox;
-  pose_kind_->addItems({tr("None"), tr("Simulated turntable"), tr("Modbus TCP"), tr("Modbus RTU"), tr("CANopen")});
+  pose_kind_->addItems({tr("None"), tr("Simulated turntable"), tr("Modbus TCP"), tr("Modbus RTU"), tr("CANopen"),
+                        tr("Recording (the camera's)")});
   pose_kind_->setCurrentIndex(1);
   form->addRow(tr("Source"), pose_kind_);
   pose_endpoint_ = new QLineEdit;
@@ -183,7 +204,9 @@ QWidget* DevicesPanel::poseGroup() {
   target_->setRange(0, 359.9);
   target_->setDecimals(1);
   target_->setSuffix("°");
+  target_->setObjectName("poseTarget");
   go_ = new QPushButton(tr("Move to"));
+  go_->setObjectName("poseMoveTo");
   auto* stop_b = new QPushButton(tr("Stop"));
   stop_b->setShortcut(QKeySequence(Qt::Key_Escape));
   moves->addWidget(home_b);
@@ -213,7 +236,7 @@ void DevicesPanel::updateCameraKind() {
 
 void DevicesPanel::updatePoseKind() {
   const auto k = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
-  const bool external = k != PoseRequest::Kind::None && k != PoseRequest::Kind::Simulated;
+  const bool external = k != PoseRequest::Kind::None && k != PoseRequest::Kind::Simulated && k != PoseRequest::Kind::Playback;
   pose_endpoint_->setEnabled(external);
   pose_profile_->setEnabled(external);
   pose_endpoint_->setPlaceholderText(k == PoseRequest::Kind::ModbusTcp   ? "127.0.0.1:1502"
@@ -239,7 +262,22 @@ CameraRequest DevicesPanel::cameraRequest() const {
   r.usb_serial = usb_list_->currentData().toUInt();
   r.address = address_->text().trimmed().toStdString();
   r.sim_object = simObject().toStdString();
+  r.playback = playback();
   return r;
+}
+
+PlaybackRequest DevicesPanel::playback() const {
+  PlaybackRequest p;
+  p.dataset = playback_dataset_->text().trimmed().toStdString();
+  p.rate_fps = playback_rate_->value();
+  p.loop = playback_loop_->isChecked();
+  return p;
+}
+
+void DevicesPanel::setPlayback(const PlaybackRequest& p) {
+  playback_dataset_->setText(QString::fromStdString(p.dataset));
+  playback_rate_->setValue(p.rate_fps);
+  playback_loop_->setChecked(p.loop);
 }
 
 drivers::TofSettings DevicesPanel::cameraSettings() const {
@@ -262,6 +300,7 @@ PoseRequest DevicesPanel::poseRequest() const {
   r.kind = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
   r.endpoint = pose_endpoint_->text().trimmed().toStdString();
   r.profile = pose_profile_->text().trimmed().toStdString();
+  r.playback = playback();
   return r;
 }
 
@@ -283,6 +322,9 @@ void DevicesPanel::save(QSettings& s) const {
   s.setValue("camera/auto_exposure", auto_exposure_->isChecked());
   s.setValue("camera/modulation", modulation_->currentIndex());
   s.setValue("camera/threshold", threshold_->value());
+  s.setValue("camera/playback_dataset", playback_dataset_->text());
+  s.setValue("camera/playback_rate", playback_rate_->value());
+  s.setValue("camera/playback_loop", playback_loop_->isChecked());
   s.setValue("pose/kind", pose_kind_->currentIndex());
   s.setValue("pose/endpoint", pose_endpoint_->text());
   s.setValue("pose/profile", pose_profile_->text());
@@ -297,6 +339,9 @@ void DevicesPanel::restore(const QSettings& s) {
   auto_exposure_->setChecked(s.value("camera/auto_exposure", false).toBool());
   modulation_->setCurrentIndex(s.value("camera/modulation", 0).toInt());
   threshold_->setValue(s.value("camera/threshold", 0).toInt());
+  playback_dataset_->setText(s.value("camera/playback_dataset").toString());
+  playback_rate_->setValue(s.value("camera/playback_rate", 0.0).toDouble());
+  playback_loop_->setChecked(s.value("camera/playback_loop", true).toBool());
   pose_kind_->setCurrentIndex(s.value("pose/kind", 1).toInt());
   pose_endpoint_->setText(s.value("pose/endpoint").toString());
   pose_profile_->setText(s.value("pose/profile", "keyturn-sim").toString());
@@ -333,6 +378,11 @@ void DevicesPanel::cameraRate(double fps) { camera_fps_->setText(QString("%1 fra
 
 void DevicesPanel::cameraFailing(const QString& message) {
   camera_status_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(message.toHtmlEscaped()));
+  camera_fps_->setText("–");
+}
+
+void DevicesPanel::cameraEnded(const QString& message) {
+  camera_status_->setText(tr("%1 — Disconnect, Connect to play it again").arg(message.toHtmlEscaped()));
   camera_fps_->setText("–");
 }
 

@@ -28,6 +28,8 @@ class DevicesPanel : public QWidget {
   PoseRequest poseRequest() const;
   void setCameraChoice(CameraRequest::Kind kind, const QString& sim_object);
   void setPoseChoice(PoseRequest::Kind kind);
+  void setPlayback(const PlaybackRequest& playback);
+  PlaybackRequest playback() const;
   QString simObject() const;
 
   void save(QSettings& s) const;
@@ -38,6 +40,7 @@ class DevicesPanel : public QWidget {
   void cameraDisconnected();
   void cameraRate(double fps);
   void cameraFailing(const QString& message);
+  void cameraEnded(const QString& message);
   void poseConnected(const QString& device, bool can_move);
   void poseDisconnected();
   void poseFailing(const QString& message);
@@ -66,7 +69,9 @@ class DevicesPanel : public QWidget {
   RigFactory& factory_;
   bool camera_on_ = false, pose_on_ = false;
   QComboBox *camera_kind_, *sim_object_, *usb_list_, *modulation_, *pose_kind_;
-  QLineEdit *address_, *pose_endpoint_, *pose_profile_;
+  QLineEdit *address_, *pose_endpoint_, *pose_profile_, *playback_dataset_;
+  QDoubleSpinBox* playback_rate_;
+  QCheckBox* playback_loop_;
   QStackedWidget* camera_where_;
   QSpinBox *integration_, *threshold_;
   QCheckBox *auto_exposure_, *median_, *denoise_, *fixed_pattern_, *conf_map_, *unplug_;

@@ -7,6 +7,7 @@ std::string CameraRequest::describe() const {
     case Kind::Simulated: return "simulated SR4000 (" + sim_object + ")";
     case Kind::Usb: return usb_serial ? "SR4000 " + std::to_string(usb_serial) + " on USB" : "SR4000 on USB";
     case Kind::Ethernet: return "SR4000 at " + address;
+    case Kind::Playback: return "recording " + playback.dataset;
   }
   return "camera";
 }
@@ -18,6 +19,7 @@ std::string PoseRequest::describe() const {
     case Kind::ModbusTcp: return "Modbus TCP turntable at " + endpoint;
     case Kind::ModbusRtu: return "Modbus RTU turntable on " + endpoint;
     case Kind::Can: return "CANopen axes on " + endpoint;
+    case Kind::Playback: return "poses of the recording " + playback.dataset;
   }
   return "pose source";
 }

@@ -46,6 +46,13 @@ std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const CameraReq
   if (r.kind == Kind::Usb)
     return rig::openCamera(r.usb_serial ? "usb:" + std::to_string(r.usb_serial) : "usb", "", "", log);
   if (r.kind == Kind::Ethernet) return rig::openCamera("eth:" + r.address, "", "", log);
+  if (r.kind == Kind::Playback) {
+    auto played = recording(r.playback);
+    if (played->ended()) played->rewind();  // Connect after the end plays it again (the pose follows: same timeline)
+    std::lock_guard<std::mutex> l(mutex_);
+    camera_from_turntable_ = played->cameraFromTurntable();  // the recorded calibration, for captures from it
+    return std::make_unique<rig::PlaybackCamera>(played);
+  }
   const SimObject* object = &objects_.front();
   for (const auto& o : objects_)
     if (o.instance == r.sim_object) object = &o;
@@ -74,9 +81,19 @@ std::unique_ptr<drivers::PoseSource> StudioRigFactory::openPose(const PoseReques
     case Kind::ModbusTcp: return rig::openPoseSource("modbus-tcp:" + r.endpoint, r.profile, log);
     case Kind::ModbusRtu: return rig::openPoseSource("modbus-rtu:" + r.endpoint, r.profile, log);
     case Kind::Can: return rig::openPoseSource("can:" + r.endpoint, r.profile, log);
+    case Kind::Playback: return std::make_unique<rig::PlaybackPose>(recording(r.playback));
     case Kind::None: break;
   }
   throw Error("no pose source chosen");
+}
+
+std::shared_ptr<rig::Recording> StudioRigFactory::recording(const PlaybackRequest& r) {
+  std::lock_guard<std::mutex> l(mutex_);
+  if (!recording_ || !(playing_ == r)) {
+    recording_ = std::make_shared<rig::Recording>(r.dataset, rig::PlaybackOptions{r.rate_fps, r.loop});
+    playing_ = r;
+  }
+  return recording_;
 }
 
 void StudioRigFactory::setSimulatedCameraUnplugged(bool unplugged) {

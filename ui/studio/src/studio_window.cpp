@@ -14,6 +14,7 @@
 #include <QToolBar>
 #include <QVBoxLayout>
 
+#include "keyturn/rig/dataset.h"
 #include "studio_window_impl.h"
 
 namespace keyturn::studio {
@@ -157,6 +158,21 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
     // The turntable first: the simulated camera sees the angle it publishes.
     emit d_->devices->connectPose();
     emit d_->devices->connectCamera();
+  }
+  if (!d_->options.playback.dataset.empty()) {
+    d_->devices->setPlayback(d_->options.playback);
+    // A capture from the recording is labelled as its first view until the user says otherwise.
+    try {
+      const auto views = rig::Dataset::readManifest(d_->options.playback.dataset);
+      if (!views.empty())
+        d_->capture->setObject(QString::fromStdString(views.front().key.cls), QString::fromStdString(views.front().key.instance));
+    } catch (const std::exception&) {
+      // The camera's open names the problem in the banner.
+    }
+    d_->devices->setCameraChoice(CameraRequest::Kind::Playback, QString());
+    d_->devices->setPoseChoice(PoseRequest::Kind::Playback);
+    emit d_->devices->connectCamera();
+    emit d_->devices->connectPose();
   }
   if (d_->options.geodesic_paths) d_->paths_action->setChecked(true);
   if (d_->options.start_capture) {

@@ -73,6 +73,10 @@ void StudioWindow::Impl::wire() {
     devices->cameraFailing(why);
     updateBanner();
   });
+  QObject::connect(camera, &CameraWorker::ended, w, [this](const QString& why) {
+    devices->cameraEnded(why);
+    w->statusBar()->showMessage(why, 8000);
+  });
   QObject::connect(camera, &CameraWorker::openFailed, w, [this](const QString& why) {
     camera_problem = tr("Could not open the camera: %1").arg(why);
     devices->cameraFailing(why);

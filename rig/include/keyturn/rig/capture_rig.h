@@ -15,8 +15,8 @@
 namespace keyturn::rig {
 
 struct CaptureDevices {
-  std::string camera = "sim";   // sim, usb, usb:SERIAL, eth:IP
-  std::string pose = "sim";     // sim (needs camera sim) or a pose source spec
+  std::string camera = "sim";   // sim, usb, usb:SERIAL, eth:IP, playback:DATASET[@FPS]
+  std::string pose = "sim";     // sim (the simulated or played-back rig's own), playback, or a pose source spec
   std::string profile;          // the pose source's profile
   SimulatedRigOptions sim;      // with camera sim (simulated_pose follows pose)
 };
@@ -40,5 +40,8 @@ class CaptureRig {
   drivers::PoseSource* pose_ = nullptr;
   std::optional<Eigen::Matrix4d> camera_from_turntable_;
 };
+
+// A capture from a recording into that recording would overwrite what it plays: refused, naming out.
+void refusePlaybackInto(const CaptureDevices& devices, const std::string& out);
 
 }  // namespace keyturn::rig

@@ -14,4 +14,10 @@ namespace keyturn::rig {
 // Returns every path written.
 std::vector<std::string> writeFrameFiles(const std::string& pcd_path, const drivers::TofFrame& frame);
 
+// The inverse: the PCD and the PNGs beside it, as a frame. A view that has no PNGs (imported from
+// another tool) gets them from its cloud: distance from each point's range over
+// non_ambiguous_range_m (0xFFFF = that range), amplitude and confidence from the cloud's fields.
+// Throws keyturn::Error naming the file that is unreadable or does not match the cloud's grid.
+drivers::TofFrame readFrameFiles(const std::string& pcd_path, double non_ambiguous_range_m);
+
 }  // namespace keyturn::rig

@@ -5,10 +5,23 @@
 #include <optional>
 #include <string>
 
+#include "keyturn/drivers/tof_camera.h"
+
 namespace keyturn::rig {
 
 // The sidecar's camera ← turntable transform; nullopt when the rig was not calibrated.
 std::optional<Eigen::Matrix4d> readViewTransform(const std::string& sidecar_path);
+
+// The camera a view was taken with, as its sidecar records it (device string, serial, and the
+// settings it keeps: modulation, integration time, auto exposure, amplitude threshold, acquire mode).
+// A view imported from another tool (keyturn import) records none: the defaults, and imported set.
+struct ViewCamera {
+  std::string device;
+  std::uint32_t serial = 0;
+  drivers::TofSettings settings;
+  bool imported = false;  // its captured_at is when it was imported, not taken
+};
+ViewCamera readViewCamera(const std::string& sidecar_path);
 
 // A keyturn-axis-calibration file's camera ← turntable at 0°.
 Eigen::Matrix4d readAxisCalibration(const std::string& path);

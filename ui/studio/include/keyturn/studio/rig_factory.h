@@ -13,20 +13,30 @@
 
 namespace keyturn::studio {
 
+// A dataset replayed as the camera and the pose source (rig/dataset_playback.h).
+struct PlaybackRequest {
+  std::string dataset;
+  double rate_fps = 0;  // 0: the recorded rate
+  bool loop = true;
+  bool operator==(const PlaybackRequest& o) const { return dataset == o.dataset && rate_fps == o.rate_fps && loop == o.loop; }
+};
+
 struct CameraRequest {
-  enum class Kind { Simulated, Usb, Ethernet } kind = Kind::Simulated;
+  enum class Kind { Simulated, Usb, Ethernet, Playback } kind = Kind::Simulated;
   unsigned usb_serial = 0;     // 0: the first camera found
   std::string address;         // Ethernet IPv4
   std::string sim_object;      // Simulated: the object on the simulated turntable (a name from simObjects())
   double sim_elevation_deg = 30;
   double sim_distance_m = 0;   // 0: where an operator would place the camera
+  PlaybackRequest playback;    // Playback: the recording
   std::string describe() const;
 };
 
 struct PoseRequest {
-  enum class Kind { None, Simulated, ModbusTcp, ModbusRtu, Can } kind = Kind::Simulated;
+  enum class Kind { None, Simulated, ModbusTcp, ModbusRtu, Can, Playback } kind = Kind::Simulated;
   std::string endpoint;        // HOST:PORT, a serial device, or a CAN interface
   std::string profile = "keyturn-sim";  // Modbus register profile, or the CANopen axes file
+  PlaybackRequest playback;    // Playback: the camera's recording (the same one: its pose follows its frames)
   std::string describe() const;
 };
 

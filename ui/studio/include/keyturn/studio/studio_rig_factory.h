@@ -6,6 +6,7 @@
 #include <mutex>
 
 #include "keyturn/drivers/usb_discovery.h"
+#include "keyturn/rig/dataset_playback.h"
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/studio/rig_factory.h"
 
@@ -27,12 +28,17 @@ class StudioRigFactory final : public RigFactory {
   const std::string& runtimeDir() const { return files_.dir; }
 
  private:
+  // The camera and the pose source of one recording share its timeline, whichever opens first.
+  std::shared_ptr<rig::Recording> recording(const PlaybackRequest& request);
+
   std::vector<SimObject> objects_;
   rig::SimulatedRigFiles files_;
   mutable std::mutex mutex_;
   std::optional<Eigen::Matrix4d> camera_from_turntable_;
   std::unique_ptr<drivers::UsbHotplugWatcher> hotplug_;
   bool hotplug_tried_ = false, usb_changed_ = false;
+  PlaybackRequest playing_;
+  std::shared_ptr<rig::Recording> recording_;
 };
 
 }  // namespace keyturn::studio
