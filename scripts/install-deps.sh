@@ -44,6 +44,9 @@ packages=(
   python3
   # the Python module (ui/python, pybind11) and its tests (numpy); scikit-learn is optional (docs/python.md)
   python3-dev pybind11-dev python3-numpy
+  # the Slurm test (tests/slurm: a private single-node cluster on loopback runs describe and
+  # evaluate as array jobs): Slurm's daemons and commands, and munge for its credentials
+  slurm-wlm munge
 )
 
 # Commands the scripts and tests call (a package can be installed and still not
@@ -51,6 +54,7 @@ packages=(
 commands=(
   cc c++ cmake ctest ninja ccache pkg-config "$KEYTURN_CC" "$KEYTURN_CXX"
   xvfb-run Xvfb xauth mbpoll umockdev-run umockdev-wrapper
+  munged mungekey slurmctld slurmd sbatch squeue scontrol sinfo
 )
 
 check_commands() {
