@@ -11,7 +11,9 @@
 #include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/learning/evaluation_parts.h"
 #include "keyturn/learning/evaluation_report.h"
+#include "keyturn/learning/feature_cache.h"
 #include "keyturn/ui/report_plots.h"
 #include "learning_options.h"
 #include "progress.h"
@@ -26,7 +28,8 @@ const char* kDefaultFeatures =
 struct EvaluateArgs {
   std::string dataset, features = kDefaultFeatures, classifiers = "xgboost,mlp",
                        protocols = "kfold10,leave-elevation,leave-instance", bins, out;
-  bool json = false, quiet = false;
+  std::string shard;  // "I/N": train and test this share of the folds into a part
+  bool json = false, quiet = false, merge = false;
   int jobs = 0;
   std::uint64_t split_seed = 7;
   DescriptorFlags flags;
@@ -34,6 +37,9 @@ struct EvaluateArgs {
 };
 
 int runEvaluate(const EvaluateArgs& a) {
+  if (!a.shard.empty() && (a.merge || a.json))
+    throw Error(std::string("--shard writes a part of the report; ") + (a.merge ? "--merge" : "--json") +
+                " belongs to the run that merges the parts");
   learning::EvaluationPlan plan;
   plan.dataset = a.dataset;
   plan.feature_sets = splitList(a.features);
@@ -58,12 +64,27 @@ int runEvaluate(const EvaluateArgs& a) {
     options.histogram.bins = bins;
     return datasetFeatures(a.dataset, options, a.jobs, a.quiet);
   });
-  Progress progress("evaluate", run.totalFolds(), !a.quiet);
-  learning::evaluateRows(run, [&] { progress.advance(); });
-  progress.finish();
+  const std::filesystem::path out(a.out);
+  if (!a.shard.empty()) {
+    const auto [shard, shards] = learning::parseShard(a.shard);
+    Progress progress("evaluate", learning::foldJobs(run, shard, shards).size(), !a.quiet);
+    learning::evaluateRows(run, [&] { progress.advance(); }, shard, shards);
+    progress.finish();
+    const std::string part = learning::evaluationPartPath(a.out, shard, shards);
+    writeFileDurably(part, learning::evaluationPartJson(run, shard, shards));
+    if (!a.quiet) std::cerr << "keyturn evaluate: part " << a.shard << " in " << formatDuration(run.total_s) << " → " << part << "\n";
+    return 0;
+  }
+  if (a.merge) {
+    const int parts = learning::mergeEvaluationParts(run, a.out);
+    if (!a.quiet) std::cerr << "keyturn evaluate: merged " << parts << " parts\n";
+  } else {
+    Progress progress("evaluate", run.totalFolds(), !a.quiet);
+    learning::evaluateRows(run, [&] { progress.advance(); });
+    progress.finish();
+  }
 
   const learning::EvaluationReport report = learning::evaluationReport(run);
-  const std::filesystem::path out(a.out);
   std::filesystem::create_directories(out);
   writeFileDurably((out / "report.csv").string(), report.csv);
   writeFileDurably((out / "report.json").string(), report.json);
@@ -93,6 +114,10 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--out,-o", a->out, "Report folder")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views / folds (default: all cores)");
   cmd->add_flag("--json", a->json, "Also print the report as JSON on standard output");
+  cmd->add_option("--shard", a->shard,
+                  "Train and test only the share I of N of the trainings (I/N, for array jobs) into "
+                  "OUT/parts/part-I-of-N.json");
+  cmd->add_flag("--merge", a->merge, "Write the report from the parts in OUT/parts/ (run with the parts' options)");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
   a->flags.add(*cmd, false);
   // evaluate's --bins takes a list (the sweep of the paper's Fig. 20).

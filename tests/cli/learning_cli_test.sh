@@ -36,6 +36,30 @@ check "accuracies are fractions" test "$(awk -F, 'NR > 1 && ($8 < 0 || $8 > 1)' 
 acc=$(awk -F, '$2 == "kfold4" && $4 == "kpd2+gkpd2" && $5 == "xgboost" {print $8}' "$work/report/report.csv")
 check "kpd2+gkpd2 beats chance under k-fold ($acc)" awk -v a="$acc" 'BEGIN {exit !(a > 0.6)}'
 check "leave-instance labels categories" grep -q '"label": "category"' "$work/report.json"
+# The same evaluation as array jobs: two parts, then --merge. Every number of the report is the
+# single run's; the wall times (JSON seconds, train_ms_per_view, predict_ms_per_view) are not compared.
+for i in 1 2; do
+  "$KT" evaluate "$work/ds" --features "kpd2 kpd2+gkpd2 esf" --classifier xgboost,mlp \
+    --protocol kfold4,leave-elevation,leave-instance $fast -q --out "$work/sharded" --shard $i/2
+done
+check "two evaluation parts" test -s "$work/sharded/parts/part-1-of-2.json" -a -s "$work/sharded/parts/part-2-of-2.json"
+check "a part is no report" test ! -e "$work/sharded/report.json"
+"$KT" evaluate "$work/ds" --features "kpd2 kpd2+gkpd2 esf" --classifier xgboost,mlp \
+  --protocol kfold4,leave-elevation,leave-instance $fast -q --out "$work/sharded" --merge --json > "$work/merged.json"
+check "evaluate --merge exits 0" test $? -eq 0
+numbers='del(.seconds) | .rows[] |= del(.train_ms_per_view, .predict_ms_per_view)'
+check "the merged report's numbers are the single run's" \
+  test "$(jq -S "$numbers" "$work/report.json")" = "$(jq -S "$numbers" "$work/merged.json")"
+check "the merged CSV is the single run's but for the times" \
+  test "$(cut -d, -f1-9 "$work/report/report.csv")" = "$(cut -d, -f1-9 "$work/sharded/report.csv")"
+check "the merged confusion plots are the single run's" cmp -s "$work/report/confusion/kfold4_32bins.png" \
+  "$work/sharded/confusion/kfold4_32bins.png"
+"$KT" evaluate "$work/ds" --features kpd2 --classifier xgboost --protocol kfold4 $fast -q --out "$work/sharded" --merge \
+  2> "$work/foreign.err"
+check "parts of another plan are refused" grep -q "part-1-of-2.json: made by another evaluation (differs in classifiers, feature_sets" "$work/foreign.err"
+"$KT" evaluate "$work/ds" --out "$work/sharded" --shard 3/2 -q 2> "$work/shard.err"
+check "a shard outside 1..N is named" grep -q -- "--shard 3/2: expected I/N with 1 <= I <= N" "$work/shard.err"
+
 cache=$(ls "$work"/ds/.keyturn/features-*.csv)
 check "one feature cache" test "$(echo "$cache" | wc -l)" -eq 1
 before=$(stat -c %Y "$cache")

@@ -4,10 +4,13 @@
 
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <random>
 #include <sstream>
 
+#include "keyturn/core/durable_file.h"
 #include "keyturn/learning/consistency.h"
+#include "keyturn/learning/evaluation_parts.h"
 #include "keyturn/learning/evaluation_report.h"
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
@@ -105,6 +108,84 @@ TEST(EvaluationReport, BadPlansAreRefusedBeforeAnyWork) {
   bool described = false;
   EXPECT_NE(errorOf([&] { prepareEvaluation(plan, [&](int) { described = true; return twoInstances(); }); }), "");
   EXPECT_FALSE(described);
+}
+
+// evaluate as array jobs: three shards' parts merge into the single run's report, every
+// number the same but the wall times (seconds, train and predict ms per view).
+TEST(EvaluationParts, ShardsMergeIntoTheSingleRunsReport) {
+  namespace fs = std::filesystem;
+  EvaluationPlan plan;
+  plan.dataset = "cups";
+  plan.feature_sets = {"kpd2"};
+  plan.classifiers = {"xgboost", "mlp"};
+  plan.protocols = {"kfold4", "kfold3"};
+  plan.bins = {4};
+  plan.params = quick();
+  plan.params.mlp.epochs = 5;
+  const auto prepare = [&] { return prepareEvaluation(plan, [](int) { return twoInstances(); }); };
+  EvaluationRun single = prepare();
+  evaluateRows(single);
+  const EvaluationReport whole = evaluationReport(single);
+
+  const fs::path out = fs::temp_directory_path() / "keyturn_evaluation_parts_test";
+  fs::remove_all(out);
+  std::size_t trainings = 0;
+  for (int s = 0; s < 3; ++s) {
+    EvaluationRun part = prepare();
+    int folds = 0;
+    evaluateRows(part, [&] { ++folds; }, s, 3);
+    EXPECT_EQ(folds, s < 2 ? 5 : 4);  // 14 trainings (2 × 4 + 2 × 3 folds) numbered across rows: 5, 5, 4
+    trainings += foldJobs(part, s, 3).size();
+    if (s < 2) writeFileDurably(evaluationPartPath(out.string(), s, 3), evaluationPartJson(part, s, 3));
+  }
+  EXPECT_EQ(trainings, single.totalFolds());
+  EvaluationRun merged = prepare();
+  EXPECT_EQ(errorOf([&] { mergeEvaluationParts(merged, out.string()); }),
+            (out / "parts").string() + ": 2 of 3 parts, missing part-3-of-3.json");
+  {
+    EvaluationRun part = prepare();
+    evaluateRows(part, nullptr, 2, 3);
+    writeFileDurably(evaluationPartPath(out.string(), 2, 3), evaluationPartJson(part, 2, 3));
+  }
+  EXPECT_EQ(mergeEvaluationParts(merged, out.string()), 3);
+  ASSERT_EQ(merged.rows.size(), single.rows.size());
+  for (std::size_t r = 0; r < merged.rows.size(); ++r) {
+    EXPECT_EQ(merged.rows[r].ev.confusion, single.rows[r].ev.confusion);
+    ASSERT_EQ(merged.rows[r].ev.folds.size(), single.rows[r].ev.folds.size());
+    for (std::size_t f = 0; f < merged.rows[r].ev.folds.size(); ++f) {
+      EXPECT_EQ(merged.rows[r].ev.folds[f].name, single.rows[r].ev.folds[f].name);
+      EXPECT_EQ(merged.rows[r].ev.folds[f].correct, single.rows[r].ev.folds[f].correct);
+    }
+  }
+  // The report's files differ only in the wall times: drop CSV's last two columns.
+  const auto numbers = [](const std::string& csv) {
+    std::istringstream in(csv);
+    std::string line, kept;
+    while (std::getline(in, line)) kept += line.substr(0, line.rfind(',', line.rfind(',') - 1)) + "\n";
+    return kept;
+  };
+  const EvaluationReport joined = evaluationReport(merged);
+  EXPECT_EQ(numbers(joined.csv), numbers(whole.csv));
+  ASSERT_EQ(joined.plots.confusions.size(), whole.plots.confusions.size());
+  for (std::size_t i = 0; i < joined.plots.confusions.size(); ++i)
+    EXPECT_EQ(joined.plots.confusions[i].counts, whole.plots.confusions[i].counts);
+
+  // Parts of another plan are refused by name; so is a second complete set.
+  plan.params.xgboost.rounds = 31;
+  EvaluationRun other = prepare();
+  EXPECT_EQ(errorOf([&] { mergeEvaluationParts(other, out.string()); }),
+            evaluationPartPath(out.string(), 0, 3) +
+                ": made by another evaluation (differs in params); merge with the options the parts were run with");
+  plan.params.xgboost.rounds = 30;
+  EvaluationRun one = prepare();
+  evaluateRows(one);
+  writeFileDurably(evaluationPartPath(out.string(), 0, 1), evaluationPartJson(one, 0, 1));
+  EXPECT_EQ(errorOf([&] { mergeEvaluationParts(merged, out.string()); }),
+            (out / "parts").string() + ": complete sets of 1 and 3 parts; remove the stale one");
+  fs::remove_all(out);
+  EXPECT_EQ(errorOf([&] { mergeEvaluationParts(merged, out.string()); }),
+            (out / "parts").string() + ": no evaluation parts (run evaluate --shard I/N first)");
+  EXPECT_EQ(errorOf([&] { foldJobs(merged, 3, 3); }), "--shard 4/3: expected I/N with 1 <= I <= N");
 }
 
 TEST(ModelTraining, AModelClassifiesItsOwnViewsAndRefusesOtherFeatures) {

@@ -1,12 +1,8 @@
 #include "keyturn/learning/evaluation.h"
 
-#include "keyturn/core/parallel_for.h"
-
-#include <atomic>
 #include <chrono>
 #include <cmath>
-#include <mutex>
-#include <thread>
+#include <map>
 
 namespace keyturn::learning {
 
@@ -36,41 +32,38 @@ double Evaluation::predictMsPerView() const {
   return n ? ms / n : 0.0;
 }
 
-Evaluation evaluateFolds(const FeatureTable& table, const std::vector<std::string>& blocks,
-                         const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
-                         const ClassifierParams& params, int jobs, const std::function<void()>& fold_done) {
-  Evaluation ev;
-  ev.folds.resize(folds.size());
-  ev.confusion.assign(static_cast<std::size_t>(classes), std::vector<int>(static_cast<std::size_t>(classes), 0));
-  std::mutex mutex;
-  ClassifierParams per_worker = params;
-  per_worker.xgboost.threads = 1;  // parallel over folds instead
-  parallelFor(folds.size(), jobs, [&](std::size_t i) {
-    const Fold& fold = folds[i];
-    FoldOutcome out;
-    out.name = fold.name;
-    out.train_views = fold.train.size();
-    out.test_views = fold.test.size();
-    std::vector<int> y;
-    for (auto r : fold.train) y.push_back(labels[r]);
-    const auto t0 = std::chrono::steady_clock::now();
-    auto clf = makeClassifier(per_worker);
-    clf->fit(table.select(blocks, fold.train), y, classes);
-    const auto t1 = std::chrono::steady_clock::now();
-    const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
-    const auto t2 = std::chrono::steady_clock::now();
-    out.train_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
-    out.predict_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
-    std::lock_guard<std::mutex> lock(mutex);
-    for (std::size_t k = 0; k < fold.test.size(); ++k) {
-      const int truth = labels[fold.test[k]];
-      out.correct += predicted[k] == truth;
-      ++ev.confusion[static_cast<std::size_t>(truth)][static_cast<std::size_t>(predicted[k])];
-    }
-    ev.folds[i] = out;
-    if (fold_done) fold_done();
-  });
-  return ev;
+FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
+                         const std::vector<int>& labels, int classes, const Fold& fold,
+                         const ClassifierParams& params) {
+  FoldOutcome out;
+  out.name = fold.name;
+  out.train_views = fold.train.size();
+  out.test_views = fold.test.size();
+  std::vector<int> y;
+  for (auto r : fold.train) y.push_back(labels[r]);
+  const auto t0 = std::chrono::steady_clock::now();
+  auto clf = makeClassifier(params);
+  clf->fit(table.select(blocks, fold.train), y, classes);
+  const auto t1 = std::chrono::steady_clock::now();
+  const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
+  const auto t2 = std::chrono::steady_clock::now();
+  out.train_ms = std::chrono::duration<double, std::milli>(t1 - t0).count();
+  out.predict_ms = std::chrono::duration<double, std::milli>(t2 - t1).count();
+  std::map<std::pair<int, int>, int> cells;
+  for (std::size_t k = 0; k < fold.test.size(); ++k) {
+    const int truth = labels[fold.test[k]];
+    out.correct += predicted[k] == truth;
+    ++cells[{truth, predicted[k]}];
+  }
+  for (const auto& [tp, n] : cells) out.confusion.push_back({tp.first, tp.second, n});
+  return out;
+}
+
+std::vector<std::vector<int>> sumConfusion(const std::vector<FoldOutcome>& folds, int classes) {
+  std::vector<std::vector<int>> m(static_cast<std::size_t>(classes), std::vector<int>(static_cast<std::size_t>(classes), 0));
+  for (const auto& f : folds)
+    for (const auto& c : f.confusion) m[static_cast<std::size_t>(c.truth)][static_cast<std::size_t>(c.predicted)] += c.count;
+  return m;
 }
 
 }  // namespace keyturn::learning

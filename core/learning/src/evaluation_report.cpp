@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <chrono>
 #include <iomanip>
+#include <mutex>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/parallel_for.h"
 
 namespace keyturn::learning {
 namespace {
@@ -83,12 +85,36 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
   return run;
 }
 
-void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done) {
+std::vector<FoldJob> foldJobs(const EvaluationRun& run, int shard, int shards) {
+  if (shards < 1 || shard < 0 || shard >= shards)
+    throw Error("--shard " + std::to_string(shard + 1) + "/" + std::to_string(shards) +
+                ": expected I/N with 1 <= I <= N");
+  std::vector<FoldJob> jobs;
+  std::size_t j = 0;
+  for (std::size_t r = 0; r < run.rows.size(); ++r)
+    for (std::size_t f = 0; f < run.rows[r].proto->folds.size(); ++f, ++j)
+      if (static_cast<int>(j % static_cast<std::size_t>(shards)) == shard) jobs.push_back({r, f});
+  return jobs;
+}
+
+void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, int shard, int shards) {
   const auto start = Clock::now();
-  for (auto& r : run.rows)
-    r.ev = evaluateFolds(run.tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row,
-                         static_cast<int>(r.proto->labels.names.size()), r.proto->folds,
-                         paramsOf(run.plan, r.classifier), run.plan.jobs, fold_done);
+  const std::vector<FoldJob> jobs = foldJobs(run, shard, shards);
+  for (auto& r : run.rows) r.ev.folds.assign(r.proto->folds.size(), {});
+  const auto& tables = run.tables;
+  std::mutex mutex;
+  // All the shard's folds in one pool, across rows: no row's last fold holds up the next row.
+  parallelFor(jobs.size(), run.plan.jobs, [&](std::size_t i) {
+    EvaluationRow& r = run.rows[jobs[i].row];
+    ClassifierParams params = paramsOf(run.plan, r.classifier);
+    params.xgboost.threads = 1;  // parallel over folds instead
+    r.ev.folds[jobs[i].fold] =
+        evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row,
+                     static_cast<int>(r.proto->labels.names.size()), r.proto->folds[jobs[i].fold], params);
+    std::lock_guard<std::mutex> lock(mutex);
+    if (fold_done) fold_done();
+  });
+  for (auto& r : run.rows) r.ev.confusion = sumConfusion(r.ev.folds, static_cast<int>(r.proto->labels.names.size()));
   run.total_s += secondsSince(start);
 }
 

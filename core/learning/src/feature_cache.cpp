@@ -13,6 +13,7 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/fnv1a.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
@@ -29,12 +30,6 @@ const std::vector<Feature> kKeypointBlocks = {Feature::KPD2, Feature::KPD3, Feat
 const std::vector<Feature> kShapeBlocks = {Feature::D2, Feature::D3, Feature::A3};
 const std::map<std::string, int> kPeerSizes = {{"esf", 640}, {"vfh", 308}, {"ourcvfh", 308}};
 const std::string kRandom = "u_";  // a keypoint block on random keypoints
-
-std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
-  for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-  return h;
-}
 
 bool has(const FeatureTable& t, const std::string& block) { return t.offset(block) >= 0; }
 

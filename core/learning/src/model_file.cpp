@@ -7,6 +7,7 @@
 #include <limits>
 #include <nlohmann/json.hpp>
 
+#include "classifier_params_json.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
@@ -24,31 +25,16 @@ constexpr int kVersion = 1;
 std::string weightsName(const std::string& kind) { return kind == "mlp" ? "model.pt" : "model.xgb.json"; }
 
 json toJson(const ModelInfo& m) {
-  const auto& p = m.params;
-  return json{{"format", kFormat},
-              {"version", kVersion},
-              {"classifier", p.kind},
-              {"seed", p.seed},
-              {"xgboost",
-               {{"eta", p.xgboost.eta},
-                {"max_depth", p.xgboost.max_depth},
-                {"rounds", p.xgboost.rounds},
-                {"subsample", p.xgboost.subsample},
-                {"colsample_bytree", p.xgboost.colsample_bytree}}},
-              {"mlp",
-               {{"hidden", p.mlp.hidden},
-                {"layers", p.mlp.layers},
-                {"dropout", p.mlp.dropout},
-                {"learning_rate", p.mlp.learning_rate},
-                {"epochs", p.mlp.epochs},
-                {"batch", p.mlp.batch},
-                {"sigmoid_output", p.mlp.sigmoid_output}}},
-              {"classes", m.classes},
-              {"blocks", m.blocks},
-              {"inputs", m.inputs},
-              {"feature_spec", m.spec},
-              {"weights", weightsName(p.kind)},
-              {"class_means", m.class_means}};
+  json j = classifierParamsJson(m.params);
+  j.update({{"format", kFormat},
+            {"version", kVersion},
+            {"classes", m.classes},
+            {"blocks", m.blocks},
+            {"inputs", m.inputs},
+            {"feature_spec", m.spec},
+            {"weights", weightsName(m.params.kind)},
+            {"class_means", m.class_means}});
+  return j;
 }
 
 }  // namespace

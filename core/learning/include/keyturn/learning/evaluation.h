@@ -1,9 +1,8 @@
 #pragma once
 // Cross-validated accuracy of one feature set and classifier over a protocol's
-// folds: train on each fold's training rows, predict its test rows. Folds run
-// on worker threads; every classifier is seeded, so results do not depend on
-// the scheduling.
-#include <functional>
+// folds: train on each fold's training rows, predict its test rows. Every
+// classifier is seeded, so a fold's result does not depend on the thread or the
+// process that trains it (evaluate runs folds in parallel and in array jobs).
 #include <string>
 #include <vector>
 
@@ -13,10 +12,15 @@
 
 namespace keyturn::learning {
 
+struct ConfusionCell {
+  int truth = 0, predicted = 0, count = 0;
+};
+
 struct FoldOutcome {
   std::string name;
   std::size_t train_views = 0, test_views = 0, correct = 0;
   double train_ms = 0, predict_ms = 0;
+  std::vector<ConfusionCell> confusion;     // this fold's nonzero [true][predicted] counts
   double accuracy() const { return test_views ? static_cast<double>(correct) / static_cast<double>(test_views) : 0.0; }
 };
 
@@ -29,10 +33,11 @@ struct Evaluation {
   double predictMsPerView() const;
 };
 
-// labels: class index per table row (0 .. classes - 1).
-Evaluation evaluateFolds(const FeatureTable& table, const std::vector<std::string>& blocks,
-                         const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
-                         const ClassifierParams& params, int jobs,
-                         const std::function<void()>& fold_done = nullptr);
+// labels: class index per table row (0 .. classes - 1). One fold trained and tested; params as given.
+FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
+                         const std::vector<int>& labels, int classes, const Fold& fold,
+                         const ClassifierParams& params);
+// The folds' confusion cells summed into a classes × classes matrix.
+std::vector<std::vector<int>> sumConfusion(const std::vector<FoldOutcome>& folds, int classes);
 
 }  // namespace keyturn::learning

@@ -47,11 +47,21 @@ struct EvaluationRun {
   std::size_t totalFolds() const;
 };
 
+// One training of the run: a row's fold. The run's trainings are numbered in row and fold
+// order; shard s of n (s from 0) takes those numbered j ≡ s (mod n), so every shard gets a
+// mix of the rows (of every classifier) and the shards' costs stay close.
+struct FoldJob {
+  std::size_t row = 0, fold = 0;
+};
+// Throws keyturn::Error for a shard outside 0 .. shards - 1.
+std::vector<FoldJob> foldJobs(const EvaluationRun& run, int shard = 0, int shards = 1);
+
 // Checks the plan (at least one of each, classifier and block names), gets each bin count's
 // table from describe(bins) and lays out the rows. Throws keyturn::Error naming what is wrong.
 EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe);
-// Trains and tests every row's folds; fold_done after each.
-void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done = nullptr);
+// Trains and tests the shard's folds (all of them by default) on plan.jobs threads; fold_done after each.
+void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done = nullptr, int shard = 0,
+                  int shards = 1);
 
 struct EvaluationReport {
   std::string csv, json, markdown;  // report.csv, report.json, report.md

@@ -1,0 +1,180 @@
+#include "keyturn/learning/evaluation_parts.h"
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <regex>
+#include <sstream>
+
+#include "classifier_params_json.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/fnv1a.h"
+#include "keyturn/core/json_integer.h"
+
+namespace keyturn::learning {
+namespace {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+constexpr const char* kFormat = "keyturn-evaluation-part";
+constexpr int kVersion = 1;
+
+// Everything that decides which trainings the run has and what they give; the parts of one
+// evaluation agree on all of it. The dataset's path is left out (a merge may name it another way).
+json planKey(const EvaluationRun& run) {
+  const EvaluationPlan& p = run.plan;
+  json params = classifierParamsJson(p.params);
+  params.erase("classifier");  // each row's own
+  json tables = json::object();
+  for (const auto& [bins, t] : run.tables) {
+    std::string ids;
+    for (const auto& r : t.rows) ids += r.id + "\n";
+    char hash[17];
+    std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(ids)));
+    tables[std::to_string(bins)] = {{"feature_spec", t.spec}, {"views", t.rows.size()}, {"view_ids_fnv1a", hash}};
+  }
+  return {{"feature_sets", p.feature_sets}, {"classifiers", p.classifiers}, {"protocols", p.protocols},
+          {"bins", p.bins},                 {"split_seed", p.split_seed},   {"params", params},
+          {"tables", tables},               {"trainings", run.totalFolds()}};
+}
+
+std::string differences(const json& theirs, const json& mine) {
+  std::string keys;
+  for (const auto& [k, v] : mine.items())
+    if (!theirs.contains(k) || theirs.at(k) != v) keys += (keys.empty() ? "" : ", ") + k;
+  return keys.empty() ? "the plan" : keys;
+}
+
+json readJson(const std::string& path) {
+  std::ifstream f(path, std::ios::binary);
+  if (!f) throw Error(path + ": cannot read");
+  std::ostringstream s;
+  s << f.rdbuf();
+  try {
+    return json::parse(s.str());
+  } catch (const json::exception& e) {
+    throw Error(path + ": not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
+  }
+}
+
+// Reads one part into the run's rows; `seen` marks the trainings already filled.
+double readPart(const std::string& path, int shard, int shards, EvaluationRun& run,
+                std::vector<std::vector<bool>>& seen) {
+  const json j = readJson(path);
+  const std::size_t most = std::numeric_limits<int>::max();
+  try {
+    if (!j.is_object() || j.value("format", "") != kFormat) throw Error(path + ": not a keyturn evaluation part");
+    if (j.at("version") != kVersion)
+      throw Error(path + ": evaluation part version " + j.at("version").dump() + " is not supported (expected 1)");
+    if (jsonInteger(j, "shard", std::size_t{1}, most, path) != static_cast<std::size_t>(shard + 1) ||
+        jsonInteger(j, "shards", std::size_t{1}, most, path) != static_cast<std::size_t>(shards))
+      throw Error(path + ": says it is part " + j.at("shard").dump() + " of " + j.at("shards").dump());
+    const json mine = planKey(run);
+    if (j.at("plan") != mine)
+      throw Error(path + ": made by another evaluation (differs in " + differences(j.at("plan"), mine) +
+                  "); merge with the options the parts were run with");
+    for (const auto& f : j.at("folds")) {
+      const std::size_t r = jsonInteger(f, "row", std::size_t{0}, run.rows.size() - 1, path);
+      EvaluationRow& row = run.rows[r];
+      const std::size_t k = jsonInteger(f, "fold", std::size_t{0}, most, path);
+      if (k >= row.proto->folds.size()) throw Error(path + ": row " + std::to_string(r) + " has no fold " + std::to_string(k));
+      const std::string name = f.at("name").get<std::string>();
+      if (name != row.proto->folds[k].name || seen[r][k])
+        throw Error(path + ": fold '" + name + "' of row " + std::to_string(r) + " is not the run's or is there twice");
+      FoldOutcome o;
+      o.name = name;
+      o.train_views = jsonInteger(f, "train_views", std::size_t{0}, most, path);
+      o.test_views = jsonInteger(f, "test_views", std::size_t{0}, most, path);
+      o.correct = jsonInteger(f, "correct", std::size_t{0}, o.test_views, path);
+      o.train_ms = f.at("train_ms").get<double>();
+      o.predict_ms = f.at("predict_ms").get<double>();
+      const int classes = static_cast<int>(row.proto->labels.names.size());
+      for (const auto& c : f.at("confusion")) {
+        if (!c.is_array() || c.size() != 3) throw Error(path + ": a confusion cell is [truth, predicted, count]");
+        const json cell{{"t", c[0]}, {"p", c[1]}, {"n", c[2]}};
+        o.confusion.push_back({jsonInteger(cell, "t", 0, classes - 1, path), jsonInteger(cell, "p", 0, classes - 1, path),
+                               jsonInteger(cell, "n", 0, static_cast<int>(o.test_views), path)});
+      }
+      row.ev.folds[k] = o;
+      seen[r][k] = true;
+    }
+    return j.at("seconds").get<double>();
+  } catch (const json::exception& e) {
+    throw Error(path + ": " + std::string(e.what()).substr(0, 160));
+  }
+}
+
+}  // namespace
+
+std::string evaluationPartPath(const std::string& out, int shard, int shards) {
+  return (fs::path(out) / "parts" / ("part-" + std::to_string(shard + 1) + "-of-" + std::to_string(shards) + ".json"))
+      .string();
+}
+
+std::string evaluationPartJson(const EvaluationRun& run, int shard, int shards) {
+  json folds = json::array();
+  for (const FoldJob& job : foldJobs(run, shard, shards)) {
+    const FoldOutcome& o = run.rows[job.row].ev.folds[job.fold];
+    json cells = json::array();
+    for (const auto& c : o.confusion) cells.push_back({c.truth, c.predicted, c.count});
+    folds.push_back({{"row", job.row},           {"fold", job.fold},         {"name", o.name},
+                     {"train_views", o.train_views}, {"test_views", o.test_views}, {"correct", o.correct},
+                     {"train_ms", o.train_ms},   {"predict_ms", o.predict_ms}, {"confusion", cells}});
+  }
+  const json j{{"format", kFormat}, {"version", kVersion}, {"shard", shard + 1}, {"shards", shards},
+               {"plan", planKey(run)},  {"seconds", run.total_s}, {"folds", folds}};
+  return j.dump(1) + "\n";
+}
+
+int mergeEvaluationParts(EvaluationRun& run, const std::string& out) {
+  const fs::path dir = fs::path(out) / "parts";
+  const std::regex part_re(R"(part-(\d+)-of-(\d+)\.json)");
+  std::map<int, std::map<int, std::string>> sets;  // N → I → file
+  std::error_code ec;
+  for (const auto& e : fs::directory_iterator(dir, ec)) {
+    std::smatch m;
+    const std::string name = e.path().filename().string();
+    if (std::regex_match(name, m, part_re) && m[1].length() < 9 && m[2].length() < 9)
+      sets[std::stoi(m[2])][std::stoi(m[1]) - 1] = e.path().string();
+  }
+  if (sets.empty()) throw Error(dir.string() + ": no evaluation parts (run evaluate --shard I/N first)");
+  std::vector<int> complete;
+  for (const auto& [n, files] : sets) {
+    bool all = n > 0 && static_cast<int>(files.size()) == n;
+    for (int i = 0; all && i < n; ++i) all = files.count(i) > 0;
+    if (all) complete.push_back(n);
+  }
+  if (complete.size() > 1)
+    throw Error(dir.string() + ": complete sets of " + std::to_string(complete[0]) + " and " +
+                std::to_string(complete[1]) + " parts; remove the stale one");
+  if (complete.empty()) {
+    const auto& [n, files] = *sets.rbegin();
+    std::string missing;
+    for (int i = 0; i < n; ++i)
+      if (!files.count(i)) missing += (missing.empty() ? "" : ", ") + fs::path(evaluationPartPath(out, i, n)).filename().string();
+    throw Error(dir.string() + ": " + std::to_string(files.size()) + " of " + std::to_string(n) + " parts, missing " +
+                missing);
+  }
+  const int n = complete.front();
+  std::vector<std::vector<bool>> seen;
+  for (auto& r : run.rows) {
+    r.ev.folds.assign(r.proto->folds.size(), {});
+    seen.emplace_back(r.proto->folds.size(), false);
+  }
+  double seconds = 0;
+  for (const auto& [i, file] : sets.at(n)) seconds += readPart(file, i, n, run, seen);
+  for (std::size_t r = 0; r < run.rows.size(); ++r)
+    for (std::size_t k = 0; k < seen[r].size(); ++k)
+      if (!seen[r][k])
+        throw Error(dir.string() + ": no part holds fold '" + run.rows[r].proto->folds[k].name + "' of " +
+                    run.rows[r].features + ", " + run.rows[r].classifier + ", " + run.rows[r].protocol);
+  for (auto& r : run.rows) r.ev.confusion = sumConfusion(r.ev.folds, static_cast<int>(r.proto->labels.names.size()));
+  run.total_s += seconds;  // the parts' own times, summed
+  return n;
+}
+
+}  // namespace keyturn::learning
