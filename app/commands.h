@@ -28,5 +28,6 @@ Command addEvaluateCommand(CLI::App& app);
 Command addTrainCommand(CLI::App& app);
 Command addClassifyCommand(CLI::App& app);
 Command addConsistencyCommand(CLI::App& app);
+Command addSlurmCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -128,4 +128,16 @@ if [ -n "$STUDIO" ]; then
   check "studio: settings saved on Ctrl-C" grep -q "geometry" "$work/studio.ini"
 fi
 
+# keyturn slurm: a folder that is no dataset, and evaluate options the stages set themselves.
+"$KT" slurm "$work/cfg" --tasks 2 --out "$work/jobs" 2> "$work/slurm_ds.err"
+check "slurm names a folder without a manifest" grep -q "cfg: not a dataset folder (no manifest.csv)" "$work/slurm_ds.err"
+check "  and writes no scripts" test ! -e "$work/jobs"
+echo "class,instance,elevation,azimuth,file" > "$work/cfg/manifest.csv"
+"$KT" slurm "$work/cfg" --tasks 2 --out "$work/jobs" --evaluate "--features kpd2 --out elsewhere" 2> "$work/slurm_out.err"
+check "slurm refuses --out among evaluate's options" \
+  grep -q "^keyturn: --evaluate: leave out --out (the stages set --out, --shard, --merge and --jobs)$" "$work/slurm_out.err"
+check "  and writes no scripts" test ! -e "$work/jobs"
+"$KT" slurm "$work/cfg" --tasks 0 --out "$work/jobs" 2> "$work/slurm_tasks.err"
+check "slurm --tasks 0 is one line naming the option" grep -q "^keyturn slurm: --tasks" "$work/slurm_tasks.err"
+check "  (one line)" one_line "$work/slurm_tasks.err"
 finish

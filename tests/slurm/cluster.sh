@@ -2,6 +2,8 @@
 # key and socket, slurmctld and slurmd on free loopback ports, every file (config, state,
 # spool, logs, pid files) under one temporary folder; no systemd, no /etc. Run as root.
 #   cluster_start DIR   starts it; on failure returns 1 with the reason in $cluster_error
+#   cluster_idle SECS   waits until no job is left (true) or SECS have passed
+#   cluster_job_state ID  COMPLETED, FAILED, CANCELLED … (of every task of an array, one per line)
 #   cluster_stop        cancels what is left, stops the daemons, removes nothing
 # After cluster_start, SLURM_CONF is exported: sbatch, squeue and the jobs use this cluster.
 
@@ -69,6 +71,8 @@ SelectType=select/cons_tres
 SelectTypeParameters=CR_Core_Memory
 MpiDefault=none
 ReturnToService=2
+# A stage whose predecessor failed is cancelled, not left pending forever.
+DependencyParameters=kill_invalid_depend
 $node NodeHostname=localhost NodeAddr=127.0.0.1 State=UNKNOWN
 PartitionName=kt Nodes=kt1 Default=YES MaxTime=INFINITE State=UP
 EOF
@@ -81,11 +85,15 @@ EOF
   fi
 }
 
+cluster_no_jobs() { test -z "$(squeue -h -o %i 2> /dev/null)"; }
+cluster_idle() { cluster_wait "$1" cluster_no_jobs; }
+cluster_job_state() { scontrol -o show job "$1" | sed -n 's/.*JobState=\([A-Z_]*\).*/\1/p'; }
+
 cluster_stop() {
   [ -n "$cluster_dir" ] || return 0
   local d=$cluster_dir f pid
   scancel --quiet --user=root 2> /dev/null
-  cluster_wait 20 test -z "$(squeue -h 2> /dev/null)"
+  cluster_idle 20
   for f in "$d/slurmd.pid" "$d/slurmctld.pid" "$d/munge/munged.pid"; do
     pid=$(cat "$f" 2> /dev/null) || continue
     kill "$pid" 2> /dev/null && cluster_wait 20 sh -c "! kill -0 $pid"

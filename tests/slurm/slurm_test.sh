@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
-# describe as a Slurm array job on a private single-node cluster (cluster.sh): the shards
-# merge into a feature cache byte-identical to a single-process one. Skipped (exit 77)
-# with the reason where Slurm cannot start; under CI=true that skip is a failure.
+# describe and evaluate as Slurm array jobs on a private single-node cluster (cluster.sh): the
+# shards merge into a feature cache byte-identical to a single-process one, and the pipeline
+# keyturn slurm writes (describe, merge, evaluate, report, chained by afterok) reports what a
+# single evaluate reports. Skipped (exit 77) with the reason where Slurm cannot start; under
+# CI=true that skip is a failure.
 set -u
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/../cli/lib.sh"
@@ -32,6 +34,7 @@ fi
 "$KT" simulate --objects "$work/objects.csv" --elevations 30,60 --step 60 -q --out "$work/ds" 2> "$work/sim.err"
 check "simulate exits 0" test $? -eq 0
 cp -r "$work/ds" "$work/ds_single"
+cp -r "$work/ds" "$work/ds_pipeline"
 "$KT" describe "$work/ds_single" --cache -q
 single=$(ls "$work"/ds_single/.keyturn/features-*.csv)
 check "a single process writes one cache" test "$(echo "$single" | wc -l)" -eq 1
@@ -47,4 +50,28 @@ check "no cache before the merge" test ! -e "$work/ds/.keyturn/$(basename "$sing
   2> "$work/merge.err"
 check "evaluate merges the shards" grep -q "merged 3 feature shards" "$work/merge.err"
 check "merged cache equals the single-process one" cmp "$single" "$work/ds/.keyturn/$(basename "$single")"
+
+# The whole pipeline as keyturn slurm writes it, submitted with its submit.sh. Its report's numbers
+# are the single run's; wall times (JSON seconds, train_ms_per_view, predict_ms_per_view) are not
+# compared, nor the dataset's name (a copy of the single run's).
+ev="--features 'kpd2 kpd2+gkpd2 esf' --classifier xgboost,mlp --protocol kfold4,leave-instance --rounds 10 --epochs 15"
+eval "\"\$KT\" evaluate \"\$work/ds_single\" $ev -q --out \"\$work/single\" --json" > "$work/single.json"
+check "the single evaluate exits 0" test $? -eq 0
+"$KT" slurm "$work/ds_pipeline" --tasks 2 --out "$work/pipeline" --evaluate "$ev" --mem 1G > "$work/slurm.out"
+check "keyturn slurm writes the stages" test -s "$work/pipeline/describe.sbatch" -a -s "$work/pipeline/merge-features.sbatch" \
+  -a -s "$work/pipeline/evaluate.sbatch" -a -s "$work/pipeline/report.sbatch" -a -x "$work/pipeline/submit.sh"
+check "it prints the command to submit" test "$(cat "$work/slurm.out")" = "bash '$work/pipeline/submit.sh'"
+check "the evaluate stage is an array of 2 after the merge" grep -q "^#SBATCH --array=1-2$" "$work/pipeline/evaluate.sbatch"
+ids=$(bash "$work/pipeline/submit.sh")
+check "submit.sh submits four jobs" test "$(echo $ids | wc -w)" -eq 4
+check "the later stages wait for the earlier" test "$(scontrol -o show job "${ids##* }" | grep -o 'Dependency=[^ ]*')" = \
+  "Dependency=afterok:$(echo $ids | cut -d' ' -f3)_*(unfulfilled)"
+cluster_idle 900
+check "every stage completed" test "$(for id in $ids; do cluster_job_state "$id"; done | sort -u)" = COMPLETED
+check "the pipeline's cache equals the single-process one" cmp "$single" "$work/ds_pipeline/.keyturn/$(basename "$single")"
+check "two evaluation parts" test "$(ls "$work"/pipeline/report/parts/part-*-of-2.json | wc -l)" -eq 2
+numbers='del(.seconds, .dataset) | .rows[] |= del(.train_ms_per_view, .predict_ms_per_view)'
+check "the pipeline's report has the single run's numbers" \
+  test "$(jq -S "$numbers" "$work/single.json")" = "$(jq -S "$numbers" "$work/pipeline/report/report.json" 2> /dev/null)"
+check "and its rows" test "$(jq '.rows | length' "$work/single.json")" -eq 12
 finish
