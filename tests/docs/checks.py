@@ -86,6 +86,9 @@ def check_option_defaults(c):
         ("docs/benchmarks.md", r"`keyturn bench --repetitions \d+`, default (\d+) runs", "bench", "--repetitions"),
         ("docs/camera.md", r"\| modulation \| (\d+) MHz", "grab", "--modulation"),
         ("docs/protocols.md", r"\(`--unit`, default (\d+)\)", "sim turntable", "--unit"),
+        ("docs/slurm.md", r"`--cpus C` per task \(`--cpus-per-task`, and keyturn's `--jobs`; default (\d+)\)", "slurm",
+         "--cpus"),
+        ("docs/slurm.md", r"`--mem`\s*\(default (\w+),", "slurm", "--mem"),
     ]:
         m = c.find(rel, pattern)
         if m:
