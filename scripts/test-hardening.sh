@@ -13,8 +13,8 @@ cmake --build "$B" --parallel "$(nproc)"
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1:strict_string_checks=1
 export UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1
 export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp
-# umockdev's preload library cannot come before ASan's runtime, and the CLI, soak and docs scripts
-# exercise the same code through the tool (the docs examples, ~27 min under the sanitizers, time out
-# there): those run in the normal build.
-ctest --test-dir "$B" --output-on-failure --parallel "$(nproc)" -E '^(cli\.|soak\.|docs\.examples|drivers\.usb)'
+# umockdev's preload library cannot come before ASan's runtime, and the CLI, soak, Slurm and docs
+# scripts exercise the same code through the tool (the docs examples, ~27 min under the sanitizers,
+# time out there): those run in the normal build.
+ctest --test-dir "$B" --output-on-failure --parallel "$(nproc)" -E '^(cli\.|soak\.|slurm\.|docs\.examples|drivers\.usb)'
 bash tests/fuzz/run.sh "$B" "${FUZZ_RUNS:-4000}"
