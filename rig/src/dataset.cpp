@@ -2,9 +2,11 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -90,6 +92,26 @@ std::string fileEndingIn(const std::vector<std::string>& files, const std::strin
   for (const auto& f : files)
     if (f.size() > suffix.size() && f.compare(f.size() - suffix.size(), suffix.size(), suffix) == 0) return f;
   return "";
+}
+
+// Spreadsheets and Windows editors save CSV with CRLF endings and a UTF-8 byte order mark.
+constexpr const char* kUtf8Bom = "\xEF\xBB\xBF";
+
+void stripLineEnding(std::string& line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+}
+
+// Why a first line is not keyturn's manifest header, in one line.
+std::string headerProblem(const std::string& line) {
+  if (line.empty()) return "line 1 is empty, expected the header '" + manifestHeader() + "'";
+  const auto got = split(line, ',');
+  const auto want = split(manifestHeader(), ',');
+  for (std::size_t i = 0; i < std::min(got.size(), want.size()); ++i)
+    if (got[i] != want[i])
+      return "line 1: column " + std::to_string(i + 1) + " is '" + got[i] + "', expected '" + want[i] +
+             "' (header: " + manifestHeader() + ")";
+  return "line 1: header has " + std::to_string(got.size()) + " columns, expected " + std::to_string(want.size()) +
+         " (" + manifestHeader() + ")";
 }
 
 }  // namespace
@@ -214,13 +236,13 @@ std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vect
   if (!in) throw Error(path + ": no manifest (not a keyturn dataset?)");
   std::string line;
   std::getline(in, line);
-  if (line != manifestHeader()) {
-    if (bad_rows) bad_rows->push_back("line 1: unexpected header");
-    return out;
-  }
+  stripLineEnding(line);
+  if (line.rfind(kUtf8Bom, 0) == 0) line.erase(0, std::strlen(kUtf8Bom));
+  if (line != manifestHeader()) throw Error(path + ": " + headerProblem(line));
   int n = 1;
   while (std::getline(in, line)) {
     ++n;
+    stripLineEnding(line);
     if (in.eof() && !line.empty()) {
       // A row without its newline was cut off mid-append: not a view.
       if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": unterminated row (interrupted append)");
@@ -266,7 +288,10 @@ VerifyReport Dataset::verify(const std::string& root) {
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string rel = fs::relative(it->path(), root).string();
-    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0) continue;
+    // keyturn's own files beside the views: the simulator's state and the feature cache (.keyturn/).
+    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
+        rel.rfind(".keyturn/", 0) == 0)
+      continue;
     if (!referenced.count(rel)) rep.orphans.push_back(rel);
   }
   return rep;

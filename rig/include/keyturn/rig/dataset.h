@@ -63,6 +63,9 @@ class Dataset {
   ViewRecord write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame);
   std::string viewStem(const ViewKey& key) const;  // relative path without extension
 
+  // CRLF line endings and a UTF-8 byte order mark (as spreadsheets save CSV) are accepted; a first line
+  // that is not the header throws keyturn::Error naming the file and what differs. Malformed rows go
+  // to bad_rows.
   static std::vector<ViewRecord> readManifest(const std::string& root, std::vector<std::string>* bad_rows = nullptr);
   static VerifyReport verify(const std::string& root);
 
