@@ -15,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/tof_camera.h"
 #include "keyturn/core/durable_file.h"
@@ -178,19 +179,10 @@ std::string Dataset::viewStem(const ViewKey& k) const {
   return k.cls + "/" + k.instance + "/e" + k.elevation + "/a" + fmt(k.commanded_deg, 1);
 }
 
-ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
-  if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
-  const std::string stem = viewStem(key);
-  const std::string abs_stem = root_ + "/" + stem;
-  fs::create_directories(fs::path(abs_stem).parent_path());
+namespace {
 
-  ViewRecord r;
-  r.key = key;
-  r.elevation_deg = meta.elevation_deg;
-  r.measured_deg = meta.measured_deg;
-  r.captured_at = isoNow();
-  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
-
+// The sidecar's keys every view has, captured or imported.
+nlohmann::json baseSidecar(const ViewKey& key, const ViewMetadata& meta) {
   nlohmann::json j;
   j["class"] = key.cls;
   j["instance"] = key.instance;
@@ -209,6 +201,38 @@ ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const dr
     j["camera_from_turntable"] = nullptr;  // not calibrated
   }
   j["pose_source"] = meta.pose_source;
+  return j;
+}
+
+}  // namespace
+
+ViewRecord Dataset::beginView(const ViewKey& key, const ViewMetadata& meta, std::string& abs_stem) const {
+  if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
+  abs_stem = root_ + "/" + viewStem(key);
+  fs::create_directories(fs::path(abs_stem).parent_path());
+  ViewRecord r;
+  r.key = key;
+  r.elevation_deg = meta.elevation_deg;
+  r.measured_deg = meta.measured_deg;
+  r.captured_at = isoNow();
+  return r;
+}
+
+ViewRecord Dataset::commitView(ViewRecord r, const std::string& abs_stem, const std::string& sidecar_json) {
+  writeFileDurably(abs_stem + ".json", sidecar_json);
+  r.files.push_back(abs_stem.substr(root_.size() + 1) + ".json");
+  syncDirectory(fs::path(abs_stem).parent_path().string());
+  for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
+  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
+  views_.push_back(r);
+  return r;
+}
+
+ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
+  std::string abs_stem;
+  ViewRecord r = beginView(key, meta, abs_stem);
+  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
+  nlohmann::json j = baseSidecar(key, meta);
   j["camera"] = {{"device", frame.device},
                  {"serial", frame.serial},
                  {"modulation_mhz", drivers::modulationMHz(frame.settings.modulation_frequency)},
@@ -219,14 +243,21 @@ ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const dr
   j["frames"] = {{"discarded", meta.frames_discarded}, {"taken", meta.frames_taken}, {"redos", meta.redos}};
   j["captured_at"] = r.captured_at;
   j["keyturn_version"] = KEYTURN_VERSION;
-  writeFileDurably(abs_stem + ".json", j.dump(2) + "\n");
-  r.files.push_back(stem + ".json");
-  syncDirectory(fs::path(abs_stem).parent_path().string());
+  return commitView(r, abs_stem, j.dump(2) + "\n");
+}
 
-  for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
-  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
-  views_.push_back(r);
-  return r;
+ViewRecord Dataset::writeImported(const ViewKey& key, const ViewMetadata& meta, const Cloud& cloud,
+                                  const std::string& source, const std::string& importer) {
+  std::string abs_stem;
+  ViewRecord r = beginView(key, meta, abs_stem);
+  saveCloud(abs_stem + ".pcd", cloud, PcdEncoding::BinaryCompressed);
+  r.files.push_back(abs_stem.substr(root_.size() + 1) + ".pcd");
+  nlohmann::json j = baseSidecar(key, meta);
+  j["source"] = source;
+  j["imported_by"] = importer;
+  j["imported_at"] = r.captured_at;
+  j["keyturn_version"] = KEYTURN_VERSION;
+  return commitView(r, abs_stem, j.dump(2) + "\n");
 }
 
 std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vector<std::string>* bad_rows) {
