@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "commands.h"
+#include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/bench/scaling.h"
 #include "keyturn/core/cloud_io.h"
@@ -36,6 +37,7 @@ struct BenchArgs {
   std::vector<std::size_t> sizes = bench::defaultScalingSizes();
   std::string plot;
   DescriptorFlags flags;
+  DepthImageFlags depth;
 };
 
 // A progress line per timed view.
@@ -60,11 +62,12 @@ int runBench(BenchArgs a) {
   a.runs.progress = progressLines();
   std::vector<bench::ViewToTime> views;
   if (!a.no_builtin) views.push_back({"builtin:mug", builtinView, ""});
-  const ViewFileList list = collectViewFiles(a.files);
+  const DepthImageOptions depth = a.depth.toOptions();
+  const ViewFileList list = collectViewFiles(a.files, depth.intrinsics.has_value());
   for (const auto& e : list.errors)  // "ARGUMENT: what is wrong"
     for (const auto& in : a.files)
       if (e.rfind(in + ": ", 0) == 0) views.push_back({in, nullptr, e.substr(in.size() + 2)});
-  for (const auto& f : list.files) views.push_back({f, [f] { return loadCloud(f); }, ""});
+  for (const auto& f : list.files) views.push_back({f, [f, depth] { return loadCloud(f, depth); }, ""});
   if (views.empty()) throw Error("nothing to benchmark (--no-builtin and no files)");
   const nlohmann::json out = bench::benchViews(views, a.runs, a.flags.toOptions(),
                                                [](const std::string& name, const std::string& error) {
@@ -84,6 +87,7 @@ int runScalingCommand(const BenchArgs& a) {
   if (a.files.size() > 1) throw Error("bench --scaling takes one frame (or none: the shipped Kinect frame)");
   bench::ScalingArgs s;
   s.file = a.files.empty() ? std::string(KEYTURN_DATA_DIR) + "/frames/mosd_learn0.pcd" : a.files[0];
+  s.depth = a.depth.toOptions();
   s.sizes = a.sizes;
   s.runs = a.runs;
   if (!a.json) s.runs.progress = progressLines();
@@ -104,7 +108,7 @@ Command addBenchCommand(CLI::App& app) {
   auto args = std::make_shared<BenchArgs>();
   auto* cmd = app.add_subcommand("bench", "Time every stage of the chain against PCL's ISS, ESF and VFH");
   cmd->add_option("files", args->files,
-                  "Extra PCD/PLY views or folders of them to time (the built-in view always runs first); "
+                  "Extra PCD/PLY views, depth PNGs or folders of them to time (the built-in view always runs first); "
                   "with --scaling, the one frame to scale");
   auto* reps = cmd->add_option("--repetitions,-n", args->runs.repetitions, "Runs per view (--scaling: 5 unless given)")
       ->capture_default_str()->check(CLI::Range(1, 100000));
@@ -121,6 +125,7 @@ Command addBenchCommand(CLI::App& app) {
   cmd->add_option("--plot", args->plot, "With --scaling: also write a log-log PNG of time against size")
       ->needs(scaling);
   args->flags.add(*cmd);
+  args->depth.add(*cmd);
   return {cmd, [args, reps, pcl_reps] {
             if (!args->scaling) return runBench(*args);
             if (reps->count() == 0) args->runs.repetitions = 5;

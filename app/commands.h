@@ -29,5 +29,6 @@ Command addTrainCommand(CLI::App& app);
 Command addClassifyCommand(CLI::App& app);
 Command addConsistencyCommand(CLI::App& app);
 Command addSlurmCommand(CLI::App& app);
+Command addImportCommand(CLI::App& app);
 
 }  // namespace keyturn::app

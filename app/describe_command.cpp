@@ -9,6 +9,7 @@
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
@@ -31,6 +32,7 @@ struct DescribeArgs {
   bool cache = false;  // dataset mode: fill the dataset's feature cache
   std::string shard;  // "I/N": dataset mode, this process's share of the views
   DescriptorFlags flags;
+  DepthImageFlags depth;
 };
 
 bool isDataset(const std::string& path) {
@@ -56,7 +58,8 @@ int runDescribe(const DescribeArgs& a) {
     return runDescribeDataset(a);
   }
   const DescriptorOptions options = a.flags.toOptions();
-  ViewFileList list = collectViewFiles(a.inputs);
+  const DepthImageOptions depth = a.depth.toOptions();
+  ViewFileList list = collectViewFiles(a.inputs, depth.intrinsics.has_value());
   for (const auto& e : list.errors) std::cerr << "keyturn describe: " << e << "\n";
   const std::size_t n = list.files.size();
   std::vector<std::optional<std::string>> rows(n);
@@ -68,7 +71,7 @@ int runDescribe(const DescribeArgs& a) {
   parallelFor(n, a.jobs, [&](std::size_t i) {
     const std::string& file = list.files[i];
     try {
-      const ViewDescriptor d = describeView(loadCloud(file), options);
+      const ViewDescriptor d = describeView(loadCloud(file, depth), options);
       rows[i] = describeCsvRow(file, d);
       low[i] = d.low_keypoints ? d.keypointCount() : 0;
       flags[i] = d.filter.flaggedSummary();
@@ -117,7 +120,7 @@ int runDescribe(const DescribeArgs& a) {
 Command addDescribeCommand(CLI::App& app) {
   auto args = std::make_shared<DescribeArgs>();
   auto* cmd = app.add_subcommand("describe", "Describe views by keypoint/shape-function PDFs (CSV)");
-  cmd->add_option("inputs", args->inputs, "PCD/PLY files or folders of them")->required();
+  cmd->add_option("inputs", args->inputs, "PCD/PLY files, 16-bit depth PNGs, or folders of them")->required();
   cmd->add_option("--out,-o", args->out, "CSV file to write (default: standard output)");
   cmd->add_option("--jobs,-j", args->jobs, "Parallel files (default: all cores)");
   cmd->add_flag("--quiet,-q", args->quiet, "No progress or summary");
@@ -129,6 +132,7 @@ Command addDescribeCommand(CLI::App& app) {
                   "With a dataset folder: fill only the cache shard of views i ≡ I-1 (mod N) into a shard of the feature "
                   "cache (I/N, for array jobs; the shards merge when all are present)");
   args->flags.add(*cmd);
+  args->depth.add(*cmd);
   return {cmd, [args] { return runDescribe(*args); }};
 }
 

@@ -32,6 +32,7 @@ struct EvaluateArgs {
   bool json = false, quiet = false, merge = false;
   int jobs = 0;
   std::uint64_t split_seed = 7;
+  std::string label;  // "": each protocol's own
   DescriptorFlags flags;
   learning::ClassifierParams params;
 };
@@ -59,6 +60,7 @@ int runEvaluate(const EvaluateArgs& a) {
   plan.params = a.params;
   plan.jobs = a.jobs;
   plan.low_keypoints = a.flags.options.low_keypoints;
+  if (!a.label.empty()) plan.label = learning::parseLabelKind(a.label);
   learning::EvaluationRun run = learning::prepareEvaluation(plan, [&a](int bins) {
     DescriptorOptions options = a.flags.options;
     options.histogram.bins = bins;
@@ -111,6 +113,9 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--protocol", a->protocols, "kfoldN, leave-elevation, leave-instance, fixed:FILE")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
+  cmd->add_option("--label", a->label,
+                  "instance or category, for every protocol (default: instance, category for leave-instance; "
+                  "leave-instance is always category)");
   cmd->add_option("--out,-o", a->out, "Report folder")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views / folds (default: all cores)");
   cmd->add_flag("--json", a->json, "Also print the report as JSON on standard output");

@@ -21,7 +21,8 @@ int main(int argc, char** argv) {
                              addSimulateCommand(app), addDemoCommand(app),
                              addCalibrateCommand(app), addRepeatabilityCommand(app),
                              addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app),
-                             addConsistencyCommand(app), addSlurmCommand(app)};
+                             addConsistencyCommand(app), addSlurmCommand(app),
+                             addImportCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

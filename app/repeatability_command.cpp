@@ -6,6 +6,7 @@
 #include <memory>
 
 #include "commands.h"
+#include "depth_image_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/repeatability_study.h"
 #include "keyturn/rig/study_views.h"
@@ -21,6 +22,7 @@ struct RepArgs {
   std::string eps = "0.5:3:0.25";
   StudyOptions study;
   PoseReadOptions poses;
+  DepthImageFlags depth;
   bool json = false, no_filter = false;
 };
 
@@ -51,6 +53,7 @@ int runRepeatability(RepArgs a) {
   a.study.detectors = parseDetectorList(a.detectors);
   a.study.eps_res = parseEpsList(a.eps);
   a.study.filter = !a.no_filter;
+  a.study.depth = a.depth.toOptions();
   a.poses.format = parsePoseFormat(a.pose_format);
   a.poses.views = a.views;
   std::unique_ptr<Progress> bar;
@@ -92,6 +95,7 @@ Command addRepeatabilityCommand(CLI::App& app) {
   cmd->add_flag("--force", a->study.force, "Score even when the poses give (almost) no overlap between views");
   cmd->add_flag("--icp", a->study.icp, "Refine each pair's ground truth by ICP (residual reported)");
   cmd->add_flag("--no-filter", a->no_filter, "Use the views as they are");
+  a->depth.add(*cmd);
   cmd->add_option("--out,-o", a->out, "Report folder (CSV, Markdown, JSON, PNG plots)")->required();
   cmd->add_flag("--json", a->json, "Print the summary as JSON");
   return {cmd, [a] { return runRepeatability(*a); }};

@@ -7,6 +7,7 @@
 
 #include "commands.h"
 #include "dataset_features.h"
+#include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
@@ -43,6 +44,7 @@ struct ClassifyArgs {
   std::vector<std::string> inputs;
   bool json = false, quiet = false;
   int jobs = 0;
+  DepthImageFlags depth;
 };
 
 int runClassify(const ClassifyArgs& a) {
@@ -52,10 +54,11 @@ int runClassify(const ClassifyArgs& a) {
   if (a.inputs.size() == 1 && a.inputs[0].size() > 4 && a.inputs[0].compare(a.inputs[0].size() - 4, 4, ".csv") == 0) {
     t = learning::loadFeatureTable(a.inputs[0]);
   } else {
-    ViewFileList list = collectViewFiles(a.inputs);
+    const DepthImageOptions depth = a.depth.toOptions();
+    ViewFileList list = collectViewFiles(a.inputs, depth.intrinsics.has_value());
     errors = list.errors;
     std::vector<learning::LabelledView> views;
-    for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?"});
+    for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?", depth});
     DescribeProgressLine progress(a.quiet || views.size() < 2);
     t = learning::describeForModel(m, views, a.jobs, &progress, a.model);
     for (const auto& row : t.rows)
@@ -97,12 +100,13 @@ Command addTrainCommand(CLI::App& app) {
 
 Command addClassifyCommand(CLI::App& app) {
   auto a = std::make_shared<ClassifyArgs>();
-  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, folders, or a feature cache CSV) with a model, described with the model's own parameters");
+  auto* cmd = app.add_subcommand("classify", "Classify views (PCD/PLY files, depth PNGs, folders, or a feature cache CSV) with a model, described with the model's own parameters");
   cmd->add_option("model", a->model, "Model folder (from keyturn train)")->required();
-  cmd->add_option("views", a->inputs, "PCD/PLY files or folders, or one feature cache .csv")->required();
+  cmd->add_option("views", a->inputs, "PCD/PLY files, depth PNGs or folders, or one feature cache .csv")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views");
   cmd->add_flag("--json", a->json, "Class and probabilities per view as JSON");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
+  a->depth.add(*cmd);
   return {cmd, [a] { return runClassify(*a); }};
 }
 

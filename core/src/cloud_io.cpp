@@ -275,11 +275,11 @@ Cloud loadPly(const std::string& path) {
 
 }  // namespace
 
-Cloud loadCloud(const std::string& path) {
+Cloud loadCloud(const std::string& path, const DepthImageOptions& depth) {
   quietPcl();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file");
-  if (fs::is_directory(path, ec)) fail(path, "is a directory, expected a .pcd or .ply file");
+  if (fs::is_directory(path, ec)) fail(path, "is a directory, expected a .pcd, .ply or depth .png file");
   const auto size = fs::file_size(path, ec);
   if (ec) fail(path, "cannot read file size: " + ec.message());
   if (size == 0) fail(path, "empty file (0 bytes)");
@@ -288,7 +288,8 @@ Cloud loadCloud(const std::string& path) {
   Cloud cloud;
   if (ext == ".pcd") cloud = loadPcd(path, size);
   else if (ext == ".ply") cloud = loadPly(path);
-  else fail(path, "unsupported format '" + ext + "' (expected .pcd or .ply)");
+  else if (ext == ".png") cloud = loadDepthImage(path, depth);
+  else fail(path, "unsupported format '" + ext + "' (expected .pcd, .ply or a 16-bit depth .png)");
   return cloud;
 }
 

@@ -129,7 +129,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
   std::vector<Loaded> data(views.size());
   progress.begin("load", views.size());
   for (std::size_t i = 0; i < views.size(); ++i) {
-    Cloud c = loadCloud(views[i].file);
+    Cloud c = loadCloud(views[i].file, o.depth);
     if (o.filter) c = filterCloud(c, FilterOptions());
     data[i].set = PointSet::fromCloud(c);
     if (data[i].set.size() < 2) throw Error(views[i].file + ": fewer than 2 points left to detect keypoints on");

@@ -2,9 +2,11 @@
 
 #include <openssl/evp.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <ctime>
 #include <filesystem>
 #include <fstream>
@@ -13,6 +15,7 @@
 #include <set>
 #include <sstream>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/tof_camera.h"
 #include "keyturn/core/durable_file.h"
@@ -92,6 +95,26 @@ std::string fileEndingIn(const std::vector<std::string>& files, const std::strin
   return "";
 }
 
+// Spreadsheets and Windows editors save CSV with CRLF endings and a UTF-8 byte order mark.
+constexpr const char* kUtf8Bom = "\xEF\xBB\xBF";
+
+void stripLineEnding(std::string& line) {
+  if (!line.empty() && line.back() == '\r') line.pop_back();
+}
+
+// Why a first line is not keyturn's manifest header, in one line.
+std::string headerProblem(const std::string& line) {
+  if (line.empty()) return "line 1 is empty, expected the header '" + manifestHeader() + "'";
+  const auto got = split(line, ',');
+  const auto want = split(manifestHeader(), ',');
+  for (std::size_t i = 0; i < std::min(got.size(), want.size()); ++i)
+    if (got[i] != want[i])
+      return "line 1: column " + std::to_string(i + 1) + " is '" + got[i] + "', expected '" + want[i] +
+             "' (header: " + manifestHeader() + ")";
+  return "line 1: header has " + std::to_string(got.size()) + " columns, expected " + std::to_string(want.size()) +
+         " (" + manifestHeader() + ")";
+}
+
 }  // namespace
 
 std::string sha256File(const std::string& path) {
@@ -156,19 +179,10 @@ std::string Dataset::viewStem(const ViewKey& k) const {
   return k.cls + "/" + k.instance + "/e" + k.elevation + "/a" + fmt(k.commanded_deg, 1);
 }
 
-ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
-  if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
-  const std::string stem = viewStem(key);
-  const std::string abs_stem = root_ + "/" + stem;
-  fs::create_directories(fs::path(abs_stem).parent_path());
+namespace {
 
-  ViewRecord r;
-  r.key = key;
-  r.elevation_deg = meta.elevation_deg;
-  r.measured_deg = meta.measured_deg;
-  r.captured_at = isoNow();
-  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
-
+// The sidecar's keys every view has, captured or imported.
+nlohmann::json baseSidecar(const ViewKey& key, const ViewMetadata& meta) {
   nlohmann::json j;
   j["class"] = key.cls;
   j["instance"] = key.instance;
@@ -187,6 +201,38 @@ ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const dr
     j["camera_from_turntable"] = nullptr;  // not calibrated
   }
   j["pose_source"] = meta.pose_source;
+  return j;
+}
+
+}  // namespace
+
+ViewRecord Dataset::beginView(const ViewKey& key, const ViewMetadata& meta, std::string& abs_stem) const {
+  if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
+  abs_stem = root_ + "/" + viewStem(key);
+  fs::create_directories(fs::path(abs_stem).parent_path());
+  ViewRecord r;
+  r.key = key;
+  r.elevation_deg = meta.elevation_deg;
+  r.measured_deg = meta.measured_deg;
+  r.captured_at = isoNow();
+  return r;
+}
+
+ViewRecord Dataset::commitView(ViewRecord r, const std::string& abs_stem, const std::string& sidecar_json) {
+  writeFileDurably(abs_stem + ".json", sidecar_json);
+  r.files.push_back(abs_stem.substr(root_.size() + 1) + ".json");
+  syncDirectory(fs::path(abs_stem).parent_path().string());
+  for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
+  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
+  views_.push_back(r);
+  return r;
+}
+
+ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
+  std::string abs_stem;
+  ViewRecord r = beginView(key, meta, abs_stem);
+  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
+  nlohmann::json j = baseSidecar(key, meta);
   j["camera"] = {{"device", frame.device},
                  {"serial", frame.serial},
                  {"modulation_mhz", drivers::modulationMHz(frame.settings.modulation_frequency)},
@@ -197,14 +243,21 @@ ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const dr
   j["frames"] = {{"discarded", meta.frames_discarded}, {"taken", meta.frames_taken}, {"redos", meta.redos}};
   j["captured_at"] = r.captured_at;
   j["keyturn_version"] = KEYTURN_VERSION;
-  writeFileDurably(abs_stem + ".json", j.dump(2) + "\n");
-  r.files.push_back(stem + ".json");
-  syncDirectory(fs::path(abs_stem).parent_path().string());
+  return commitView(r, abs_stem, j.dump(2) + "\n");
+}
 
-  for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
-  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
-  views_.push_back(r);
-  return r;
+ViewRecord Dataset::writeImported(const ViewKey& key, const ViewMetadata& meta, const Cloud& cloud,
+                                  const std::string& source, const std::string& importer) {
+  std::string abs_stem;
+  ViewRecord r = beginView(key, meta, abs_stem);
+  saveCloud(abs_stem + ".pcd", cloud, PcdEncoding::BinaryCompressed);
+  r.files.push_back(abs_stem.substr(root_.size() + 1) + ".pcd");
+  nlohmann::json j = baseSidecar(key, meta);
+  j["source"] = source;
+  j["imported_by"] = importer;
+  j["imported_at"] = r.captured_at;
+  j["keyturn_version"] = KEYTURN_VERSION;
+  return commitView(r, abs_stem, j.dump(2) + "\n");
 }
 
 std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vector<std::string>* bad_rows) {
@@ -214,13 +267,13 @@ std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vect
   if (!in) throw Error(path + ": no manifest (not a keyturn dataset?)");
   std::string line;
   std::getline(in, line);
-  if (line != manifestHeader()) {
-    if (bad_rows) bad_rows->push_back("line 1: unexpected header");
-    return out;
-  }
+  stripLineEnding(line);
+  if (line.rfind(kUtf8Bom, 0) == 0) line.erase(0, std::strlen(kUtf8Bom));
+  if (line != manifestHeader()) throw Error(path + ": " + headerProblem(line));
   int n = 1;
   while (std::getline(in, line)) {
     ++n;
+    stripLineEnding(line);
     if (in.eof() && !line.empty()) {
       // A row without its newline was cut off mid-append: not a view.
       if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": unterminated row (interrupted append)");
@@ -266,7 +319,10 @@ VerifyReport Dataset::verify(const std::string& root) {
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string rel = fs::relative(it->path(), root).string();
-    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0) continue;
+    // keyturn's own files beside the views: the simulator's state and the feature cache (.keyturn/).
+    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
+        rel.rfind(".keyturn/", 0) == 0)
+      continue;
     if (!referenced.count(rel)) rep.orphans.push_back(rel);
   }
   return rep;

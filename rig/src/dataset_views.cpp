@@ -17,7 +17,7 @@ std::vector<learning::LabelledView> datasetViews(const std::string& root, std::v
     const std::string pcd = r.pcd();
     if (pcd.empty()) continue;
     out.push_back({pcd.substr(0, pcd.size() - 4), (fs::path(root) / pcd).string(), r.key.cls, r.key.instance,
-                   r.key.elevation});
+                   r.key.elevation, {}});
   }
   if (out.empty()) throw Error(root + ": the dataset has no views");
   return out;

@@ -7,6 +7,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
 
@@ -14,20 +15,6 @@ namespace fs = std::filesystem;
 
 namespace keyturn::rig {
 namespace {
-
-void writePng16(const std::string& path, const std::vector<std::uint16_t>& img, std::uint32_t w, std::uint32_t h) {
-  // OpenCV picks the encoder from the extension, so the temporary name keeps ".png".
-  const std::string tmp = path.substr(0, path.size() - 4) + ".tmp.png";
-  const cv::Mat m(static_cast<int>(h), static_cast<int>(w), CV_16UC1, const_cast<std::uint16_t*>(img.data()));
-  bool ok = false;
-  try {
-    ok = cv::imwrite(tmp, m);
-  } catch (const cv::Exception& e) {
-    throw Error(path + ": PNG encoder failed: " + e.what());
-  }
-  if (!ok) throw Error(path + ": could not write PNG");
-  commitFile(tmp, path);
-}
 
 // Empty when the file is not there; the image when it is, on the cloud's grid.
 std::vector<std::uint16_t> readPng16(const std::string& path, std::uint32_t w, std::uint32_t h) {
@@ -97,7 +84,7 @@ std::vector<std::string> writeFrameFiles(const std::string& pcd_path, const driv
   } images[] = {{"_distance.png", &f.distance}, {"_amplitude.png", &f.amplitude}, {"_confidence.png", &f.confidence}};
   for (const auto& im : images) {
     if (im.img->size() != static_cast<std::size_t>(f.width) * f.height) continue;  // e.g. no confidence map
-    writePng16(base + im.suffix, *im.img, f.width, f.height);
+    savePng16(base + im.suffix, *im.img, f.width, f.height);
     written.push_back(base + im.suffix);
   }
   return written;

@@ -77,7 +77,7 @@ json runScaling(const ScalingArgs& a, const DescriptorOptions& options) {
   const auto warn = [&a](const std::string& line) {
     if (a.warn) a.warn(line);
   };
-  const Cloud input = loadCloud(a.file);
+  const Cloud input = loadCloud(a.file, a.depth);
   // The object at full resolution, as the chain's own filter cuts it from the frame;
   // an unorganized input is taken to be an object already.
   Cloud object = input;

@@ -39,7 +39,9 @@ json planKey(const EvaluationRun& run) {
   }
   return {{"feature_sets", p.feature_sets}, {"classifiers", p.classifiers}, {"protocols", p.protocols},
           {"bins", p.bins},                 {"split_seed", p.split_seed},   {"params", params},
-          {"tables", tables},               {"trainings", run.totalFolds()}};
+          {"tables", tables},               {"trainings", run.totalFolds()},
+          // --label: parts judged by other labels are another run
+          {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"}};
 }
 
 std::string differences(const json& theirs, const json& mine) {

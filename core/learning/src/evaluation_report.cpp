@@ -29,6 +29,35 @@ ClassifierParams paramsOf(const EvaluationPlan& plan, const std::string& classif
   return p;
 }
 
+// "category for kfold4 and leave-instance" / "instance for kfold4, category for leave-instance":
+// what each protocol's rows were judged by, as the report states it.
+std::string labelsInWords(const EvaluationRun& run) {
+  std::vector<std::pair<std::string, std::vector<std::string>>> by_kind;  // kind → protocols, first seen first
+  for (const auto& pn : run.plan.protocols)
+    for (const auto& p : run.protocols)
+      if (p->name == pn) {
+        const std::string kind = p->labels.kindName();
+        auto it = std::find_if(by_kind.begin(), by_kind.end(), [&](const auto& e) { return e.first == kind; });
+        if (it == by_kind.end()) by_kind.push_back({kind, {pn}});
+        else if (std::find(it->second.begin(), it->second.end(), pn) == it->second.end()) it->second.push_back(pn);
+        break;
+      }
+  std::string out;
+  for (std::size_t k = 0; k < by_kind.size(); ++k) {
+    out += (k ? ", " : "") + by_kind[k].first + " for ";
+    const auto& names = by_kind[k].second;
+    for (std::size_t i = 0; i < names.size(); ++i) out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
+  }
+  if (run.plan.label)
+    out += std::string(" (--label ") + (*run.plan.label == LabelKind::Category ? "category" : "instance") +
+           (*run.plan.label == LabelKind::Instance && std::count(run.plan.protocols.begin(), run.plan.protocols.end(),
+                                                                  std::string("leave-instance"))
+                ? "; leave-instance is always judged by category"
+                : "") +
+           ")";
+  return out;
+}
+
 // Mean ± 1 sd of a block's PDF over each class's views, one plot per class.
 void addClassPdfPlots(const FeatureTable& t, const Labels& labels, const std::string& block, ReportPlots& plots) {
   for (const auto& c : classPdfs(t, labels, block)) {
@@ -76,7 +105,7 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
       for (const auto& b : featureSetBlocks(set))
         if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
     for (const auto& pn : plan.protocols) {
-      run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed)));
+      run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
       for (const auto& set : plan.feature_sets)
         for (const auto& c : plan.classifiers) run.rows.push_back({bins, pn, set, c, run.protocols.back().get(), {}});
     }
@@ -170,8 +199,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
       for (std::size_t i = 0; i < missing.size(); ++i) md << (i ? ", " : "") << missing[i];
       md << ".\n\n";
     }
-    md << "Accuracy % (mean ± sd over folds). Labels: instance for kfold and leave-elevation, category for "
-          "leave-instance.\n\n| features |";
+    md << "Accuracy % (mean ± sd over folds). Labels: " << labelsInWords(run) << ".\n\n| features |";
     for (const auto& pn : a.protocols)
       for (const auto& c : a.classifiers) md << ' ' << c << " " << pn << " |";
     md << "\n|---|";

@@ -114,7 +114,7 @@ std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, con
   parallelFor(which.size(), jobs, [&](std::size_t k) {
     const LabelledView& v = views[which[k]];
     try {
-      rows[k] = describeCloud(loadCloud(v.path), options, layout);
+      rows[k] = describeCloud(loadCloud(v.path, v.depth), options, layout);
     } catch (const Error& e) {
       rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
       rows[k].keypoints = -1;

@@ -52,7 +52,8 @@ std::vector<std::string> testList(const std::string& file) {
 
 }  // namespace
 
-Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint64_t seed) {
+Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint64_t seed,
+                      std::optional<LabelKind> label) {
   Protocol p;
   p.name = name;
   std::vector<std::string> ids, elevations, categories, instances;
@@ -76,12 +77,13 @@ Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint6
   } else if (name == "leave-instance") {
     p.folds = leaveOneInstanceOut(categories, instances);
     kind = LabelKind::Category;
+    label.reset();  // an instance never trained on can only be judged by its category
   } else if (name.rfind("fixed:", 0) == 0) {
     p.folds = {fixedSplit(ids, testList(name.substr(6)))};
   } else {
     throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, fixed:FILE)");
   }
-  p.labels = labelRows(t, kind);
+  p.labels = labelRows(t, label.value_or(kind));
   return p;
 }
 

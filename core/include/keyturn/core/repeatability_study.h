@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/keypoint_detectors.h"
 #include "keyturn/core/repeatability.h"
 
@@ -35,6 +36,7 @@ struct StudyOptions {
   double overlap_radius_res = 2.0;       // a point overlaps when the other view has one this close
   double overlap_min = 0.05;             // below: a pair has almost no overlap
   bool force = false;                    // score even when the poses give no overlap
+  DepthImageOptions depth;               // how depth-image views are read
 };
 
 std::vector<double> parseEpsList(const std::string& text);  // START:STOP:STEP or a comma list; throws keyturn::Error

@@ -10,7 +10,12 @@ struct ViewFileList {
   std::vector<std::string> errors;  // one line per argument that could not be used
 };
 
-// Folders contribute every .pcd/.ply below them (recursively, sorted).
-ViewFileList collectViewFiles(const std::vector<std::string>& inputs);
+// Folders contribute every .pcd/.ply below them (recursively, sorted) and, when depth images are
+// being read (intrinsics given), every .png but masks, colour crops and a frame's raw images.
+ViewFileList collectViewFiles(const std::vector<std::string>& inputs, bool depth_images = false);
+
+// A PNG beside depth images that is not a view: a mask (_mask, _maskcrop), a colour image (_crop,
+// _rgb) or a frame's raw image (_distance, _amplitude, _confidence). `name` is the file's name.
+bool isCompanionImage(const std::string& name);
 
 }  // namespace keyturn

@@ -61,12 +61,21 @@ class Dataset {
   bool has(const ViewKey& key) const;
   // Writes the view's files durably, then appends its manifest row. Returns the record.
   ViewRecord write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame);
+  // A view from another tool's files (keyturn import): its cloud as the view's PCD and a sidecar
+  // naming the source file and the importer (no camera settings, no raw images), then its row.
+  ViewRecord writeImported(const ViewKey& key, const ViewMetadata& meta, const Cloud& cloud, const std::string& source,
+                           const std::string& importer);
   std::string viewStem(const ViewKey& key) const;  // relative path without extension
 
+  // CRLF line endings and a UTF-8 byte order mark (as spreadsheets save CSV) are accepted; a first line
+  // that is not the header throws keyturn::Error naming the file and what differs. Malformed rows go
+  // to bad_rows.
   static std::vector<ViewRecord> readManifest(const std::string& root, std::vector<std::string>* bad_rows = nullptr);
   static VerifyReport verify(const std::string& root);
 
  private:
+  ViewRecord beginView(const ViewKey& key, const ViewMetadata& meta, std::string& abs_stem) const;
+  ViewRecord commitView(ViewRecord r, const std::string& abs_stem, const std::string& sidecar_json);
   std::string root_;
   std::vector<ViewRecord> views_;
 };

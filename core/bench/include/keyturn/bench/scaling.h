@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "keyturn/bench/view_timing.h"
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/report_plots.h"
 
@@ -15,6 +16,7 @@ namespace keyturn::bench {
 
 struct ScalingArgs {
   std::string file;                 // an organized frame (or an already segmented object)
+  DepthImageOptions depth;          // when the file is a depth image
   std::vector<std::size_t> sizes;   // input points per row
   BenchRuns runs;
   unsigned long long seed = 7;      // for the object subsets

@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <functional>
 #include <map>
+#include <optional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -28,6 +29,7 @@ struct EvaluationPlan {
   ClassifierParams params;                  // kind is each row's classifier
   int jobs = 0;
   int low_keypoints = 0;                    // "views with K < low_keypoints" in the summary
+  std::optional<LabelKind> label;           // none: each protocol's own (makeProtocol)
 };
 
 struct EvaluationRow {

@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/descriptor.h"
 #include "keyturn/learning/feature_table.h"
 
@@ -18,8 +19,9 @@ namespace keyturn::learning {
 // One view to describe: its file and its labels.
 struct LabelledView {
   std::string id;    // the row id: the view's stem relative to the dataset root (or the file for loose views)
-  std::string path;  // the PCD/PLY file
+  std::string path;  // the PCD/PLY file, or a depth image
   std::string cls, instance, elevation;
+  DepthImageOptions depth;  // how a depth-image view is read (loadCloud)
 };
 
 // How a long describe run reports. view_done is called from the worker threads.

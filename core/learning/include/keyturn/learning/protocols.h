@@ -1,10 +1,11 @@
 #pragma once
 // An evaluation protocol over a feature table (docs/results.md): its folds and
 // the label each row is judged by — instances for k-fold, leave-one-elevation-out
-// and fixed lists, categories for leave-one-instance-out — and the statistics
+// and fixed lists unless told otherwise, categories for leave-one-instance-out — and the statistics
 // of a table that reports quote (keypoint counts, missing blocks, per-class PDFs).
 #include <cstdint>
 #include <map>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -34,7 +35,10 @@ struct Protocol {
 
 // kfoldN (shuffled with seed), leave-elevation, leave-instance, fixed:FILE (one test view id
 // per line, ".pcd" optional, '#' comments). Throws keyturn::Error naming a bad name or file.
-Protocol makeProtocol(const std::string& name, const FeatureTable& table, std::uint64_t seed);
+// `label` overrides the protocol's own (instance; category for leave-instance), except that
+// leave-instance is always judged by category: its test instance is never trained on.
+Protocol makeProtocol(const std::string& name, const FeatureTable& table, std::uint64_t seed,
+                      std::optional<LabelKind> label = std::nullopt);
 
 struct TableSummary {
   std::size_t views = 0, low = 0, failed = 0;  // low: K < low_keypoints; failed: no keypoint features

@@ -1,0 +1,51 @@
+#include "depth_image_options.h"
+
+#include <sstream>
+#include <tuple>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::app {
+
+void DepthImageFlags::add(CLI::App& cmd) {
+  const char* group = "Depth images (.png views)";
+  cmd.add_option("--camera", camera, "Camera file (JSON or YAML: fx fy cx cy in pixels, optional depth_scale)")
+      ->group(group);
+  for (auto [flag, field, what] : {std::tuple{"--fx", &fx, "Focal length in x (pixels)"},
+                                   std::tuple{"--fy", &fy, "Focal length in y (pixels)"},
+                                   std::tuple{"--cx", &cx, "Principal point x (pixels, 0-based)"},
+                                   std::tuple{"--cy", &cy, "Principal point y (pixels, 0-based)"}})
+    cmd.add_option_function<double>(flag, [this, field](double v) { *field = v; pinhole.push_back(v); }, what)
+        ->group(group);
+  cmd.add_option("--depth-scale", depth_scale, "Metres per depth unit (default 0.001: millimetres)")
+      ->check(CLI::PositiveNumber)->group(group);
+  cmd.add_option("--mask", mask, "Mask PNG for every depth image (non-zero = object; default: NAME_mask[crop].png beside it)")
+      ->group(group);
+  cmd.add_option("--crop-offset", crop, "U,V: the crop's top-left pixel in the full image, 0-based (default: NAME_loc.txt beside it)")
+      ->group(group);
+}
+
+DepthImageOptions DepthImageFlags::toOptions() const {
+  DepthImageOptions o;
+  if (!camera.empty() && !pinhole.empty()) throw Error("--camera and --fx/--fy/--cx/--cy: give one or the other");
+  if (!camera.empty()) o = readCameraFile(camera);
+  if (!pinhole.empty()) {
+    if (pinhole.size() != 4) throw Error("--fx, --fy, --cx and --cy go together: give all four");
+    if (!(fx > 0) || !(fy > 0)) throw Error("--fx and --fy must be positive");
+    o.intrinsics = DepthIntrinsics{fx, fy, cx, cy};
+  }
+  if (depth_scale > 0) o.depth_scale = depth_scale;
+  o.mask = mask;
+  if (!crop.empty()) {
+    std::istringstream in(crop);
+    int u = -1, v = -1;
+    char comma = 0;
+    std::string rest;
+    if (!(in >> u >> comma >> v) || comma != ',' || (in >> rest) || u < 0 || v < 0)
+      throw Error("--crop-offset '" + crop + "': expected U,V (0-based pixels)");
+    o.crop = CropOffset{u, v};
+  }
+  return o;
+}
+
+}  // namespace keyturn::app

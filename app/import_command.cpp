@@ -1,0 +1,51 @@
+// keyturn import FORMAT SRC --out DATASET: another tool's dataset (Washington RGB-D, labelled
+// folders) as a keyturn dataset that evaluate, train, consistency and repeatability read unchanged
+// (rig/dataset_import.h does the work). Files it cannot use are listed one a line; the rest is imported.
+#include <iostream>
+#include <memory>
+
+#include "commands.h"
+#include "depth_image_options.h"
+#include "keyturn/rig/dataset_import.h"
+#include "progress.h"
+
+namespace keyturn::app {
+namespace {
+
+struct ImportArgs {
+  rig::ImportOptions options;
+  DepthImageFlags depth;
+  bool quiet = false;
+};
+
+int runImport(ImportArgs a) {
+  a.options.depth = a.depth.toOptions();
+  std::unique_ptr<Progress> bar;
+  a.options.progress = [&](std::size_t done, std::size_t total) {
+    if (!bar) bar = std::make_unique<Progress>("import", total, !a.quiet && total > 1);
+    bar->advance();
+    if (done == total) bar->finish();
+  };
+  const rig::ImportReport r = rig::importDataset(a.options);
+  std::cout << r.text(a.options);
+  return r.problems.empty() ? 0 : 1;
+}
+
+}  // namespace
+
+Command addImportCommand(CLI::App& app) {
+  auto a = std::make_shared<ImportArgs>();
+  auto* cmd = app.add_subcommand("import", "Import another tool's dataset (washington, folders) as a keyturn dataset");
+  cmd->add_option("format", a->options.format,
+                  "washington (CATEGORY/INSTANCE/INSTANCE_VIDEO_FRAME.pcd or _depthcrop.png) or folders "
+                  "(CLASS/INSTANCE/[eLABEL/]VIEW.{pcd,ply,png})")
+      ->required();
+  cmd->add_option("source", a->options.source, "The dataset's folder")->required();
+  cmd->add_option("--out,-o", a->options.out, "The keyturn dataset to write (new, empty, or an earlier import to resume)")
+      ->required();
+  cmd->add_flag("--quiet,-q", a->quiet, "No progress");
+  a->depth.add(*cmd);
+  return {cmd, [a] { return runImport(*a); }};
+}
+
+}  // namespace keyturn::app

@@ -1,0 +1,61 @@
+#pragma once
+// A 16-bit depth image (PNG, as Kinect-style RGB-D datasets store them) as an organized cloud:
+// pinhole intrinsics, the depth scale in metres per unit (0 = no return), an optional object mask
+// and the offset of a cropped image in the full frame (Washington RGB-D's _loc.txt).
+//
+//   z = depth · scale,  x = (u + crop_u − cx) · z / fx,  y = (v + crop_v − cy) · z / fy
+//
+// u, v and cx, cy are 0-based pixel coordinates (OpenCV's convention).
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyturn/core/cloud.h"
+
+namespace keyturn {
+
+struct DepthIntrinsics {
+  double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels
+};
+
+struct CropOffset {
+  int u = 0, v = 0;  // the crop's top-left pixel in the full image, 0-based
+};
+
+// How depth-image views are read. Without intrinsics a depth image is refused.
+struct DepthImageOptions {
+  std::optional<DepthIntrinsics> intrinsics;
+  double depth_scale = 0.001;            // metres per unit (millimetres: 0.001)
+  std::string mask;                      // one mask for every image; "" = the image's own companion
+  std::optional<CropOffset> crop;        // none = the image's own _loc.txt companion, or (0, 0)
+};
+
+// A camera file: JSON ({"fx": …, "fy": …, "cx": …, "cy": …}) or flat YAML (`fx: 570.3` lines);
+// an optional depth_scale key sets the scale too. Throws keyturn::Error naming the file.
+DepthImageOptions readCameraFile(const std::string& path);
+
+// Companions read beside NAME_depthcrop.png / NAME_depth.png when present: NAME_maskcrop.png /
+// NAME_mask.png (non-zero = object) and NAME_loc.txt ("u,v" of the crop's top-left, 1-based as
+// Washington's MATLAB writes it). "" when the image's name has no companion of that kind.
+std::string companionMask(const std::string& depth_png);
+std::string companionCropFile(const std::string& depth_png);
+CropOffset readCropFile(const std::string& path);
+
+// The image's pixels as points (NaN where the depth is 0 or the mask is 0). `mask` is empty or
+// width × height values.
+Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t width, std::uint32_t height,
+                        const DepthIntrinsics& intrinsics, double depth_scale,
+                        const std::vector<std::uint8_t>& mask = {}, CropOffset crop = {});
+
+// Reads a 16-bit single-channel PNG (and its mask and crop offset) as an organized cloud. Every
+// failure (no intrinsics, 8-bit or colour image, empty or corrupt file, mask of another size)
+// throws keyturn::Error naming the file.
+Cloud loadDepthImage(const std::string& png, const DepthImageOptions& options);
+
+// A 16-bit single-channel image written as a PNG, durably (temporary name, sync, rename): depth
+// images, and a frame's raw distance, amplitude and confidence images.
+void savePng16(const std::string& png, const std::vector<std::uint16_t>& depth, std::uint32_t width,
+                    std::uint32_t height);
+
+}  // namespace keyturn

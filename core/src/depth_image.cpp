@@ -1,0 +1,273 @@
+#include "keyturn/core/depth_image.h"
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <opencv2/core.hpp>
+#include <opencv2/imgcodecs.hpp>
+#include <sstream>
+
+#include "keyturn/core/durable_file.h"
+#include "keyturn/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace keyturn {
+namespace {
+
+[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+
+std::string readAll(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) fail(path, fs::exists(path) ? "cannot read" : "no such file");
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+std::string trim(const std::string& s) {
+  const auto b = s.find_first_not_of(" \t\r\"'");
+  if (b == std::string::npos) return "";
+  const auto e = s.find_last_not_of(" \t\r\"'");
+  return s.substr(b, e - b + 1);
+}
+
+double number(const std::string& path, const std::string& key, const std::string& text) {
+  std::size_t used = 0;
+  double v = 0;
+  try {
+    v = std::stod(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size() || !std::isfinite(v)) fail(path, key + " is '" + text + "', not a number");
+  return v;
+}
+
+// Flat YAML: "key: value" lines; comments, the %YAML directive and document markers skipped.
+std::vector<std::pair<std::string, std::string>> flatYaml(const std::string& path, const std::string& text) {
+  std::vector<std::pair<std::string, std::string>> out;
+  std::istringstream in(text);
+  std::string line;
+  int n = 0;
+  while (std::getline(in, line)) {
+    ++n;
+    const auto hash = line.find('#');
+    if (hash != std::string::npos) line.resize(hash);
+    line = trim(line);
+    if (line.empty() || line[0] == '%' || line == "---" || line == "...") continue;
+    const auto colon = line.find(':');
+    if (colon == std::string::npos) fail(path, "line " + std::to_string(n) + ": expected 'key: value'");
+    out.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
+  }
+  return out;
+}
+
+std::uint32_t crc32(const unsigned char* p, std::size_t n) {  // PNG's CRC (ISO 3309), bitwise
+  std::uint32_t c = 0xFFFFFFFFu;
+  for (std::size_t i = 0; i < n; ++i) {
+    c ^= p[i];
+    for (int k = 0; k < 8; ++k) c = (c >> 1) ^ (0xEDB88320u & (0u - (c & 1u)));
+  }
+  return c ^ 0xFFFFFFFFu;
+}
+
+std::uint32_t bigEndian32(const unsigned char* p) {
+  return (std::uint32_t(p[0]) << 24) | (std::uint32_t(p[1]) << 16) | (std::uint32_t(p[2]) << 8) | p[3];
+}
+
+// The PNG's chunks walked and their checksums checked before it is decoded: libpng prints its own
+// complaint about a damaged file on stderr, and our one line already says what is wrong.
+void checkPngChunks(const std::string& path, const std::string& bytes) {
+  const auto* b = reinterpret_cast<const unsigned char*>(bytes.data());
+  std::size_t at = 8;
+  while (true) {
+    if (at + 12 > bytes.size()) fail(path, "truncated PNG (no end chunk)");
+    const std::uint32_t length = bigEndian32(b + at);
+    if (length > bytes.size() - at - 12) fail(path, "truncated PNG (a chunk runs past the end of the file)");
+    const std::string type = bytes.substr(at + 4, 4);
+    for (char c : type)
+      if (!std::isalpha(static_cast<unsigned char>(c))) fail(path, "corrupt PNG (a chunk has no valid type)");
+    if (crc32(b + at + 4, length + 4) != bigEndian32(b + at + 8 + length))
+      fail(path, "corrupt PNG (checksum of chunk " + type + " does not match)");
+    at += 12 + length;
+    if (type == "IEND") return;
+  }
+}
+
+// Decodes a PNG whose structure has been checked (OpenCV picks the decoder from the bytes).
+cv::Mat readPng(const std::string& path, const char* what) {
+  std::error_code ec;
+  if (!fs::exists(path, ec)) fail(path, "no such file");
+  if (fs::is_directory(path, ec)) fail(path, std::string("is a directory, expected a ") + what + " PNG");
+  const std::string bytes = readAll(path);
+  if (bytes.empty()) fail(path, "empty file (0 bytes)");
+  static const char kSignature[] = "\x89PNG\r\n\x1a\n";
+  if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0) fail(path, "not a PNG file (no PNG signature)");
+  checkPngChunks(path, bytes);
+  cv::Mat m;
+  try {
+    m = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
+                     cv::IMREAD_UNCHANGED);
+  } catch (const cv::Exception&) {
+    m.release();
+  }
+  if (m.empty()) fail(path, "corrupt PNG (cannot be decoded)");
+  return m;
+}
+
+std::string withSuffixReplaced(const std::string& path, const std::string& from, const std::string& to) {
+  if (path.size() > from.size() && path.compare(path.size() - from.size(), from.size(), from) == 0)
+    return path.substr(0, path.size() - from.size()) + to;
+  return "";
+}
+
+std::vector<std::uint8_t> readMask(const std::string& path, int width, int height, const std::string& depth_png) {
+  const cv::Mat m = readPng(path, "mask");
+  if (m.channels() != 1 || (m.depth() != CV_8U && m.depth() != CV_16U))
+    fail(path, "a mask must be a single-channel 8- or 16-bit image (this one has " + std::to_string(m.channels()) +
+                   " channels)");
+  if (m.cols != width || m.rows != height)
+    fail(path, "mask is " + std::to_string(m.cols) + " × " + std::to_string(m.rows) + ", its depth image " + depth_png +
+                   " is " + std::to_string(width) + " × " + std::to_string(height));
+  std::vector<std::uint8_t> out(static_cast<std::size_t>(width) * height);
+  for (int v = 0; v < height; ++v)
+    for (int u = 0; u < width; ++u)
+      out[static_cast<std::size_t>(v) * width + u] =
+          (m.depth() == CV_8U ? m.at<std::uint8_t>(v, u) != 0 : m.at<std::uint16_t>(v, u) != 0) ? 1 : 0;
+  return out;
+}
+
+}  // namespace
+
+DepthImageOptions readCameraFile(const std::string& path) {
+  const std::string text = readAll(path);
+  if (text.empty()) fail(path, "empty camera file");
+  std::vector<std::pair<std::string, std::string>> entries;
+  const auto first = text.find_first_not_of(" \t\r\n");
+  if (first != std::string::npos && text[first] == '{') {
+    nlohmann::json j;
+    try {
+      j = nlohmann::json::parse(text);
+    } catch (const nlohmann::json::exception& e) {
+      fail(path, std::string("not valid JSON: ") + e.what());
+    }
+    for (const auto& [k, v] : j.items()) {
+      if (!v.is_number()) continue;
+      std::ostringstream s;
+      s.precision(17);
+      s << v.get<double>();
+      entries.emplace_back(k, s.str());
+    }
+  } else {
+    entries = flatYaml(path, text);
+  }
+  DepthImageOptions out;
+  DepthIntrinsics k;
+  bool seen[4] = {false, false, false, false};
+  const char* names[4] = {"fx", "fy", "cx", "cy"};
+  double* fields[4] = {&k.fx, &k.fy, &k.cx, &k.cy};
+  for (const auto& [key, value] : entries) {
+    for (int i = 0; i < 4; ++i)
+      if (key == names[i]) {
+        *fields[i] = number(path, key, value);
+        seen[i] = true;
+      }
+    if (key == "depth_scale") out.depth_scale = number(path, key, value);
+  }
+  for (int i = 0; i < 4; ++i)
+    if (!seen[i]) fail(path, std::string("no ") + names[i] + " (a camera file holds fx, fy, cx, cy in pixels)");
+  if (!(k.fx > 0) || !(k.fy > 0)) fail(path, "fx and fy must be positive");
+  if (!(out.depth_scale > 0)) fail(path, "depth_scale must be positive");
+  out.intrinsics = k;
+  return out;
+}
+
+std::string companionMask(const std::string& depth_png) {
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"_depthcrop.png", "_maskcrop.png"},
+                                 {"_depth.png", "_mask.png"}}) {
+    const std::string m = withSuffixReplaced(depth_png, from, to);
+    if (!m.empty()) return m;
+  }
+  return "";
+}
+
+std::string companionCropFile(const std::string& depth_png) {
+  for (const char* from : {"_depthcrop.png", "_depth.png"}) {
+    const std::string l = withSuffixReplaced(depth_png, from, "_loc.txt");
+    if (!l.empty()) return l;
+  }
+  return "";
+}
+
+CropOffset readCropFile(const std::string& path) {
+  std::string text = readAll(path);
+  for (char& c : text)
+    if (c == ',') c = ' ';
+  std::istringstream in(text);
+  long u = 0, v = 0;
+  std::string rest;
+  if (!(in >> u >> v) || (in >> rest) || u < 1 || v < 1 || u > 100000 || v > 100000)
+    fail(path, "expected the crop's top-left pixel as 'u,v' (1-based, as Washington RGB-D's _loc.txt)");
+  return {static_cast<int>(u - 1), static_cast<int>(v - 1)};
+}
+
+Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t width, std::uint32_t height,
+                        const DepthIntrinsics& k, double depth_scale, const std::vector<std::uint8_t>& mask,
+                        CropOffset crop) {
+  Cloud c;
+  c.width = width;
+  c.height = height;
+  c.points.assign(depth.size(), Eigen::Vector3f::Constant(std::nanf("")));
+  for (std::uint32_t v = 0; v < height; ++v)
+    for (std::uint32_t u = 0; u < width; ++u) {
+      const std::size_t i = static_cast<std::size_t>(v) * width + u;
+      if (depth[i] == 0 || (!mask.empty() && !mask[i])) continue;  // no return, or not the object
+      const double z = depth[i] * depth_scale;
+      c.points[i] = Eigen::Vector3d((u + crop.u - k.cx) * z / k.fx, (v + crop.v - k.cy) * z / k.fy, z).cast<float>();
+    }
+  return c;
+}
+
+Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
+  if (!o.intrinsics)
+    fail(png, "a depth image needs the camera's intrinsics (--camera FILE, or --fx --fy --cx --cy)");
+  const cv::Mat m = readPng(png, "16-bit depth");
+  if (m.channels() != 1) fail(png, std::to_string(m.channels()) + "-channel image; a depth image has one channel");
+  if (m.depth() != CV_16U)
+    fail(png, std::string(m.depth() == CV_8U ? "8-bit" : "non-16-bit") +
+                  " image; a depth image is 16-bit (an 8-bit PNG holds no usable depth)");
+  const auto w = static_cast<std::uint32_t>(m.cols), h = static_cast<std::uint32_t>(m.rows);
+  std::vector<std::uint16_t> depth(static_cast<std::size_t>(w) * h);
+  for (int v = 0; v < m.rows; ++v)
+    for (int u = 0; u < m.cols; ++u) depth[static_cast<std::size_t>(v) * w + u] = m.at<std::uint16_t>(v, u);
+
+  std::error_code ec;
+  std::string mask_file = o.mask;
+  if (mask_file.empty() && !companionMask(png).empty() && fs::exists(companionMask(png), ec)) mask_file = companionMask(png);
+  const std::vector<std::uint8_t> mask =
+      mask_file.empty() ? std::vector<std::uint8_t>{} : readMask(mask_file, m.cols, m.rows, png);
+  CropOffset crop;
+  if (o.crop) crop = *o.crop;
+  else if (!companionCropFile(png).empty() && fs::exists(companionCropFile(png), ec)) crop = readCropFile(companionCropFile(png));
+  return depthImageToCloud(depth, w, h, *o.intrinsics, o.depth_scale, mask, crop);
+}
+
+void savePng16(const std::string& path, const std::vector<std::uint16_t>& img, std::uint32_t width,
+               std::uint32_t height) {
+  if (img.size() != static_cast<std::size_t>(width) * height || img.empty())
+    fail(path, "image data does not match its size");
+  // OpenCV picks the encoder from the extension, so the temporary name keeps ".png".
+  const std::string tmp = path.substr(0, path.size() - 4) + ".tmp.png";
+  const cv::Mat m(static_cast<int>(height), static_cast<int>(width), CV_16UC1, const_cast<std::uint16_t*>(img.data()));
+  bool ok = false;
+  try {
+    ok = cv::imwrite(tmp, m);
+  } catch (const cv::Exception& e) {
+    fail(path, std::string("PNG encoder failed: ") + e.what());
+  }
+  if (!ok) fail(path, "could not write PNG");
+  commitFile(tmp, path);
+}
+
+}  // namespace keyturn

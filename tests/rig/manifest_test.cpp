@@ -1,0 +1,118 @@
+// Manifests saved by other tools: a spreadsheet's CRLF endings and UTF-8 byte order mark are read as
+// keyturn's own; any other first line is refused in one line naming the file and what differs.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "keyturn/core/error.h"
+#include "keyturn/rig/dataset.h"
+
+namespace fs = std::filesystem;
+using namespace keyturn;
+
+namespace {
+
+fs::path datasetWithTwoViews(const std::string& name) {
+  const fs::path root = fs::temp_directory_path() / ("keyturn_manifest_" + name + "_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  rig::Dataset ds(root.string());
+  drivers::TofFrame f;
+  f.width = 2;
+  f.height = 2;
+  f.distance.assign(4, 1000);
+  f.amplitude.assign(4, 500);
+  f.confidence.assign(4, 65535);
+  f.cloud.width = 2;
+  f.cloud.height = 2;
+  f.cloud.points.assign(4, Eigen::Vector3f(0.f, 0.f, 1.f));
+  for (double a : {0.0, 90.0}) ds.write({"box", "b1", "30", a}, rig::ViewMetadata(), f);
+  return root;
+}
+
+std::string readText(const fs::path& p) {
+  std::ifstream in(p, std::ios::binary);
+  return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+}
+
+void writeText(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary | std::ios::trunc) << s; }
+
+std::string withCrlf(const std::string& lf) {
+  std::string out;
+  for (char c : lf) out += c == '\n' ? std::string("\r\n") : std::string(1, c);
+  return out;
+}
+
+std::string refusal(const fs::path& root) {
+  try {
+    (void)rig::Dataset::verify(root.string());
+  } catch (const Error& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST(Manifest, CrlfEndingsAndAByteOrderMarkReadAsTheOriginal) {
+  const fs::path root = datasetWithTwoViews("crlf");
+  const auto original = rig::Dataset::readManifest(root.string());
+  ASSERT_EQ(original.size(), 2u);
+  writeText(root / "manifest.csv", "\xEF\xBB\xBF" + withCrlf(readText(root / "manifest.csv")));
+
+  std::vector<std::string> bad;
+  const auto read = rig::Dataset::readManifest(root.string(), &bad);
+  EXPECT_TRUE(bad.empty());
+  ASSERT_EQ(read.size(), 2u);
+  for (std::size_t i = 0; i < read.size(); ++i) {
+    EXPECT_EQ(read[i].files, original[i].files);
+    EXPECT_EQ(read[i].sha256, original[i].sha256);  // the last column carries no '\r'
+    EXPECT_EQ(read[i].captured_at, original[i].captured_at);
+  }
+  const auto report = rig::Dataset::verify(root.string());
+  EXPECT_TRUE(report.good()) << report.text(root.string());
+  EXPECT_EQ(report.views, 2u);
+  EXPECT_TRUE(report.orphans.empty());
+
+  // A capture resumed on it appends to it and still finds both views.
+  rig::Dataset reopened(root.string());
+  EXPECT_EQ(reopened.views().size(), 2u);
+  EXPECT_TRUE(reopened.has({"box", "b1", "30", 90.0}));
+}
+
+TEST(Manifest, AnotherHeaderIsRefusedWithTheReason) {
+  const fs::path root = datasetWithTwoViews("header");
+  const std::string text = readText(root / "manifest.csv");
+  const std::string rows = text.substr(text.find('\n') + 1);
+  const std::string file = (root / "manifest.csv").string();
+
+  writeText(root / "manifest.csv", "class,instance,elev,elevation_deg,commanded_deg,measured_deg,captured_at,files,sha256\n" + rows);
+  std::string why = refusal(root);
+  EXPECT_EQ(why.rfind(file + ": line 1: column 3 is 'elev', expected 'elevation'", 0), 0u) << why;
+  EXPECT_EQ(why.find('\n'), std::string::npos);
+
+  writeText(root / "manifest.csv", "class,instance,elevation,elevation_deg,commanded_deg,measured_deg,captured_at,files\n" + rows);
+  why = refusal(root);
+  EXPECT_EQ(why.rfind(file + ": line 1: header has 8 columns, expected 9", 0), 0u) << why;
+
+  writeText(root / "manifest.csv", "class;instance;elevation\n" + rows);
+  why = refusal(root);
+  EXPECT_EQ(why.rfind(file + ": line 1: column 1 is 'class;instance;elevation', expected 'class'", 0), 0u) << why;
+
+  writeText(root / "manifest.csv", "\n" + rows);
+  why = refusal(root);
+  EXPECT_EQ(why.rfind(file + ": line 1 is empty", 0), 0u) << why;
+  EXPECT_THROW(rig::Dataset reopened(root.string()), Error);
+}
+
+// evaluate, train and describe --cache keep the features in DATASET/.keyturn/: keyturn's own file,
+// not an orphan of an interrupted capture.
+TEST(Manifest, TheFeatureCacheIsNoOrphan) {
+  const fs::path root = datasetWithTwoViews("cache");
+  fs::create_directories(root / ".keyturn");
+  writeText(root / ".keyturn" / "features-0123456789abcdef.csv", "# keyturn-features 1\n");
+  writeText(root / "box" / "stray.pcd", "x");
+  const auto report = rig::Dataset::verify(root.string());
+  EXPECT_EQ(report.orphans, std::vector<std::string>{"box/stray.pcd"});
+}
