@@ -1,7 +1,7 @@
 // keyturn repeatability: absolute and relative keypoint repeatability against ε
 // for several detectors, native and at an equal keypoint budget, over pairs of
-// posed views (a calibrated dataset or a pose file). The study is core's; this
-// parses, calls, draws the plots and prints.
+// posed views (a calibrated dataset or a pose file). The study and its plots are
+// core's; this parses, calls, draws and prints.
 #include <iostream>
 #include <memory>
 
@@ -10,7 +10,7 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/repeatability_study.h"
 #include "keyturn/rig/study_views.h"
-#include "keyturn/ui/line_chart.h"
+#include "keyturn/ui/report_plots.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -25,29 +25,6 @@ struct RepArgs {
   DepthImageFlags depth;
   bool json = false, no_filter = false;
 };
-
-void savePlots(const Study& s, const std::string& out) {
-  const auto& eps = s.options.eps_res;
-  ui::LineChart abs_chart{"Absolute repeatability", "ε (× resolution)", "repeatable keypoints (mean per pair)", {}};
-  ui::LineChart rel_chart{"Relative repeatability", "ε (× resolution)", "repeatable / visible", {}, 0.0, 1.0};
-  ui::LineChart rot_chart{"Relative repeatability at ε = " + std::to_string(eps[s.eps_near_2]).substr(0, 4) + " × resolution",
-                          "rotation between views (°)", "repeatable / visible", {}, 0.0, 1.0};
-  for (const auto& [d, S] : s.detectors)
-    for (const bool equal : {false, true}) {
-      const std::string name = detectorName(d) + (equal ? " @K" : "");
-      abs_chart.series.push_back({name, eps, equal ? S.absolute_equal : S.absolute});
-      rel_chart.series.push_back({name, eps, equal ? S.relative_equal : S.relative});
-      ui::Series rot{name, {}, {}};
-      for (const auto& [deg, b] : equal ? S.relative_equal_by_rotation : S.relative_by_rotation) {
-        rot.x.push_back(deg);
-        rot.y.push_back(b.first / b.second);
-      }
-      rot_chart.series.push_back(rot);
-    }
-  ui::saveChartPng(abs_chart, out + "/absolute_vs_eps.png");
-  ui::saveChartPng(rel_chart, out + "/relative_vs_eps.png");
-  ui::saveChartPng(rot_chart, out + "/relative_vs_rotation.png");
-}
 
 int runRepeatability(RepArgs a) {
   a.study.detectors = parseDetectorList(a.detectors);
@@ -67,7 +44,7 @@ int runRepeatability(RepArgs a) {
   writeFileDurably(a.out + "/pairs.csv", studyPairsCsv(s));
   writeFileDurably(a.out + "/summary.md", md);
   writeFileDurably(a.out + "/summary.json", json);
-  savePlots(s, a.out);
+  ui::saveReportPlots(studyPlots(s), a.out);
   std::cout << (a.json ? json : md + "Report: " + a.out + "\n");
   return 0;
 }

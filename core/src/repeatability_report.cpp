@@ -1,6 +1,7 @@
 // The repeatability report's text files (the plots are drawn by the command's ui).
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -118,6 +119,29 @@ std::string studyJson(const Study& s, const std::string& input) {
         {"relative", S.relative},
         {"equal_k", {{"keypoints", S.equal_keypoints}, {"absolute", S.absolute_equal}, {"relative", S.relative_equal}}}};
   return j.dump(2) + "\n";
+}
+
+ReportPlots studyPlots(const Study& s) {
+  const auto& eps = s.options.eps_res;
+  char at[16];
+  std::snprintf(at, sizeof at, "%.3g", eps[s.eps_near_2]);
+  CurvePlot abs{"absolute_vs_eps.png", "Absolute repeatability", "ε (× resolution)", "repeatable keypoints (mean per pair)", {}};
+  CurvePlot rel{"relative_vs_eps.png", "Relative repeatability", "ε (× resolution)", "repeatable / visible", {}, 0.0, 1.0};
+  CurvePlot rot{"relative_vs_rotation.png", std::string("Relative repeatability at ε = ") + at + " × resolution",
+                "rotation between views (°)", "repeatable / visible", {}, 0.0, 1.0};
+  for (const auto& [d, S] : s.detectors)
+    for (const bool equal : {false, true}) {
+      const std::string name = detectorName(d) + (equal ? " @K" : "");
+      abs.series.push_back({name, eps, equal ? S.absolute_equal : S.absolute});
+      rel.series.push_back({name, eps, equal ? S.relative_equal : S.relative});
+      CurveSeries by_rotation{name, {}, {}};
+      for (const auto& [deg, b] : equal ? S.relative_equal_by_rotation : S.relative_by_rotation) {
+        by_rotation.x.push_back(deg);
+        by_rotation.y.push_back(b.first / b.second);
+      }
+      rot.series.push_back(by_rotation);
+    }
+  return {{abs, rel, rot}, {}};
 }
 
 }  // namespace keyturn

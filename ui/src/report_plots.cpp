@@ -25,6 +25,7 @@ void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
     chart.y_label = c.y_label;
     for (const auto& s : c.series) chart.series.push_back({s.name, s.x, s.y});
     chart.y_min = c.y_min;
+    chart.y_max = c.y_max;
     chart.log_x = c.log_x;
     chart.log_y = c.log_y;
     saveChartPng(chart, pathOf(c.file), c.width, c.height);

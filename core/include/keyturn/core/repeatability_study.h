@@ -12,6 +12,7 @@
 #include <utility>
 #include <vector>
 
+#include "keyturn/core/report_plots.h"
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/keypoint_detectors.h"
@@ -87,5 +88,8 @@ std::string studyCsv(const Study& s);
 std::string studyPairsCsv(const Study& s);
 std::string studyMarkdown(const Study& s, const std::string& input);
 std::string studyJson(const Study& s, const std::string& input);
+// Its plots: absolute and relative repeatability against ε, relative against rotation,
+// each detector native and at the equal budget ("@K").
+ReportPlots studyPlots(const Study& s);
 
 }  // namespace keyturn

@@ -18,7 +18,7 @@ struct CurvePlot {
   std::string file;
   std::string title, x_label, y_label;
   std::vector<CurveSeries> series;
-  double y_min = std::nan("");  // NaN: from the data
+  double y_min = std::nan(""), y_max = std::nan("");  // NaN: from the data
   bool log_x = false, log_y = false;  // base 10; points ≤ 0 on such an axis are left out
   int width = 900, height = 560;
 };
