@@ -118,7 +118,7 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
   // The text of the default parameters, as every cache and model of version 4 holds it.
   const std::map<std::string, std::string> expected = {
       {"working_samples_across", "40"}, {"max_keypoints", "64"},
-      {"bins", "32"},           {"cache_version", "4"},  {"extent_m", "0.35"},      {"filter", "on"},
+      {"bins", "32"},           {"cache_version", "5"},  {"extent_m", "0.35"},      {"filter", "on"},
       {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "4"},
       {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},
       {"osada_samples", "20000"}, {"plane_removal", "on"}, {"range", "fixed"},      {"seed", "7"}};

@@ -14,6 +14,7 @@
 #include <QTemporaryDir>
 #include <QtTest>
 
+#include <algorithm>
 #include <atomic>
 #include <utility>
 
@@ -24,6 +25,15 @@
 #include "keyturn/studio/studio_rig_factory.h"
 
 using namespace keyturn;
+
+namespace {
+// The waits' limits, longer where the build is slower (ASan + UBSan: KEYTURN_TEST_TIME_SCALE=3). Each
+// wait ends as soon as its condition holds; only a failing one waits this long.
+int waitMs(int ms) {
+  static const int scale = std::max(1, qEnvironmentVariableIntValue("KEYTURN_TEST_TIME_SCALE"));
+  return ms * scale;
+}
+}  // namespace
 using namespace keyturn::studio;
 
 namespace {
@@ -136,14 +146,14 @@ class StudioTest : public QObject {
   void connectsAndShowsLiveFramesAndTheirCloud() {
     StudioWindow w(*factory_, simulated("ycb_025_mug"));
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 30, 15000);
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > 10, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 30, waitMs(15000));
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > 10, waitMs(15000));
     auto* angle = w.findChild<QLabel*>("poseAngle");
     QVERIFY(angle);
-    QTRY_COMPARE_WITH_TIMEOUT(angle->text(), QString("0.00°"), 5000);
+    QTRY_COMPARE_WITH_TIMEOUT(angle->text(), QString("0.00°"), waitMs(5000));
     auto* k = w.findChild<QLabel*>("keypointCount");
     QVERIFY(k);
-    QTRY_VERIFY_WITH_TIMEOUT(k->text().startsWith("K = "), 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(k->text().startsWith("K = "), waitMs(5000));
     QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
   }
 
@@ -153,8 +163,8 @@ class StudioTest : public QObject {
     for (const char* object : {"ycb_035_power_drill", "ycb_024_bowl"}) {
       StudioWindow w(*factory_, simulated(object));
       w.show();
-      QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString(object), 20000);
-      QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, 20000);
+      QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString(object), waitMs(20000));
+      QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, waitMs(20000));
       QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
     }
   }
@@ -165,14 +175,14 @@ class StudioTest : public QObject {
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, waitMs(15000));
     auto* angle = w.findChild<QLabel*>("poseAngle");
-    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), 5000);  // the turntable is connected
+    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), waitMs(5000));  // the turntable is connected
     w.findChild<QDoubleSpinBox*>("captureRange")->setValue(15);
     w.findChild<QDoubleSpinBox*>("captureStep")->setValue(5);
     QTest::mouseClick(w.findChild<QPushButton*>("captureStart"), Qt::LeftButton);
     auto* eta = w.findChild<QLabel*>("captureEta");
-    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QCOMPARE(eta->text(), QString("done: 3 views written, 0 were already there"));
     QCOMPARE(w.findChild<QListWidget*>("captureThumbnails")->count(), 3);
     const auto views = rig::Dataset::readManifest(dataset.toStdString());
@@ -194,8 +204,8 @@ class StudioTest : public QObject {
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), 15000);
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), waitMs(15000));
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, waitMs(15000));
     w.findChild<QDoubleSpinBox*>("captureRange")->setValue(10);  // 2 views
     auto* calibration = w.findChild<QLineEdit*>("captureCalibration");
     auto* start = w.findChild<QPushButton*>("captureStart");
@@ -205,7 +215,7 @@ class StudioTest : public QObject {
     QFile(bad).open(QIODevice::WriteOnly);
     calibration->setText(bad);
     QTest::mouseClick(start, Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(eta->text().contains("capture failed"), 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().contains("capture failed"), waitMs(5000));
     QVERIFY2(eta->text().contains(bad), qPrintable(eta->text()));
     QVERIFY(!QFile::exists(dataset + "/manifest.csv"));
     // A measured axis: camera 0.8 m in front of the table, turned; every view gets it composed
@@ -218,7 +228,7 @@ class StudioTest : public QObject {
     f.close();
     calibration->setText(good);
     QTest::mouseClick(start, Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QVERIFY(QFile::exists(dataset + "/calibration.json"));
     const auto views = rig::Dataset::readManifest(dataset.toStdString());
     QCOMPARE(views.size(), std::size_t(2));
@@ -236,7 +246,7 @@ class StudioTest : public QObject {
     o.dataset = dataset.toStdString();
     StudioWindow w(observed, o);
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 5, waitMs(15000));
     QAction* pause = nullptr;
     QAction* snapshot = nullptr;
     for (QAction* a : w.findChildren<QAction*>()) {
@@ -252,10 +262,10 @@ class StudioTest : public QObject {
     // Paused, the window takes none of the next 20 frames the camera delivers (nor any queued before).
     const long frozen = w.rates().frames;
     const long acquired = observed.acquired;
-    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 20), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 20), waitMs(10000));
     QCOMPARE(w.rates().frames, frozen);
     pause->trigger();
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frozen + 10, 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frozen + 10, waitMs(10000));
   }
 
   void aPausedCaptureResumesWithTheMissingViewsOnly() {
@@ -264,20 +274,20 @@ class StudioTest : public QObject {
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.findChild<QLabel*>("poseAngle")->text().endsWith("°"), waitMs(15000));
     w.findChild<QDoubleSpinBox*>("captureRange")->setValue(30);  // 6 views
     auto* start = w.findChild<QPushButton*>("captureStart");
     QTest::mouseClick(start, Qt::LeftButton);
     auto* thumbs = w.findChild<QListWidget*>("captureThumbnails");
-    QTRY_VERIFY_WITH_TIMEOUT(thumbs->count() >= 1, 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(thumbs->count() >= 1, waitMs(20000));
     QTest::mouseClick(w.findChild<QPushButton*>("capturePause"), Qt::LeftButton);
     auto* eta = w.findChild<QLabel*>("captureEta");
-    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("paused"), 20000);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("paused"), waitMs(20000));
     const std::size_t before = rig::Dataset::readManifest(dataset.toStdString()).size();
     QVERIFY(before >= 1 && before < 6);
     QCOMPARE(start->text(), QString("Resume"));
     QTest::mouseClick(start, Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), 30000);
+    QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QCOMPARE(eta->text(), QString("done: %1 views written, %2 were already there").arg(6 - before).arg(before));
     QCOMPARE(rig::Dataset::readManifest(dataset.toStdString()).size(), std::size_t(6));
     QVERIFY(rig::Dataset::verify(dataset.toStdString()).ok());
@@ -287,26 +297,26 @@ class StudioTest : public QObject {
     ObservedFactory observed(*factory_);
     StudioWindow w(observed, simulated("ycb_025_mug"));
     w.show();
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 10, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > 10, waitMs(15000));
     auto* unplug = w.findChild<QCheckBox*>("simUnplug");
     QVERIFY(unplug);
     unplug->setChecked(true);
-    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), waitMs(15000));
     QVERIFY2(w.bannerText().startsWith("Camera stopped answering: "), qPrintable(w.bannerText()));
     QVERIFY2(w.bannerText().contains("SR4000"), qPrintable(w.bannerText()));  // names the device
     const long frames_while_out = w.rates().frames;
     // Nothing arrives while unplugged: not after two attempts to open it again have failed.
     const long opens = observed.opens;
-    QTRY_VERIFY_WITH_TIMEOUT(observed.opens >= opens + 2, 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(observed.opens >= opens + 2, waitMs(10000));
     QCoreApplication::processEvents();
     QCOMPARE(w.rates().frames, frames_while_out);
     QVERIFY2(!w.bannerText().isEmpty(), "the banner stays while the camera is out");
     unplug->setChecked(false);
     const long results_while_out = w.rates().results;
-    QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), 15000);
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frames_while_out + 10, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.bannerText().isEmpty(), waitMs(15000));
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().frames > frames_while_out + 10, waitMs(15000));
     // The reopened camera counts its frames from 0 again: recognition must follow it.
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > results_while_out + 10, 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > results_while_out + 10, waitMs(15000));
   }
 
   void aCameraThatCannotBeOpenedIsNamedInTheBanner() {
@@ -318,7 +328,7 @@ class StudioTest : public QObject {
     w.findChild<QLineEdit*>("cameraAddress")->setText("192.0.2.7");
     ::setenv("KEYTURN_MESASR_LIB", "/nonexistent/libmesasr.so", 1);  // no MESA library here
     QTest::mouseClick(w.findChild<QPushButton*>("cameraConnect"), Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(!w.bannerText().isEmpty(), waitMs(10000));
     ::unsetenv("KEYTURN_MESASR_LIB");
     QVERIFY2(w.bannerText().startsWith("Could not open the camera: SR4000 at 192.0.2.7: "), qPrintable(w.bannerText()));
     QVERIFY2(w.bannerText().contains("libMesaSR"), qPrintable(w.bannerText()));
@@ -338,41 +348,41 @@ class StudioTest : public QObject {
     QCOMPARE(list->itemText(0), QString("no SwissRanger on USB"));
     const int scans_before = usb.scans;
     const int polls = usb.polls;
-    QTRY_VERIFY_WITH_TIMEOUT(usb.polls >= polls + 2, 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(usb.polls >= polls + 2, waitMs(5000));
     QCOMPARE(usb.scans, scans_before);  // the bus polled twice, no change on it: no rescan
     usb.plug({{4000123u, "SR4000 serial 4000123 (bus 1, port 2)"}, {4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});
-    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 2, 3000);
+    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 2, waitMs(3000));
     QCOMPARE(list->itemData(1).toUInt(), 4000456u);
     QVERIFY2(list->itemText(0).contains("4000123"), qPrintable(list->itemText(0)));
     usb.plug({{4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});  // the first one pulled out
-    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 1, 3000);
+    QTRY_COMPARE_WITH_TIMEOUT(list->count(), 1, waitMs(3000));
     QCOMPARE(list->itemData(0).toUInt(), 4000456u);
     usb.plug({});
-    QTRY_COMPARE_WITH_TIMEOUT(list->itemText(0), QString("no SwissRanger on USB"), 3000);
+    QTRY_COMPARE_WITH_TIMEOUT(list->itemText(0), QString("no SwissRanger on USB"), waitMs(3000));
   }
 
   void playsBackARecordingWithLiveRecognition() {
     ObservedFactory observed(*factory_);
     StudioWindow w(observed, playback(25));
     w.show();
-    QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString("ycb_035_power_drill"), 20000);
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, 20000);
+    QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString("ycb_035_power_drill"), waitMs(20000));
+    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, waitMs(20000));
     QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
     QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
     // More frames than the recording holds: it loops.
-    QTRY_VERIFY_WITH_TIMEOUT(observed.acquired > 12, 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(observed.acquired > 12, waitMs(10000));
     auto* status = w.findChild<QLabel*>("cameraStatus");
     QVERIFY2(status->text().contains("recording " + recording_ + " (12 views, 25 frames/s, looping)"), qPrintable(status->text()));
     // The pose shown is one the recording holds (its measured angles, near every 30°).
     auto* angle = w.findChild<QLabel*>("poseAngle");
-    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(angle->text().endsWith("°"), waitMs(5000));
     // It follows the frames: several recorded angles go by, each near a multiple of 30°.
     QSet<QString> angles;
     const auto seen = [&] {
       angles.insert(angle->text());
       return angles.size() >= 4;
     };
-    QTRY_VERIFY_WITH_TIMEOUT(seen(), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(seen(), waitMs(10000));
     for (const QString& a : angles) {
       const double deg = QString(a).chopped(1).toDouble();
       QVERIFY2(std::abs(deg - 30.0 * std::round(deg / 30.0)) < 0.2, qPrintable(a));
@@ -380,9 +390,9 @@ class StudioTest : public QObject {
     // Move to seeks the recording and holds there: the pose and the frames stay at 90°.
     w.findChild<QDoubleSpinBox*>("poseTarget")->setValue(90);
     QTest::mouseClick(w.findChild<QPushButton*>("poseMoveTo"), Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, 5000);
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, waitMs(5000));
     const long acquired = observed.acquired;
-    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 15), 10000);
+    QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 15), waitMs(10000));
     QVERIFY2(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, qPrintable(angle->text()));
   }
 
@@ -393,7 +403,7 @@ class StudioTest : public QObject {
     StudioWindow w(observed, o);
     w.show();
     auto* status = w.findChild<QLabel*>("cameraStatus");
-    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording after its 12 views (not looping)"), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording after its 12 views (not looping)"), waitMs(15000));
     QCoreApplication::processEvents();
     QCOMPARE(w.rates().frames, 12L);   // every view once, none twice
     QCOMPARE(observed.opens.load(), 1L);  // the end is not a camera lost: no reconnecting
@@ -401,9 +411,9 @@ class StudioTest : public QObject {
     // Connect again: it plays from the first view.
     auto* connect = w.findChild<QPushButton*>("cameraConnect");
     QTest::mouseClick(connect, Qt::LeftButton);  // disconnect
-    QTRY_COMPARE_WITH_TIMEOUT(connect->text(), QString("Connect"), 5000);
+    QTRY_COMPARE_WITH_TIMEOUT(connect->text(), QString("Connect"), waitMs(5000));
     QTest::mouseClick(connect, Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording"), 15000);
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().contains("end of the recording"), waitMs(15000));
     QCoreApplication::processEvents();
     QCOMPARE(w.rates().frames, 24L);
   }
