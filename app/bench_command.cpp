@@ -50,18 +50,10 @@ bench::RunProgress progressLines() {
   };
 }
 
-Cloud builtinView() {
-  const sim::Mesh mug = sim::makeMugMesh();
-  sim::TofViewRenderer renderer(mug);
-  sim::SceneView view;
-  view.turntable_deg = 30.0;
-  return renderer.render(view);
-}
-
 int runBench(BenchArgs a) {
   a.runs.progress = progressLines();
   std::vector<bench::ViewToTime> views;
-  if (!a.no_builtin) views.push_back({"builtin:mug", builtinView, ""});
+  if (!a.no_builtin) views.push_back({"builtin:mug", sim::builtinBenchmarkView, ""});
   const DepthImageOptions depth = a.depth.toOptions();
   const ViewFileList list = collectViewFiles(a.files, depth.intrinsics.has_value());
   for (const auto& e : list.errors)  // "ARGUMENT: what is wrong"

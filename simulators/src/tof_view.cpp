@@ -205,4 +205,10 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
   return cloud;
 }
 
+Cloud builtinBenchmarkView() {
+  SceneView view;
+  view.turntable_deg = 30.0;
+  return TofViewRenderer(makeMugMesh()).render(view);
+}
+
 }  // namespace keyturn::sim

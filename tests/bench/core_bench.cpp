@@ -29,10 +29,7 @@ struct Fixture {
   std::vector<int> keypoints;
   LocalCompleteGraph graph;
   Fixture() {
-    sim::TofViewRenderer r(sim::makeMugMesh());
-    sim::SceneView v;
-    v.turntable_deg = 30;
-    raw = r.render(v);
+    raw = sim::builtinBenchmarkView();
     filtered = filterCloud(raw, FilterOptions());
     set = PointSet::fromCloud(filtered);
     search = std::make_unique<RadiusSearch>(set);

@@ -182,13 +182,7 @@ TEST(Geodesic, WithoutCurvatureWeightsTheLengthsAreTheSame) {
 // nearly matches: it keeps every r-ball edge, over a quarter fewer edges in all, and every
 // distance within 1 % of the exact local complete graph's (never shorter).
 TEST(LocalCompleteGraph, ShortcutFreeGraphKeepsDistancesWithinOnePercent) {
-  const Cloud view = [] {
-    const sim::Mesh mug = sim::makeMugMesh();
-    sim::TofViewRenderer renderer(mug);
-    sim::SceneView v;
-    v.turntable_deg = 30.0;
-    return filterCloud(renderer.render(v), FilterOptions());
-  }();
+  const Cloud view = filterCloud(sim::builtinBenchmarkView(), FilterOptions());
   for (const PointSet& set : {PointSet::fromCloud(test::unorganized(test::cylinderSurface(kR, kH, kAround, kRings))),
                               PointSet::fromCloud(view)}) {
     const RadiusSearch search(set);

@@ -61,4 +61,8 @@ class TofViewRenderer {
   std::unique_ptr<Scene> scene_;
 };
 
+// The view `keyturn bench` always times first and the benchmarks and tests compare with: the
+// built-in mug on the turntable at 30°, default camera and noise.
+Cloud builtinBenchmarkView();
+
 }  // namespace keyturn::sim
