@@ -52,6 +52,7 @@ std::vector<Line> dataLines(const std::string& path, const std::string& what) {
     Line l{n, {}};
     std::istringstream ss(text);
     for (std::string t; ss >> t;) l.tok.push_back(t);
+    if (l.tok.empty()) continue;  // only whitespace the tokenizer skips (\v, \f)
     out.push_back(std::move(l));
   }
   return out;

@@ -105,6 +105,7 @@ TEST_F(PoseFiles, MalformedLinesNameFileLineAndWhat) {
   EXPECT_EQ(error("a.pcd 1 0 0 0 0 1 0 0 0 0 1 0\n", PoseFormat::Matrix),
             bad + ": line 1: expected VIEW_FILE and 16 numbers of a row-major 4 × 4, found 13 fields");
   EXPECT_EQ(error("# nothing\n"), bad + ": no poses listed");
+  EXPECT_EQ(error("\v\n\f \n"), bad + ": no poses listed") << "a line of whitespace the tokenizer skips (found by fuzzing)";
   EXPECT_EQ(errorOf([] { parsePoseFormat("ply"); }), "--pose-format: expected auto, keyturn, stanford, tum or matrix, got 'ply'");
   EXPECT_EQ(errorOf([&] { readPoses((dir / "none.txt").string()); }), (dir / "none.txt").string() + ": no such pose file");
 }
