@@ -16,16 +16,8 @@ cluster_tmp=$(mktemp -d /tmp/keyturn-slurm.XXXXXX)
 trap 'cluster_stop; rm -rf "$cluster_tmp"' EXIT
 cluster_start "$cluster_tmp" || { echo "measure-slurm: Slurm did not start: $cluster_error" >&2; exit 1; }
 
-objects=$root/data/objects
-{
-  echo "class,instance,mesh"
-  echo "bottle,ycb_021_bleach_cleanser,$objects/bottle__ycb_021_bleach_cleanser.ply"
-  echo "bottle,ycb_006_mustard_bottle,$objects/bottle__ycb_006_mustard_bottle.ply"
-  echo "can,ycb_002_master_chef_can,$objects/can__ycb_002_master_chef_can.ply"
-  echo "can,ycb_005_tomato_soup_can,$objects/can__ycb_005_tomato_soup_can.ply"
-} > "$work/objects.csv"
 rm -rf "$work/ds"
-"$KT" simulate --objects "$work/objects.csv" --elevations 30,60 --step 15 -q --out "$work/ds"
+"$KT" simulate --objects "$root/tests/data/objects-two-categories.csv" --elevations 30,60 --step 15 -q --out "$work/ds"
 ev="--features 'kpd2 kpd2+gkpd2 esf' --classifier xgboost,mlp --protocol kfold10,leave-elevation,leave-instance"
 
 # A stage's span in seconds: the earliest StartTime to the latest EndTime of its tasks.

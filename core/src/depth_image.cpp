@@ -1,5 +1,6 @@
 #include "keyturn/core/depth_image.h"
 
+#include <algorithm>
 #include <cctype>
 #include <cmath>
 #include <filesystem>
@@ -251,6 +252,18 @@ Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
   if (o.crop) crop = *o.crop;
   else if (!companionCropFile(png).empty() && fs::exists(companionCropFile(png), ec)) crop = readCropFile(companionCropFile(png));
   return depthImageToCloud(depth, w, h, *o.intrinsics, o.depth_scale, mask, crop);
+}
+
+std::vector<std::uint16_t> loadPng16(const std::string& path, std::uint32_t width, std::uint32_t height) {
+  const cv::Mat m = readPng(path, "16-bit");
+  if (m.type() != CV_16UC1) fail(path, "not a 16-bit grey PNG");
+  if (static_cast<std::uint32_t>(m.cols) != width || static_cast<std::uint32_t>(m.rows) != height)
+    fail(path, std::to_string(m.cols) + " × " + std::to_string(m.rows) + " pixels, expected " + std::to_string(width) +
+                   " × " + std::to_string(height));
+  std::vector<std::uint16_t> out(static_cast<std::size_t>(width) * height);
+  for (int r = 0; r < m.rows; ++r)
+    std::copy(m.ptr<std::uint16_t>(r), m.ptr<std::uint16_t>(r) + m.cols, out.begin() + static_cast<std::ptrdiff_t>(r) * m.cols);
+  return out;
 }
 
 void savePng16(const std::string& path, const std::vector<std::uint16_t>& img, std::uint32_t width,

@@ -3,8 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/depth_image.h"
@@ -19,21 +17,7 @@ namespace {
 // Empty when the file is not there; the image when it is, on the cloud's grid.
 std::vector<std::uint16_t> readPng16(const std::string& path, std::uint32_t w, std::uint32_t h) {
   if (!fs::exists(path)) return {};
-  cv::Mat m;
-  try {
-    m = cv::imread(path, cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception& e) {
-    throw Error(path + ": PNG decoder failed: " + e.what());
-  }
-  if (m.empty()) throw Error(path + ": not a readable PNG");
-  if (m.type() != CV_16UC1) throw Error(path + ": not a 16-bit grey PNG");
-  if (static_cast<std::uint32_t>(m.cols) != w || static_cast<std::uint32_t>(m.rows) != h)
-    throw Error(path + ": " + std::to_string(m.cols) + " × " + std::to_string(m.rows) + " pixels, the cloud has " +
-                std::to_string(w) + " × " + std::to_string(h));
-  std::vector<std::uint16_t> out(static_cast<std::size_t>(w) * h);
-  for (int r = 0; r < m.rows; ++r)
-    std::copy(m.ptr<std::uint16_t>(r), m.ptr<std::uint16_t>(r) + m.cols, out.begin() + static_cast<std::ptrdiff_t>(r) * m.cols);
-  return out;
+  return loadPng16(path, w, h);
 }
 
 std::uint16_t clampRaw(double v) { return static_cast<std::uint16_t>(std::lround(std::clamp(v, 0.0, 65535.0))); }

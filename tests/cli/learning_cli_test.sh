@@ -4,16 +4,8 @@
 # two elevations, 12 views per turn (96 views).
 set -u
 source "$(dirname "$0")/lib.sh"
-objects=$(cd "$(dirname "$0")/../../data/objects" && pwd)
 
-{
-  echo "class,instance,mesh"
-  echo "bottle,ycb_021_bleach_cleanser,$objects/bottle__ycb_021_bleach_cleanser.ply"
-  echo "bottle,ycb_006_mustard_bottle,$objects/bottle__ycb_006_mustard_bottle.ply"
-  echo "can,ycb_002_master_chef_can,$objects/can__ycb_002_master_chef_can.ply"
-  echo "can,ycb_005_tomato_soup_can,$objects/can__ycb_005_tomato_soup_can.ply"
-} > "$work/objects.csv"
-"$KT" simulate --objects "$work/objects.csv" --elevations 30,60 --step 30 -q --out "$work/ds" 2> "$work/sim.err"
+"$KT" simulate --objects "$(dirname "$0")/../data/objects-two-categories.csv" --elevations 30,60 --step 30 -q --out "$work/ds" 2> "$work/sim.err"
 check "simulate exits 0" test $? -eq 0
 cp -r "$work/ds" "$work/ds_sharded"
 

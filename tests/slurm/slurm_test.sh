@@ -8,7 +8,6 @@ set -u
 here=$(cd "$(dirname "$0")" && pwd)
 source "$here/../cli/lib.sh"
 source "$here/cluster.sh"
-objects=$(cd "$here/../../data/objects" && pwd)
 
 cluster_tmp=$(mktemp -d /tmp/keyturn-slurm.XXXXXX)  # short: munge's and slurmd's sockets live here
 teardown() {
@@ -24,14 +23,7 @@ if ! cluster_start "$cluster_tmp"; then
   exit 77
 fi
 
-{
-  echo "class,instance,mesh"
-  echo "bottle,ycb_021_bleach_cleanser,$objects/bottle__ycb_021_bleach_cleanser.ply"
-  echo "bottle,ycb_006_mustard_bottle,$objects/bottle__ycb_006_mustard_bottle.ply"
-  echo "can,ycb_002_master_chef_can,$objects/can__ycb_002_master_chef_can.ply"
-  echo "can,ycb_005_tomato_soup_can,$objects/can__ycb_005_tomato_soup_can.ply"
-} > "$work/objects.csv"
-"$KT" simulate --objects "$work/objects.csv" --elevations 30,60 --step 60 -q --out "$work/ds" 2> "$work/sim.err"
+"$KT" simulate --objects "$here/../data/objects-two-categories.csv" --elevations 30,60 --step 60 -q --out "$work/ds" 2> "$work/sim.err"
 check "simulate exits 0" test $? -eq 0
 cp -r "$work/ds" "$work/ds_single"
 cp -r "$work/ds" "$work/ds_pipeline"

@@ -53,6 +53,11 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
 // throws keyturn::Error naming the file.
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& options);
 
+// A 16-bit single-channel PNG of exactly width × height, row-major (a frame's raw distance,
+// amplitude and confidence images); read with the same checks as depth images, throws
+// keyturn::Error naming the file.
+std::vector<std::uint16_t> loadPng16(const std::string& png, std::uint32_t width, std::uint32_t height);
+
 // A 16-bit single-channel image written as a PNG, durably (temporary name, sync, rename): depth
 // images, and a frame's raw distance, amplitude and confidence images.
 void savePng16(const std::string& png, const std::vector<std::uint16_t>& depth, std::uint32_t width,
