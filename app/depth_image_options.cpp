@@ -15,8 +15,11 @@ void DepthImageFlags::add(CLI::App& cmd) {
                                    std::tuple{"--fy", &fy, "Focal length in y (pixels)"},
                                    std::tuple{"--cx", &cx, "Principal point x (pixels, 0-based)"},
                                    std::tuple{"--cy", &cy, "Principal point y (pixels, 0-based)"}})
-    cmd.add_option_function<double>(flag, [this, field](double v) { *field = v; pinhole.push_back(v); }, what)
+  {
+    double* target = field;  // a structured binding cannot be captured before C++20 (clang refuses)
+    cmd.add_option_function<double>(flag, [this, target](double v) { *target = v; pinhole.push_back(v); }, what)
         ->group(group);
+  }
   cmd.add_option("--depth-scale", depth_scale, "Metres per depth unit (default 0.001: millimetres)")
       ->check(CLI::PositiveNumber)->group(group);
   cmd.add_option("--mask", mask, "Mask PNG for every depth image (non-zero = object; default: NAME_mask[crop].png beside it)")

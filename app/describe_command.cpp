@@ -4,21 +4,16 @@
 // code says something failed.
 #include <filesystem>
 #include <iostream>
-#include <optional>
-#include <sstream>
 
 #include "commands.h"
 #include "dataset_features.h"
 #include "depth_image_options.h"
 #include "descriptor_options.h"
-#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/describe_files.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/core/parallel_for.h"
-#include "keyturn/core/view_explanation.h"
-#include "keyturn/core/view_report.h"
-#include "progress.h"
 #include "keyturn/core/view_files.h"
+#include "progress.h"
 
 namespace keyturn::app {
 namespace {
@@ -57,62 +52,28 @@ int runDescribe(const DescribeArgs& a) {
       throw Error(std::string(a.cache ? "--cache" : "--shard") + " needs one dataset folder (one with manifest.csv)");
     return runDescribeDataset(a);
   }
-  const DescriptorOptions options = a.flags.toOptions();
-  const DepthImageOptions depth = a.depth.toOptions();
-  ViewFileList list = collectViewFiles(a.inputs, depth.intrinsics.has_value());
-  for (const auto& e : list.errors) std::cerr << "keyturn describe: " << e << "\n";
+  DescribeFilesOptions o;
+  o.descriptor = a.flags.toOptions();
+  o.depth = a.depth.toOptions();
+  o.explain = a.explain;
+  o.warn_low = !a.quiet;
+  o.jobs = a.jobs;
+  o.prefix = "keyturn describe: ";
+  ViewFileList list = collectViewFiles(a.inputs, o.depth.intrinsics.has_value());
+  for (const auto& e : list.errors) std::cerr << o.prefix << e << "\n";
   const std::size_t n = list.files.size();
-  std::vector<std::optional<std::string>> rows(n);
-  std::vector<std::string> errors(n);
-  std::vector<int> low(n, 0);
-  std::vector<std::string> flags(n), explained(n);
-
   Progress progress("describe", n, !a.quiet && n > 1);
-  parallelFor(n, a.jobs, [&](std::size_t i) {
-    const std::string& file = list.files[i];
-    try {
-      const ViewDescriptor d = describeView(loadCloud(file, depth), options);
-      rows[i] = describeCsvRow(file, d);
-      low[i] = d.low_keypoints ? d.keypointCount() : 0;
-      flags[i] = d.filter.flaggedSummary();
-      if (a.explain) explained[i] = explainView(file, d);
-    } catch (const Error& e) {
-      const std::string msg = e.what();
-      errors[i] = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
-    } catch (const std::exception& e) {
-      errors[i] = file + ": unexpected failure: " + e.what();
-    }
-    progress.advance();
-  });
+  const DescribedFiles d = describeFiles(list.files, o, [&] { progress.advance(); });
   progress.finish();
-
-  std::ostringstream csv;
-  csv << describeCsvHeader(options.features, options.histogram.bins) << "\n";
-  std::size_t good = 0, flagged = 0;
-  for (std::size_t i = 0; i < n; ++i) {
-    if (rows[i]) {
-      csv << *rows[i] << "\n";
-      ++good;
-    }
-    if (!explained[i].empty()) std::cerr << explained[i];
-    if (!errors[i].empty()) std::cerr << "keyturn describe: " << errors[i] << "\n";
-    if (!flags[i].empty())
-      std::cerr << "keyturn describe: warning: " << list.files[i] << ": " << flags[i] << " (--explain shows why)\n";
-    if (low[i]) {
-      ++flagged;
-      if (!a.quiet)
-        std::cerr << "keyturn describe: warning: " << list.files[i] << ": only " << low[i]
-                  << " keypoints (< " << options.low_keypoints << "): its histograms are thin\n";
-    }
-  }
-  if (a.out.empty() || a.out == "-") std::cout << csv.str();
-  else writeFileDurably(a.out, csv.str());
-  const std::size_t failed = n - good + list.errors.size();
+  for (const auto& m : d.messages) std::cerr << m;
+  const bool to_stdout = a.out.empty() || a.out == "-";
+  if (to_stdout) std::cout << d.csv;
+  else writeFileDurably(a.out, d.csv);
   if (!a.quiet)
-    std::cerr << "keyturn describe: " << good << " of " << n << " views described"
-              << (flagged ? ", " + std::to_string(flagged) + " flagged for few keypoints" : "")
-              << (a.out.empty() || a.out == "-" ? "" : " → " + a.out) << "\n";
-  return failed == 0 ? 0 : 1;
+    std::cerr << o.prefix << d.described << " of " << n << " views described"
+              << (d.flagged ? ", " + std::to_string(d.flagged) + " flagged for few keypoints" : "")
+              << (to_stdout ? "" : " → " + a.out) << "\n";
+  return d.failed + list.errors.size() == 0 ? 0 : 1;
 }
 
 }  // namespace
