@@ -12,13 +12,13 @@ for round in 1 2; do
   "${cmd[@]}" 2> "$work/kill$round.err" &
   pid=$!
   target=$((round * 8))
-  for _ in $(seq 300); do [ "$(rows)" -ge "$target" ] && break; sleep 0.02; done
+  for _ in $(seq 1500); do [ "$(rows)" -ge "$target" ] && break; sleep 0.02; done
   kill -9 "$pid"; wait "$pid" 2>/dev/null
   check "round $round: killed mid-capture" test "$(rows)" -lt 36
 done
 "${cmd[@]}" 2> "$work/int.err" &
 pid=$!
-for _ in $(seq 300); do [ "$(rows)" -ge 24 ] && break; sleep 0.02; done
+for _ in $(seq 1500); do [ "$(rows)" -ge 24 ] && break; sleep 0.02; done
 kill -INT "$pid"; wait "$pid"; rc=$?
 check "Ctrl-C exits 130" test "$rc" -eq 130
 check "Ctrl-C says how to resume" grep -q "run the same command again to resume" "$work/int.err"

@@ -9,7 +9,7 @@ if ! command -v mbpoll > /dev/null; then echo "SKIPPED: mbpoll not installed"; e
 start_sim() {  # start_sim OUTFILE ARGS… → prints the endpoint
   "$KT" sim turntable "${@:2}" --speed 720 --accel 7200 --settle 0.01 --duration 120 > "$1" 2> "$1.err" &
   sims+=($!)
-  for _ in $(seq 50); do [ -s "$1" ] && break; sleep 0.1; done
+  for _ in $(seq 300); do [ -s "$1" ] && break; sleep 0.1; done  # up to 30 s: a loaded machine starts it late
   head -1 "$1"
 }
 sims=()

@@ -70,7 +70,7 @@ check "  and leaves no dataset" test ! -e "$work/badcal"
 "$KT" sim turntable --modbus-tcp 127.0.0.1:0 --duration 120 > "$work/table.out" 2> /dev/null &
 table=$!
 trap 'kill $table 2>/dev/null' EXIT
-for _ in $(seq 100); do [ -s "$work/table.out" ] && break; sleep 0.1; done
+for _ in $(seq 300); do [ -s "$work/table.out" ] && break; sleep 0.1; done
 KEYTURN_MESASR_LIB=/nonexistent/libmesasr.so "$KT" capture --camera usb --pose "$(head -1 "$work/table.out")" \
     --class a --instance b --out "$work/nolib" 2> "$work/nolib.err"
 check "a capture without libMesaSR exits 1" test $? -eq 1
