@@ -15,7 +15,7 @@ namespace {
 using Kind = DescriptorParameter::Kind;
 
 // %g: the form feature caches and sidecars have always used (the cache hash depends on it).
-std::string numberText(double v) {
+std::string cacheNumberText(double v) {
   char b[32];
   std::snprintf(b, sizeof b, "%g", v);
   return b;
@@ -68,7 +68,7 @@ template <typename Field>
 DescriptorParameter number(std::string key, std::string flag, std::string help, Field field, Sign sign) {
   using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
   return {std::move(key), std::move(flag), std::move(help), Kind::Number,
-          [field](const DescriptorOptions& o) { return numberText(static_cast<double>(field(o))); },
+          [field](const DescriptorOptions& o) { return cacheNumberText(static_cast<double>(field(o))); },
           [field, sign](DescriptorOptions& o, const std::string& t) {
             const double v = parseNumber(t);
             if (sign == Sign::Positive && !(v > 0)) throw Error("must be positive, not '" + t + "'");
@@ -117,7 +117,7 @@ std::vector<DescriptorParameter> makeTable() {
                "Remove pixels whose segment to a neighbour is within this angle of the viewing ray (degrees, 0 = off)",
                Kind::Number,
                [](const DescriptorOptions& o) {
-                 return numberText(o.filter_options.jump_edge ? o.filter_options.jump_edge_angle_deg : 0.0);
+                 return cacheNumberText(o.filter_options.jump_edge ? o.filter_options.jump_edge_angle_deg : 0.0);
                },
                [](DescriptorOptions& o, const std::string& t) {
                  const double v = parseNumber(t);
@@ -136,7 +136,7 @@ std::vector<DescriptorParameter> makeTable() {
   t.push_back({"working_samples_across", "--samples-across",
                "Working resolution: describe at spacing (view extent / this); 0 = the sensor's own spacing",
                Kind::Number,
-               [](const DescriptorOptions& o) { return numberText(o.working.enabled ? o.working.samples_across : 0.0); },
+               [](const DescriptorOptions& o) { return cacheNumberText(o.working.enabled ? o.working.samples_across : 0.0); },
                [](DescriptorOptions& o, const std::string& t) {
                  const double v = parseNumber(t);
                  if (!(v >= 0) || v > 1e6) throw Error("must be 0 (off) or a positive count up to 1e6, not '" + t + "'");

@@ -9,7 +9,8 @@ namespace keyturn::rig {
 
 namespace fs = std::filesystem;
 
-std::vector<learning::LabelledView> datasetViews(const std::string& root, std::vector<std::string>* skipped) {
+std::vector<learning::LabelledView> datasetViews(const std::string& root, std::vector<std::string>* skipped,
+                                                 std::vector<ViewRecord>* records) {
   if (!fs::is_regular_file(fs::path(root) / "manifest.csv"))
     throw Error(root + ": not a keyturn dataset (no manifest.csv)");
   std::vector<learning::LabelledView> out;
@@ -18,6 +19,7 @@ std::vector<learning::LabelledView> datasetViews(const std::string& root, std::v
     if (pcd.empty()) continue;
     out.push_back({pcd.substr(0, pcd.size() - 4), (fs::path(root) / pcd).string(), r.key.cls, r.key.instance,
                    r.key.elevation, {}});
+    if (records) records->push_back(r);
   }
   if (out.empty()) throw Error(root + ": the dataset has no views");
   return out;

@@ -33,14 +33,7 @@ class PyDataset {
  public:
   explicit PyDataset(std::string root) : root_(std::move(root)) {
     py::gil_scoped_release release;
-    views_ = rig::datasetViews(root_, &skipped_);
-    // datasetViews keeps the manifest rows that list a point cloud, in order.
-    std::size_t i = 0;
-    for (const auto& r : rig::Dataset::readManifest(root_)) {
-      if (r.pcd().empty()) continue;
-      if (i < views_.size()) records_.push_back(r);
-      ++i;
-    }
+    views_ = rig::datasetViews(root_, &skipped_, &records_);
   }
 
   const std::string& root() const { return root_; }
