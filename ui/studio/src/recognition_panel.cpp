@@ -17,6 +17,7 @@
 #include <QtCharts/QLineSeries>
 #include <QtCharts/QValueAxis>
 #include <algorithm>
+#include <cmath>
 #include <numeric>
 
 #include "keyturn/core/features.h"
@@ -97,9 +98,22 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   chart_->addSeries(view_series_);
   x_axis_ = new QValueAxis;
   y_axis_ = new QValueAxis;
+  // A small chart in a side dock: at the default font its labels and titles were elided to "…".
+  QFont small = chart_->font();
+  small.setPointSizeF(std::max(6.0, small.pointSizeF() * 0.75));
+  for (auto* axis : {x_axis_, y_axis_}) {
+    axis->setLabelsFont(small);
+    axis->setTitleFont(small);
+  }
+  chart_->legend()->setFont(small);
   x_axis_->setTitleText(tr("bin"));
   x_axis_->setLabelFormat("%d");
-  y_axis_->setTitleText(tr("probability"));
+  x_axis_->setTickType(QValueAxis::TicksDynamic);  // whole bins: 0, B/4, B/2, …
+  x_axis_->setTickAnchor(0);
+  x_axis_->setTickInterval(8);  // never 0: a dynamic axis with no interval makes ticks without end
+  y_axis_->setTitleText(tr("p"));
+  y_axis_->setLabelFormat("%.2f");
+  y_axis_->setTickCount(3);
   chart_->addAxis(x_axis_, Qt::AlignBottom);
   chart_->addAxis(y_axis_, Qt::AlignLeft);
   for (auto* s : {view_series_, mean_series_}) {
@@ -224,6 +238,7 @@ void RecognitionPanel::plot(const ViewResult& r) {
   view_series_->replace(view);
   mean_series_->replace(mean);
   x_axis_->setRange(0, std::max<double>(1, static_cast<double>(pdf.size()) - 1));
+  x_axis_->setTickInterval(std::max(1.0, std::round(static_cast<double>(pdf.size()) / 4.0)));
   y_axis_->setRange(0, top > 0 ? top * 1.1 : 1);
 }
 
