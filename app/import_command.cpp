@@ -1,6 +1,6 @@
-// keyturn import FORMAT SRC --out DATASET: another tool's dataset (Washington RGB-D, labelled
-// folders) as a keyturn dataset that evaluate, train, consistency and repeatability read unchanged
-// (rig/dataset_import.h does the work). Files it cannot use are listed one a line; the rest is imported.
+// keyturn import FORMAT SRC --out DATASET: another tool's dataset (Washington RGB-D, labelled folders,
+// BigBIRD) as a keyturn dataset (rig/dataset_import.h does the work). Files it cannot use are listed one
+// a line; the rest is imported.
 #include <iostream>
 #include <memory>
 
@@ -35,14 +35,12 @@ int runImport(ImportArgs a) {
 
 Command addImportCommand(CLI::App& app) {
   auto a = std::make_shared<ImportArgs>();
-  auto* cmd = app.add_subcommand("import", "Import another tool's dataset (washington, folders) as a keyturn dataset");
-  cmd->add_option("format", a->options.format,
-                  "washington (CATEGORY/INSTANCE/INSTANCE_VIDEO_FRAME.pcd or _depthcrop.png) or folders "
-                  "(CLASS/INSTANCE/[eLABEL/]VIEW.{pcd,ply,png})")
-      ->required();
+  auto* cmd = app.add_subcommand("import", "Import another tool's dataset (washington, folders, bigbird) as a keyturn dataset");
+  cmd->add_option("format", a->options.format, "washington (CATEGORY/INSTANCE/INSTANCE_VIDEO_FRAME.pcd or _depthcrop.png), folders "
+                  "(CLASS/INSTANCE/[eLABEL/]VIEW.{pcd,ply,png}) or bigbird (OBJECT/NPi_ANGLE.h5, calibration.h5, poses/)")->required();
   cmd->add_option("source", a->options.source, "The dataset's folder")->required();
-  cmd->add_option("--out,-o", a->options.out, "The keyturn dataset to write (new, empty, or an earlier import to resume)")
-      ->required();
+  cmd->add_option("--out,-o", a->options.out, "The keyturn dataset to write (new, empty, or an earlier import to resume)")->required();
+  cmd->add_option("--categories", a->options.categories, "bigbird: CSV with class and instance columns, each object's class");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
   a->depth.add(*cmd);
   return {cmd, [a] { return runImport(*a); }};

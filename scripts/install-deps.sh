@@ -34,6 +34,8 @@ packages=(
   # libtorch; OpenBLAS (single-threaded: evaluate runs folds in parallel) instead of
   # the reference BLAS, 3x faster network training (docs/results.md)
   libxgboost-dev xgboost libtorch-dev libopenblas0-serial
+  # BigBIRD's HDF5 files (keyturn import bigbird): the HDF5 C library
+  libhdf5-dev
   # command line, configuration, JSON
   libcli11-dev nlohmann-json3-dev
   # tests and benchmarks

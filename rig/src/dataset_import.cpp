@@ -45,13 +45,17 @@ ImportReport importDataset(const ImportOptions& o) {
   ImportPlan plan;
   DepthImageOptions depth = o.depth;
   std::string importer = "keyturn import " + o.format;
+  if (!o.categories.empty() && o.format != "bigbird")
+    throw Error("--categories is for bigbird (" + o.format + " names each view's class by its folder)");
   if (o.format == "washington") {
     plan = planWashingtonImport(o.source);
     if (!depth.intrinsics) depth.intrinsics = washingtonIntrinsics();
   } else if (o.format == "folders") {
     plan = planFoldersImport(o.source);
+  } else if (o.format == "bigbird") {
+    plan = planBigbirdImport(o.source, o.categories);
   } else {
-    throw Error("import format '" + o.format + "': expected washington or folders");
+    throw Error("import format '" + o.format + "': expected washington, folders or bigbird");
   }
   if (plan.views.empty()) {
     std::string why = o.source + ": no views in the " + o.format + " layout";
@@ -78,12 +82,13 @@ ImportReport importDataset(const ImportOptions& o) {
       ++rep.already;
     } else {
       try {
-        const Cloud cloud = loadCloud(v.file, depth);
+        const Cloud cloud = v.read ? v.read() : loadCloud(v.file, depth);
         if (cloud.validCount() == 0) throw Error(v.file + ": no valid point (every pixel without a return or masked out)");
         ViewMetadata meta;
         meta.elevation_deg = v.elevation_deg;
         meta.measured_deg = v.key.commanded_deg;
         meta.pose_source = v.angle_note;
+        meta.camera_from_turntable = v.camera_from_turntable;
         ds.writeImported(v.key, meta, cloud, fs::absolute(v.file).lexically_normal().string(), importer);
         ++rep.imported;
       } catch (const Error& e) {
