@@ -6,6 +6,8 @@
 
 #include "keyturn/core/error.h"
 
+// By hand, not OpenCV's Netpbm decoder: OpenCV 4.6 prints its own line on stderr for a truncated
+// file (imread catches its exception and writes to std::cerr), and a bad mask must be one line.
 namespace keyturn::rig {
 namespace {
 

@@ -3,6 +3,8 @@
 // the mask drawn in the colour camera, the class from --categories, and every bad file one line.
 #include <gtest/gtest.h>
 
+#include <algorithm>
+
 #include <Eigen/Geometry>
 #include <Eigen/LU>
 #include <cmath>
@@ -191,4 +193,32 @@ TEST(BigbirdImport, EachBadFileIsOneLineNamingItAndTheRestIsImported) {
   std::vector<std::string> got = r.problems;
   EXPECT_EQ(got, expected);
   for (const auto& line : got) EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+}
+
+TEST(BigbirdImport, ABadMaskIsOneLineAndItsViewNotImported) {
+  const fs::path d = fresh("bigbird_masks"), obj = d / "src" / "mug_7";
+  fs::create_directories(obj / "masks");
+  writeH5((obj / "calibration.h5").string(), calibrationDatasets({kCam}));
+  std::vector<std::uint8_t> left(1280 * 1024, 0);
+  for (std::size_t i = 0; i < left.size(); ++i) left[i] = i % 1280 < 640;
+  for (int angle : {0, 3, 6}) {
+    pose(obj, angle, cameraFromTable(angle, kNp5ElevationDeg).inverse());
+    view(obj, "NP2_" + std::to_string(angle), {h5Depth(wall(), kW, kH)});
+    writePbm((obj / "masks" / ("NP2_" + std::to_string(angle) + "_mask.pbm")).string(), left, 1280, 1024);
+  }
+  const fs::path truncated = obj / "masks" / "NP2_3_mask.pbm", png = obj / "masks" / "NP2_6_mask.pbm";
+  fs::resize_file(truncated, fs::file_size(truncated) / 3);
+  std::ofstream(png, std::ios::binary) << "\x89PNG\r\n\x1a\n" << std::string(64, '\0');
+
+  const rig::ImportReport r = run(d / "src", d / "ds");
+  EXPECT_EQ(r.imported, 1u);
+  ASSERT_EQ(r.problems.size(), 2u);
+  std::vector<std::string> got = r.problems;
+  std::sort(got.begin(), got.end());
+  // Named by the view, then by the mask that failed it.
+  EXPECT_EQ(got[0], (obj / "NP2_3.h5").string() + ": " + truncated.string() +
+                        ": truncated PBM bitmap");
+  EXPECT_EQ(got[1], (obj / "NP2_6.h5").string() + ": " + png.string() + ": not a PBM bitmap (no P4 or P1 magic)");
+  for (const auto& line : got) EXPECT_EQ(line.find('\n'), std::string::npos) << line;
+  EXPECT_EQ(loadCloud((d / "ds/mug_7/mug_7/eNP2/a0.0.pcd").string()).validCount(), 16u * kH);
 }
