@@ -7,11 +7,13 @@
 # most of an hour on 2 cores). Run it before a stop that changes install-deps.sh,
 # the scripts or the CMake requirements; record the figures in docs/fresh-machine.md.
 #
-# usage (as root): scripts/fresh-machine-check.sh [--setup-only | --test-only] [WORK_DIR]
+# usage (as root): scripts/fresh-machine-check.sh [--setup-only | --test-only | --hardening-only] [WORK_DIR]
 #   --setup-only  build the root, clone, run scripts/install-deps.sh, stop
 #   --test-only   reuse the root a full run left (packages, builds), move its clone
 #                 to HEAD and run only `bash scripts/test.sh` (to finish a run that
 #                 was stopped during test.sh, without an hour of set-up again)
+#   --hardening-only  as --test-only, but only test.sh's second half,
+#                 `bash scripts/test-hardening.sh` (after a run whose first half passed)
 #   WORK_DIR      where the root and the logs go (default /var/tmp/keyturn-fresh);
 #                 its old root is deleted first
 # It tests the committed HEAD, not uncommitted changes.
@@ -20,7 +22,9 @@ repo=$(cd "$(dirname "$0")/.." && pwd)
 setup_only=0
 test_only=0
 if [ "${1:-}" = "--setup-only" ]; then setup_only=1; shift; fi
+hardening_only=0
 if [ "${1:-}" = "--test-only" ]; then test_only=1; shift; fi
+if [ "${1:-}" = "--hardening-only" ]; then test_only=1; hardening_only=1; shift; fi
 work=${1:-/var/tmp/keyturn-fresh}
 root=$work/root
 src=/src/keyturn
@@ -149,6 +153,8 @@ timed() {  # timed NAME COMMAND: runs COMMAND in the root, logs to WORK/NAME.log
 if [ "$setup_only" -eq 1 ]; then
   timed install-deps "bash scripts/install-deps.sh"
   say "packages installed in the root: $(chroot "$root" dpkg-query -W -f='${Status}\n' | grep -c 'install ok installed')"
+elif [ "$hardening_only" -eq 1 ]; then
+  timed test-hardening "bash scripts/test-hardening.sh"
 elif [ "$test_only" -eq 1 ]; then
   timed test "bash scripts/test.sh"
 else
