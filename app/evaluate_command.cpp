@@ -106,7 +106,7 @@ Command addEvaluateCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("evaluate", "Cross-validated accuracy per feature set, classifier and protocol (Table 2)");
   cmd->add_option("dataset", a->dataset, "Dataset folder (manifest.csv)")->required();
   cmd->add_option("--features", a->features,
-                  "Feature sets, space- or comma-separated; '+' concatenates blocks (kpd2 kpd3 kpa3 gkpd1 gkpd2 "
+                  "Feature sets, comma-separated (or one quoted argument, space-separated); '+' concatenates blocks (kpd2 kpd3 kpa3 gkpd1 gkpd2 "
                   "gkpcd2, u_* on random keypoints, d2 d3 a3, esf vfh ourcvfh)")
       ->capture_default_str();
   cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
