@@ -30,7 +30,7 @@ struct EvaluateArgs {
                        protocols = "kfold10,leave-elevation,leave-instance", bins, out;
   std::string shard;  // "I/N": train and test this share of the folds into a part
   bool json = false, quiet = false, merge = false;
-  int jobs = 0;
+  int jobs = 0, inner_folds = 3;
   std::uint64_t split_seed = 7;
   std::string label;  // "": each protocol's own
   DescriptorFlags flags;
@@ -60,6 +60,7 @@ int runEvaluate(const EvaluateArgs& a) {
   plan.params = a.params;
   plan.jobs = a.jobs;
   plan.low_keypoints = a.flags.options.low_keypoints;
+  plan.inner_folds = a.inner_folds;
   if (!a.label.empty()) plan.label = learning::parseLabelKind(a.label);
   learning::EvaluationRun run = learning::prepareEvaluation(plan, [&a](int bins) {
     DescriptorOptions options = a.flags.options;
@@ -107,12 +108,17 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("dataset", a->dataset, "Dataset folder (manifest.csv)")->required();
   cmd->add_option("--features", a->features,
                   "Feature sets, comma-separated (or one quoted argument, space-separated); '+' concatenates blocks (kpd2 kpd3 kpa3 gkpd1 gkpd2 "
-                  "gkpcd2, u_* on random keypoints, d2 d3 a3, esf vfh ourcvfh)")
+                  "gkpcd2, u_* on random keypoints, d2 d3 a3, s_* in RMS radii, size, esf vfh ourcvfh); "
+                  "'A|B' chooses A or B per fold by nested validation on the training views")
       ->capture_default_str();
   cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
   cmd->add_option("--protocol", a->protocols, "kfoldN, leave-elevation, leave-instance, fixed:FILE")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
+  cmd->add_option("--inner-folds", a->inner_folds,
+                  "Inner folds per fold for a choice 'A|B' (the protocol's other folds, spread evenly)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   cmd->add_option("--label", a->label,
                   "instance or category, for every protocol (default: instance, category for leave-instance; "
                   "leave-instance is always category)");

@@ -127,7 +127,9 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   out.times.graph = clock.lap();
 
   // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.
-  auto pdfsFor = [&](const std::vector<int>& kp_index, bool with_shape_functions, GeodesicResult* geo_out) {
+  out.size = viewSize(set.points);
+  auto pdfsFor = [&](const std::vector<int>& kp_index, bool with_shape_functions, GeodesicResult* geo_out,
+                     std::vector<std::vector<double>>* scaled_out) {
     std::vector<Eigen::Vector3f> kp;
     for (int i : kp_index) kp.push_back(set.points[i]);
     std::vector<std::vector<float>> values(o.features.size());
@@ -173,13 +175,20 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
         range.hi = hi > 0.f ? hi : 1.0;
       }
       pdfs.push_back(histogramPdf(values[f], o.histogram.bins, range));
+      if (scaled_out) {
+        HistogramOptions scaled = o.histogram;
+        scaled.extent = kScaledExtent * std::max(out.size.rms_radius, 1e-9);
+        scaled_out->push_back(isAngleFeature(o.features[f])
+                                  ? pdfs.back()
+                                  : histogramPdf(values[f], o.histogram.bins, featureRange(o.features[f], scaled)));
+      }
     }
     out.times.histogram += clock.lap();
     return pdfs;
   };
 
   GeodesicResult geo;
-  out.pdfs = pdfsFor(keypoints, true, &geo);
+  out.pdfs = pdfsFor(keypoints, true, &geo, o.scaled_twin ? &out.scaled_pdfs : nullptr);
   out.unreachable_keypoints = geo.unreachable_from_centroid;
   out.unreachable_pairs = geo.unreachable_pairs;
   if (paths) {
@@ -193,7 +202,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     std::iota(all.begin(), all.end(), 0);
     std::vector<int> drawn;
     std::sample(all.begin(), all.end(), std::back_inserter(drawn), keypoints.size(), std::mt19937_64(o.random_seed));
-    out.random_keypoint_pdfs = pdfsFor(drawn, false, nullptr);
+    out.random_keypoint_pdfs = pdfsFor(drawn, false, nullptr, nullptr);
   }
   graph = LocalCompleteGraph();
   out.times.total =

@@ -164,6 +164,35 @@ TEST(Descriptor, PerViewRangeIsScaleInvariant) {
   EXPECT_NE(describeView(test::unorganized(cube), o).pdfs[0], describeView(test::unorganized(big), o).pdfs[0]);
 }
 
+// The scale-normalised twins (lengths in RMS radii) of a cube and of the cube twice as big are the
+// same PDFs; the size block carries what they drop: a 0.1 m cube surface has an RMS radius of
+// 0.1·√(5/12) = 64.5 mm and three equal spreads of 0.1·√(5/36) = 37.3 mm, the doubled cube twice that.
+TEST(Descriptor, ScaledTwinIsScaleInvariantAndTheSizeBlockIsNot) {
+  DescriptorOptions o;
+  o.filter = false;
+  o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2, Feature::D2};
+  o.scaled_twin = true;
+  const auto cube = test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1));
+  std::vector<Eigen::Vector3f> big;
+  for (const auto& p : cube) big.push_back(2.f * p);
+  const auto a = describeView(test::unorganized(cube), o);
+  const auto b = describeView(test::unorganized(big), o);
+  ASSERT_EQ(a.keypointCount(), b.keypointCount());
+  ASSERT_EQ(a.scaled_pdfs.size(), o.features.size());
+  for (std::size_t f = 0; f < o.features.size(); ++f) {
+    EXPECT_NEAR(std::accumulate(a.scaled_pdfs[f].begin(), a.scaled_pdfs[f].end(), 0.0), 1.0, 1e-9);
+    for (std::size_t i = 0; i < a.scaled_pdfs[f].size(); ++i)
+      EXPECT_NEAR(a.scaled_pdfs[f][i], b.scaled_pdfs[f][i], 1e-9) << featureName(o.features[f]) << " bin " << i;
+  }
+  EXPECT_EQ(a.scaled_pdfs[1], a.pdfs[1]) << "an angle has no scale: its twin is its PDF";
+  EXPECT_NE(a.pdfs[0], b.pdfs[0]) << "the fixed metric range sees the size";
+  EXPECT_NEAR(a.size.rms_radius, 0.1 * std::sqrt(5.0 / 12.0), 0.002);
+  for (int k = 0; k < 3; ++k) EXPECT_NEAR(a.size.spread[k], 0.1 * std::sqrt(5.0 / 36.0), 0.002) << k;
+  EXPECT_NEAR(b.size.rms_radius, 2.0 * a.size.rms_radius, 1e-6);
+  EXPECT_NEAR(b.size.spread[0], 2.0 * a.size.spread[0], 1e-6);
+  EXPECT_TRUE(describeView(test::unorganized(cube), DescriptorOptions{}).scaled_pdfs.empty()) << "only when asked";
+}
+
 // A dense tilted plane (1 mm grid, 0.2 m across, unorganized) is thinned to points at least s apart
 // that still cover it: every measured point within (1 + √3) s of a kept one, and about half a kept
 // point per s² (measured 0.53; a sensor's grid at spacing s has 1), not the ~1.2 that voxel

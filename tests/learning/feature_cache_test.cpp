@@ -72,20 +72,26 @@ TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
   const auto views = writeViews(root);
   const DescriptorOptions o;
   const FeatureTable all = featureLayout(cacheBlocks(), o);
-  const FeatureTable some = featureLayout({"gkpd2", "kpd2", "u_kpa3"}, o);
+  const FeatureTable some = featureLayout({"gkpd2", "kpd2", "u_kpa3", "s_gkpd2", "size"}, o);
   const auto full = describeViews(views, o, all, 2, nullptr);
   const auto part = describeViews(views, o, some, 2, nullptr);
   ASSERT_EQ(part.size(), 3u);
   for (std::size_t v = 0; v < views.size(); ++v) {
-    ASSERT_EQ(part[v].values.size(), 3u * 32u);
+    ASSERT_EQ(part[v].values.size(), 4u * 32u + 4u);
     EXPECT_GT(part[v].keypoints, 5);
     EXPECT_EQ(part[v].keypoints, full[v].keypoints);
-    for (const std::string b : {"gkpd2", "kpd2", "u_kpa3"}) {
+    for (const std::string b : {"gkpd2", "kpd2", "u_kpa3", "s_gkpd2", "size"}) {
       EXPECT_EQ(block(some, part[v], b), block(all, full[v], b)) << views[v].id << " " << b;
       EXPECT_FALSE(std::isnan(block(some, part[v], b).front()));
     }
   }
   EXPECT_FALSE(std::isnan(block(all, full[0], "esf").front())) << "the whole cache holds the peers";
+  // The size block is the described view's: the mug (about 12 × 9 × 8 cm) seen from one side.
+  const std::vector<float> size = block(all, full[0], "size");
+  EXPECT_GT(size[0], 0.02f);
+  EXPECT_LT(size[0], 0.08f);
+  EXPECT_GE(size[1], size[2]);
+  EXPECT_GE(size[2], size[3]);
 }
 
 // The cache, train and classify describe a view as `keyturn describe` and the studio's
@@ -119,7 +125,8 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
   EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-5e524815581379ed.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
-  EXPECT_EQ(all.width(), 15 * 32 + 640 + 308 + 308);
+  // 6 keypoint + 3 shape + 6 random-keypoint + 7 scaled blocks of 32 bins, size (4), ESF, VFH, OUR-CVFH.
+  EXPECT_EQ(all.width(), 22 * 32 + 4 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);
 
   const fs::path root = keyturn::test::scratchPath("feature_cache_refill");

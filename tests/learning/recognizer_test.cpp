@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include "keyturn/core/error.h"
+#include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_spec.h"
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/sim/mesh.h"
@@ -18,7 +19,7 @@ Model untrainedModel(const std::vector<std::string>& blocks, int bins = 32) {
   o.histogram.bins = bins;
   m.info.spec = featureSpec(o);
   m.info.blocks = blocks;
-  m.info.inputs = bins * static_cast<int>(blocks.size());
+  for (const auto& b : blocks) m.info.inputs += b == "size" ? kSizeBlockWidth : bins;
   m.info.classes = {"mug", "sphere-target"};
   m.classifier = makeClassifier(m.info.params);
   return m;
@@ -64,6 +65,27 @@ TEST(Recognizer, NamesTheObjectOfUnseenViewsWithTheModelsOwnFeatures) {
     }
   }
   EXPECT_GE(right, 11) << "of 12 unseen views";
+}
+
+// A model on scale-normalised twins and the size block sees live what evaluate and train saw in
+// the feature cache for the same view: the same values, block by block, in the model's order.
+TEST(Recognizer, ScaledTwinsAndSizeLiveAreTheCachesValues) {
+  const sim::TofViewRenderer mug(sim::loadMeshOrBuiltin("builtin:mug"));
+  const Cloud view = render(mug, 40.0, 3);
+  const std::vector<std::string> blocks = {"s_kpd2", "kpa3", "size", "kpd2"};
+  const Recognizer live(untrainedModel(blocks));
+  EXPECT_EQ(live.blockNames(), blocks);
+  const Recognition r = live.describe(view);
+  ASSERT_EQ(r.features.size(), 3u * 32u + 4u);
+  ASSERT_EQ(r.blocks.size(), 4u);
+  EXPECT_EQ(r.blocks[2].size(), 4u);
+  EXPECT_NE(r.blocks[0], r.blocks[3]) << "the twin is on other ranges than kpd2";
+  const FeatureTable layout = featureLayout(blocks, DescriptorOptions());
+  const FeatureRow row = describeCloud(view, DescriptorOptions(), layout);
+  ASSERT_EQ(row.values.size(), r.features.size());
+  for (std::size_t k = 0; k < r.features.size(); ++k) EXPECT_FLOAT_EQ(row.values[k], r.features[k]) << k;
+  EXPECT_NE(keyturn::test::errorOf([] { Recognizer(untrainedModel({"s_kpa3"}), "m4"); }).find("m4: block 's_kpa3' is not computed live"),
+            std::string::npos);
 }
 
 TEST(Recognizer, RefusesModelsItCannotFeedLive) {

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <random>
 #include <sstream>
 
@@ -15,6 +16,7 @@
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using namespace keyturn::learning;
@@ -108,6 +110,51 @@ TEST(EvaluationReport, BadPlansAreRefusedBeforeAnyWork) {
   bool described = false;
   EXPECT_NE(errorOf([&] { prepareEvaluation(plan, [&](int) { described = true; return twoInstances(); }); }), "");
   EXPECT_FALSE(described);
+}
+
+// A choice 'noise|kpd2' made per fold by nested validation: the informative block wins in every
+// fold (the noise block is uniform random values, the same for both instances), the row scores what
+// kpd2 alone scores, and the report names the choice per fold; a protocol of one fold is refused.
+TEST(EvaluationReport, NestedValidationChoosesTheInformativeSetInEveryFold) {
+  FeatureTable t = twoInstances();
+  t.blocks.push_back("noise");
+  t.sizes.push_back(4);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (auto& r : t.rows)
+    for (int k = 0; k < 4; ++k) r.values.push_back(u(rng));
+  EvaluationPlan plan;
+  plan.dataset = "cups";
+  plan.feature_sets = {"noise|kpd2", "kpd2", "noise"};
+  plan.classifiers = {"xgboost"};
+  plan.protocols = {"kfold4"};
+  plan.bins = {4};
+  plan.params = quick();
+  plan.jobs = 2;
+  EvaluationRun run = prepareEvaluation(plan, [&](int) { return t; });
+  evaluateRows(run);
+  ASSERT_EQ(run.rows.size(), 3u);
+  const Evaluation& chosen = run.rows[0].ev;
+  ASSERT_EQ(chosen.folds.size(), 4u);
+  for (const auto& f : chosen.folds) {
+    EXPECT_EQ(f.chosen, "kpd2") << f.name;
+    ASSERT_EQ(f.inner_accuracy.size(), 2u);
+    EXPECT_GT(f.inner_accuracy[1], f.inner_accuracy[0] + 0.2) << f.name;
+  }
+  EXPECT_DOUBLE_EQ(chosen.mean(), run.rows[1].ev.mean());
+  EXPECT_GT(chosen.mean(), 0.9);
+  EXPECT_LT(run.rows[2].ev.mean(), 0.8) << "noise alone cannot tell the instances apart";
+  EXPECT_TRUE(run.rows[1].ev.folds[0].chosen.empty());
+  const EvaluationReport report = evaluationReport(run);
+  EXPECT_NE(report.markdown.find("| noise\\|kpd2 |"), std::string::npos) << "a choice's | is escaped in the table";
+  EXPECT_NE(report.markdown.find("kfold4, xgboost, `noise|kpd2`: `kpd2` in 4 folds"), std::string::npos)
+      << report.markdown;
+  EXPECT_NE(report.json.find("\"chosen\": \"kpd2\""), std::string::npos);
+  const std::string list = keyturn::test::scratchPath("nested_fixed_split.txt").string();
+  std::ofstream(list) << t.rows[0].id << "\n";
+  plan.protocols = {"fixed:" + list};  // one fold: nothing to choose on
+  EXPECT_EQ(errorOf([&] { prepareEvaluation(plan, [&](int) { return t; }); }),
+            "feature set 'noise|kpd2': a choice needs a protocol of at least two folds (fixed:" + list + " has 1)");
 }
 
 // evaluate as array jobs: three shards' parts merge into the single run's report, every

@@ -94,6 +94,34 @@ TEST(Splits, LeaveOneInstanceOutTestsOnlyUnseenInstancesOfSharedCategories) {
   }
 }
 
+// Nested validation inside leave-instance's fold for b1: the other folds (b2, c1, c2) tested against
+// the rest of b1's training views; b1's views are in none of them, and each inner fold partitions
+// the outer fold's training views.
+TEST(Splits, InnerFoldsNeverHoldTheOuterTestViews) {
+  const Views v = makeViews();
+  const auto outer = leaveOneInstanceOut(v.category, v.instance);
+  ASSERT_EQ(outer.size(), 4u);
+  const auto inner = innerFolds(outer, 0, 3);
+  ASSERT_EQ(inner.size(), 3u);
+  for (const auto& f : inner) {
+    EXPECT_EQ(f.test.size() + f.train.size(), outer[0].train.size());
+    EXPECT_EQ(valuesAt(v.instance, f.test).size(), 1u);
+    EXPECT_EQ(valuesAt(v.instance, f.train).count(*valuesAt(v.instance, f.test).begin()), 0u);
+    for (auto r : outer[0].test) {
+      EXPECT_FALSE(std::binary_search(f.test.begin(), f.test.end(), r));
+      EXPECT_FALSE(std::binary_search(f.train.begin(), f.train.end(), r));
+    }
+  }
+  EXPECT_EQ(innerFolds(outer, 0, 2).size(), 2u) << "at most max_inner";
+  // Spread evenly: k-fold 10's fold 4 validates on folds 1, 5 and 8 of the other nine.
+  const auto k10 = innerFolds(kFold(100, 10, 7), 3, 3);
+  ASSERT_EQ(k10.size(), 3u);
+  EXPECT_EQ(k10[0].name, "fold 1");
+  EXPECT_EQ(k10[1].name, "fold 5");
+  EXPECT_EQ(k10[2].name, "fold 8");
+  EXPECT_TRUE(innerFolds({fixedSplit(v.id, {v.id[0]})}, 0, 3).empty()) << "one fold leaves nothing to choose on";
+}
+
 TEST(Splits, FixedSplitByViewIds) {
   const Views v = makeViews();
   const Fold f = fixedSplit(v.id, {"mug/m1/e30/a0", "can/c2/e60/a315"});

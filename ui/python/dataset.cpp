@@ -149,7 +149,7 @@ void bindDataset(py::module_& m) {
             "The dataset's feature cache for these parameters (keyturn.parameters(); the library's defaults), as "
             "evaluate and train read it: read when present, else described (all cores, GIL released) and written. "
             "blocks: 'kpd2+gkpd2' or a list; any cache block: kpd2 … gkpcd2, d2, d3, a3, u_kpd2 … (random keypoints), "
-            "esf, vfh, ourcvfh.\n\nParameters:\n" +
+            "s_kpd2 … s_d3 (lengths in RMS radii), size, esf, vfh, ourcvfh.\n\nParameters:\n" +
             parametersDoc())
                .c_str())
       .def("__repr__", [](const PyDataset& d) {

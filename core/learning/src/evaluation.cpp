@@ -1,8 +1,11 @@
 #include "keyturn/learning/evaluation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
+
+#include "keyturn/core/error.h"
 
 namespace keyturn::learning {
 
@@ -56,6 +59,24 @@ FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::strin
     ++cells[{truth, predicted[k]}];
   }
   for (const auto& [tp, n] : cells) out.confusion.push_back({tp.first, tp.second, n});
+  return out;
+}
+
+FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
+                                 const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                                 std::size_t fold, int max_inner, const ClassifierParams& params) {
+  const std::vector<Fold> inner = innerFolds(folds, fold, max_inner);
+  if (inner.empty()) throw Error("a choice among feature sets needs a protocol with at least two folds");
+  std::vector<double> score;
+  for (const auto& c : candidates) {
+    double sum = 0;
+    for (const auto& f : inner) sum += evaluateFold(table, featureSetBlocks(c), labels, classes, f, params).accuracy();
+    score.push_back(sum / static_cast<double>(inner.size()));
+  }
+  const auto best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
+  FoldOutcome out = evaluateFold(table, featureSetBlocks(candidates[best]), labels, classes, folds[fold], params);
+  out.chosen = candidates[best];
+  out.inner_accuracy = std::move(score);
   return out;
 }
 

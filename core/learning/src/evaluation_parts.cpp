@@ -39,7 +39,7 @@ json planKey(const EvaluationRun& run) {
   }
   return {{"feature_sets", p.feature_sets}, {"classifiers", p.classifiers}, {"protocols", p.protocols},
           {"bins", p.bins},                 {"split_seed", p.split_seed},   {"params", params},
-          {"tables", tables},               {"trainings", run.totalFolds()},
+          {"tables", tables},               {"trainings", run.totalFolds()}, {"inner_folds", p.inner_folds},
           // --label: parts judged by other labels are another run
           {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"}};
 }
@@ -101,6 +101,10 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
         o.confusion.push_back({jsonInteger(cell, "t", 0, classes - 1, path), jsonInteger(cell, "p", 0, classes - 1, path),
                                jsonInteger(cell, "n", 0, static_cast<int>(o.test_views), path)});
       }
+      if (f.contains("chosen")) {
+        o.chosen = f.at("chosen").get<std::string>();
+        o.inner_accuracy = f.at("inner_accuracy").get<std::vector<double>>();
+      }
       row.ev.folds[k] = o;
       seen[r][k] = true;
     }
@@ -126,6 +130,7 @@ std::string evaluationPartJson(const EvaluationRun& run, int shard, int shards) 
     folds.push_back({{"row", job.row},           {"fold", job.fold},         {"name", o.name},
                      {"train_views", o.train_views}, {"test_views", o.test_views}, {"correct", o.correct},
                      {"train_ms", o.train_ms},   {"predict_ms", o.predict_ms}, {"confusion", cells}});
+    if (!o.chosen.empty()) folds.back()["chosen"] = o.chosen, folds.back()["inner_accuracy"] = o.inner_accuracy;
   }
   const json j{{"format", kFormat}, {"version", kVersion}, {"shard", shard + 1}, {"shards", shards},
                {"plan", planKey(run)},  {"seconds", run.total_s}, {"folds", folds}};

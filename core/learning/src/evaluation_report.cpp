@@ -81,6 +81,37 @@ void addClassPdfPlots(const FeatureTable& t, const Labels& labels, const std::st
   }
 }
 
+// A feature set as a Markdown table cell: a choice's '|' would end the cell.
+std::string markdownCell(const std::string& set) {
+  std::string out;
+  for (char c : set) out += c == '|' ? std::string("\\|") : std::string(1, c);
+  return out;
+}
+
+// What nested validation chose in each row with a choice: "kpd2+kpa3 in 7 folds, s_kpd2+kpa3 in 3".
+std::string nestedChoicesInWords(const EvaluationRun& run) {
+  std::ostringstream md;
+  for (const auto& r : run.rows) {
+    if (featureSetChoices(r.features).size() < 2) continue;
+    if (md.tellp() == 0)
+      md << "## Choices made by nested validation\n\nPer fold, on at most " << run.plan.inner_folds
+         << " inner folds of its training views (the protocol's other folds); the test views took no part.\n\n";
+    std::vector<std::pair<std::string, int>> counts;
+    for (const auto& f : r.ev.folds) {
+      auto it = std::find_if(counts.begin(), counts.end(), [&](const auto& c) { return c.first == f.chosen; });
+      if (it == counts.end()) counts.push_back({f.chosen, 1});
+      else ++it->second;
+    }
+    md << "- " << r.bins << " bins, " << r.protocol << ", " << r.classifier << ", `" << r.features << "`: ";
+    for (std::size_t k = 0; k < counts.size(); ++k)
+      md << (k ? ", " : "") << "`" << counts[k].first << "` in " << counts[k].second
+         << (counts[k].second == 1 ? " fold" : " folds");
+    md << "\n";
+  }
+  if (md.tellp() > 0) md << "\n";
+  return md.str();
+}
+
 }  // namespace
 
 std::size_t EvaluationRun::totalFolds() const {
@@ -102,10 +133,15 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
     run.describe_s[bins] = secondsSince(t0);
     const FeatureTable& t = run.tables[bins];
     for (const auto& set : plan.feature_sets)
-      for (const auto& b : featureSetBlocks(set))
-        if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
+      for (const auto& choice : featureSetChoices(set))
+        for (const auto& b : featureSetBlocks(choice))
+          if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
     for (const auto& pn : plan.protocols) {
       run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
+      for (const auto& set : plan.feature_sets)
+        if (featureSetChoices(set).size() > 1 && run.protocols.back()->folds.size() < 2)
+          throw Error("feature set '" + set + "': a choice needs a protocol of at least two folds (" + pn + " has " +
+                      std::to_string(run.protocols.back()->folds.size()) + ")");
       for (const auto& set : plan.feature_sets)
         for (const auto& c : plan.classifiers) run.rows.push_back({bins, pn, set, c, run.protocols.back().get(), {}});
     }
@@ -137,9 +173,14 @@ void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, in
     EvaluationRow& r = run.rows[jobs[i].row];
     ClassifierParams params = paramsOf(run.plan, r.classifier);
     params.xgboost.threads = 1;  // parallel over folds instead
+    const std::vector<std::string> choices = featureSetChoices(r.features);
+    const int classes = static_cast<int>(r.proto->labels.names.size());
     r.ev.folds[jobs[i].fold] =
-        evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row,
-                     static_cast<int>(r.proto->labels.names.size()), r.proto->folds[jobs[i].fold], params);
+        choices.size() > 1
+            ? evaluateFoldChoosing(tables.at(r.bins), choices, r.proto->labels.of_row, classes, r.proto->folds,
+                                   jobs[i].fold, run.plan.inner_folds, params)
+            : evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row, classes,
+                           r.proto->folds[jobs[i].fold], params);
     std::lock_guard<std::mutex> lock(mutex);
     if (fold_done) fold_done();
   });
@@ -166,6 +207,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
       tested += f.test_views;
       folds.push_back({{"name", f.name}, {"accuracy", f.accuracy()}, {"train_views", f.train_views},
                        {"test_views", f.test_views}});
+      if (!f.chosen.empty()) folds.back()["chosen"] = f.chosen, folds.back()["inner_accuracy"] = f.inner_accuracy;
     }
     csv << r.bins << ',' << r.protocol << ',' << r.proto->labels.kindName() << ',' << r.features << ',' << r.classifier
         << ',' << r.ev.folds.size() << ',' << tested << ',' << r.ev.mean() << ',' << r.ev.stddev() << ','
@@ -206,7 +248,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
     for (std::size_t i = 0; i < a.protocols.size() * a.classifiers.size(); ++i) md << "---|";
     md << "\n";
     for (const auto& set : a.feature_sets) {
-      md << "| " << set << " |";
+      md << "| " << markdownCell(set) << " |";
       for (const auto& pn : a.protocols)
         for (const auto& c : a.classifiers)
           for (const auto& r : rows)
@@ -216,6 +258,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
     }
     md << "\n";
   }
+  md << nestedChoicesInWords(run);
   md << "Train time per training view (mean over rows): ";
   for (const auto& c : a.classifiers) {
     double ms = 0;

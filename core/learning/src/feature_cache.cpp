@@ -30,6 +30,8 @@ const std::vector<Feature> kKeypointBlocks = {Feature::KPD2, Feature::KPD3, Feat
 const std::vector<Feature> kShapeBlocks = {Feature::D2, Feature::D3, Feature::A3};
 const std::map<std::string, int> kPeerSizes = {{"esf", 640}, {"vfh", 308}, {"ourcvfh", 308}};
 const std::string kRandom = "u_";  // a keypoint block on random keypoints
+const std::string kScaled = "s_";  // a length block in RMS radii of the view (view_size.h)
+const std::string kSize = "size";  // the view's RMS radius and spreads (metres)
 
 bool has(const FeatureTable& t, const std::string& block) { return t.offset(block) >= 0; }
 
@@ -48,12 +50,17 @@ DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions
   DescriptorOptions o = options;
   o.features.clear();
   o.random_keypoints_twin = false;
+  o.scaled_twin = false;
   o.random_seed = options.osada.seed;
   for (Feature f : allFeatures()) {
     const bool random = isKeypointFeature(f) && has(layout, kRandom + featureName(f));
-    if (has(layout, featureName(f)) || random) o.features.push_back(f);
+    const bool scaled = has(layout, kScaled + featureName(f));
+    if (has(layout, featureName(f)) || random || scaled) o.features.push_back(f);
     o.random_keypoints_twin = o.random_keypoints_twin || random;
+    o.scaled_twin = o.scaled_twin || scaled;
   }
+  // The size block alone still needs the view described (its points, after the filter).
+  if (o.features.empty() && has(layout, kSize)) o.features.push_back(Feature::KPD2);
   return o;
 }
 
@@ -75,7 +82,9 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
         put(row, layout, featureName(o.features[f]), d.pdfs[f]);
         if (!d.random_keypoint_pdfs.empty() && isKeypointFeature(o.features[f]))
           put(row, layout, kRandom + featureName(o.features[f]), d.random_keypoint_pdfs[f]);
+        if (!d.scaled_pdfs.empty()) put(row, layout, kScaled + featureName(o.features[f]), d.scaled_pdfs[f]);
       }
+      put(row, layout, kSize, d.size.block());
       if (d.low_keypoints) note(row, "only " + std::to_string(row.keypoints) + " keypoints");
     } catch (const Error& e) {
       note(row, e.what());
@@ -166,6 +175,10 @@ const std::vector<std::string>& cacheBlocks() {
     for (Feature f : kKeypointBlocks) b.push_back(featureName(f));
     for (Feature f : kShapeBlocks) b.push_back(featureName(f));
     for (Feature f : kKeypointBlocks) b.push_back(kRandom + featureName(f));
+    for (const auto* fs : {&kKeypointBlocks, &kShapeBlocks})
+      for (Feature f : *fs)
+        if (!isAngleFeature(f)) b.push_back(kScaled + featureName(f));
+    b.push_back(kSize);
     for (const char* p : {"esf", "vfh", "ourcvfh"}) b.push_back(p);
     return b;
   }();
@@ -176,9 +189,10 @@ FeatureTable featureLayout(const std::vector<std::string>& blocks, const Descrip
   FeatureTable t;
   for (const auto& b : blocks) {
     const auto peer = kPeerSizes.find(b);
-    if (peer == kPeerSizes.end()) parseFeature(b.rfind(kRandom, 0) == 0 ? b.substr(kRandom.size()) : b);
+    const bool prefixed = b.rfind(kRandom, 0) == 0 || b.rfind(kScaled, 0) == 0;
+    if (peer == kPeerSizes.end() && b != kSize) parseFeature(prefixed ? b.substr(2) : b);
     t.blocks.push_back(b);
-    t.sizes.push_back(peer != kPeerSizes.end() ? peer->second : options.histogram.bins);
+    t.sizes.push_back(peer != kPeerSizes.end() ? peer->second : b == kSize ? kSizeBlockWidth : options.histogram.bins);
   }
   t.spec = featureSpec(options);
   return t;

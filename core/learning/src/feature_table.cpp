@@ -202,4 +202,15 @@ std::vector<std::string> featureSetBlocks(const std::string& set) {
   return out;
 }
 
+std::vector<std::string> featureSetChoices(const std::string& set) {
+  std::vector<std::string> out;
+  std::stringstream ss(set);
+  for (std::string c; std::getline(ss, c, '|');) {
+    if (c.empty()) throw Error("feature set '" + set + "': empty choice");
+    out.push_back(c);
+  }
+  if (out.empty() || set.back() == '|') throw Error("feature set '" + set + "': empty choice");
+  return out;
+}
+
 }  // namespace keyturn::learning

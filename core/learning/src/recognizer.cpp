@@ -1,5 +1,6 @@
 #include "keyturn/learning/recognizer.h"
 
+#include <algorithm>
 #include <chrono>
 
 #include "keyturn/core/error.h"
@@ -17,24 +18,47 @@ double msSince(std::chrono::steady_clock::time_point t0) {
 
 Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model)), source_(std::move(source)) {
   if (!model_.classifier) throw Error(source_ + ": no classifier");
-  std::vector<Feature> features;
-  for (const auto& b : model_.info.blocks) {
-    try {
-      features.push_back(parseFeature(b));
-    } catch (const Error&) {
-      throw Error(source_ + ": block '" + b +
-                  "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, a3)");
-    }
-  }
   options_ = descriptorOptionsFromSpec(model_.info.spec, source_);
-  options_.features = features;
-  if (options_.histogram.bins * static_cast<int>(features.size()) != model_.info.inputs)
-    throw Error(source_ + ": " + std::to_string(features.size()) + " blocks of " +
-                std::to_string(options_.histogram.bins) + " bins do not make the model's " +
-                std::to_string(model_.info.inputs) + " inputs");
+  options_.features.clear();
+  int inputs = 0;
+  for (const auto& b : model_.info.blocks) {
+    LiveBlock live{b};
+    live.size = b == "size";
+    live.scaled = b.rfind("s_", 0) == 0;
+    if (!live.size) {
+      Feature f = Feature::KPD2;
+      try {
+        f = parseFeature(live.scaled ? b.substr(2) : b);
+        if (live.scaled && isAngleFeature(f)) throw Error("an angle has no scaled twin");
+      } catch (const Error&) {
+        throw Error(source_ + ": block '" + b +
+                    "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, "
+                    "a3, their s_ twins and size)");
+      }
+      const auto it = std::find(options_.features.begin(), options_.features.end(), f);
+      live.feature = static_cast<std::size_t>(it - options_.features.begin());
+      if (it == options_.features.end()) options_.features.push_back(f);
+    }
+    options_.scaled_twin = options_.scaled_twin || live.scaled;
+    inputs += live.size ? kSizeBlockWidth : options_.histogram.bins;
+    live_.push_back(live);
+  }
+  // The size block alone still needs the view described (its points, after the filter).
+  if (options_.features.empty()) options_.features.push_back(Feature::KPD2);
+  if (inputs != model_.info.inputs)
+    throw Error(source_ + ": " + std::to_string(live_.size()) + " blocks of " + std::to_string(inputs) +
+                " values do not make the model's " + std::to_string(model_.info.inputs) + " inputs");
 }
 
-Recognizer::Recognizer(DescriptorOptions options) : source_("(no model)"), options_(std::move(options)) {}
+Recognizer::Recognizer(DescriptorOptions options) : source_("(no model)"), options_(std::move(options)) {
+  for (std::size_t f = 0; f < options_.features.size(); ++f) live_.push_back({featureName(options_.features[f]), f});
+}
+
+std::vector<std::string> Recognizer::blockNames() const {
+  std::vector<std::string> names;
+  for (const auto& b : live_) names.push_back(b.name);
+  return names;
+}
 
 Recognizer Recognizer::load(const std::string& dir) { return Recognizer(loadModel(dir), dir); }
 
@@ -50,8 +74,13 @@ Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) c
   const auto t1 = std::chrono::steady_clock::now();
   r.descriptor = describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor(), with_geodesic_paths);
   r.describe_ms = msSince(t1);
-  for (const auto& pdf : r.descriptor.pdfs)
-    for (double v : pdf) r.features.push_back(static_cast<float>(v));
+  r.block_names = blockNames();
+  for (const auto& b : live_) {
+    r.blocks.push_back(b.size     ? r.descriptor.size.block()
+                       : b.scaled ? r.descriptor.scaled_pdfs[b.feature]
+                                  : r.descriptor.pdfs[b.feature]);
+    for (double v : r.blocks.back()) r.features.push_back(static_cast<float>(v));
+  }
   r.total_ms = msSince(t0);
   return r;
 }

@@ -1,6 +1,7 @@
 #include "keyturn/learning/splits.h"
 
 #include <algorithm>
+#include <iterator>
 #include <map>
 #include <numeric>
 #include <random>
@@ -84,6 +85,25 @@ Fold fixedSplit(const std::vector<std::string>& ids, const std::vector<std::stri
     if (!seen.count(id)) throw Error("fixed split: test view '" + id + "' is not in the dataset");
   if (f.train.empty()) throw Error("fixed split: every view is a test view, nothing is left to train on");
   return f;
+}
+
+std::vector<Fold> innerFolds(const std::vector<Fold>& outer, std::size_t i, int max_inner) {
+  std::vector<std::size_t> others;
+  for (std::size_t j = 0; j < outer.size(); ++j)
+    if (j != i) others.push_back(j);
+  const std::size_t n = std::min(others.size(), static_cast<std::size_t>(std::max(0, max_inner)));
+  std::vector<Fold> inner;
+  for (std::size_t k = 0; k < n; ++k) {
+    const Fold& o = outer[others[k * others.size() / n]];
+    Fold f;
+    f.name = o.name;
+    std::set_intersection(o.test.begin(), o.test.end(), outer[i].train.begin(), outer[i].train.end(),
+                          std::back_inserter(f.test));
+    std::set_difference(outer[i].train.begin(), outer[i].train.end(), f.test.begin(), f.test.end(),
+                        std::back_inserter(f.train));
+    if (!f.test.empty() && !f.train.empty()) inner.push_back(std::move(f));
+  }
+  return inner;
 }
 
 }  // namespace keyturn::learning

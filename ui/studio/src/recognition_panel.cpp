@@ -143,7 +143,7 @@ void RecognitionPanel::setModel(const QString& path, const learning::Recognizer*
     return;
   }
   if (!recognizer) return;
-  for (const auto& b : recognizer->options().features) block_->addItem(QString::fromStdString(featureName(b)));
+  for (const auto& b : recognizer->blockNames()) block_->addItem(QString::fromStdString(b));
   if (!recognizer->hasModel()) {
     model_info_->setText(tr("no model: views are described, not classified"));
     return;
@@ -216,8 +216,8 @@ void RecognitionPanel::refresh() {
 void RecognitionPanel::plot(const ViewResult& r) {
   const auto& rec = *r.recognition;
   const int b = block_->currentIndex();
-  if (b < 0 || b >= static_cast<int>(rec.descriptor.pdfs.size())) return;
-  const auto& pdf = rec.descriptor.pdfs[static_cast<std::size_t>(b)];
+  if (b < 0 || b >= static_cast<int>(rec.blocks.size())) return;
+  const auto& pdf = rec.blocks[static_cast<std::size_t>(b)];
   QVector<QPointF> view, mean;
   double top = 0;
   for (std::size_t i = 0; i < pdf.size(); ++i) {
@@ -228,7 +228,8 @@ void RecognitionPanel::plot(const ViewResult& r) {
   const int best = stability_.mode();
   if (r.recognizer->hasModel() && best >= 0 && best < static_cast<int>(info.class_means.size())) {
     const auto& m = info.class_means[static_cast<std::size_t>(best)];
-    const std::size_t offset = static_cast<std::size_t>(b) * pdf.size();
+    std::size_t offset = 0;  // the block's first input
+    for (int k = 0; k < b; ++k) offset += rec.blocks[static_cast<std::size_t>(k)].size();
     for (std::size_t i = 0; i < pdf.size() && offset + i < m.size(); ++i) {
       mean.append(QPointF(static_cast<double>(i), m[offset + i]));
       top = std::max(top, static_cast<double>(m[offset + i]));

@@ -11,6 +11,7 @@
 #include "keyturn/core/geodesic.h"
 #include "keyturn/core/iss.h"
 #include "keyturn/core/shape_distributions.h"
+#include "keyturn/core/view_size.h"
 #include "keyturn/core/working_resolution.h"
 
 namespace keyturn {
@@ -31,6 +32,9 @@ struct DescriptorOptions {
   // at random from the filtered points (seeded): shows what ISS's choice adds.
   bool random_keypoints_twin = false;
   unsigned long long random_seed = 7;
+  // Also the length features' PDFs with lengths in RMS radii of the view (view_size.h), on
+  // ranges of kScaledExtent radii: the shape without the absolute size (docs/descriptors.md).
+  bool scaled_twin = false;
 };
 
 // Milliseconds spent in each stage of one describeView call.
@@ -67,6 +71,10 @@ struct ViewDescriptor {
   // With random_keypoints_twin: the keypoint features' PDFs on random points
   // (same order as `features`; shape functions are left empty there).
   std::vector<std::vector<double>> random_keypoint_pdfs;
+  // With scaled_twin: every feature's PDF on lengths in RMS radii (same order as `features`;
+  // an angle feature's is its own PDF, angles having no scale).
+  std::vector<std::vector<double>> scaled_pdfs;
+  ViewSize size;                     // of the described points
   StageTimes times;
   FilterReport filter;               // what each filter step removed (describeView only)
   WorkingResolutionReport working;   // the working resolution (describeView only)

@@ -21,6 +21,10 @@ struct FoldOutcome {
   std::size_t train_views = 0, test_views = 0, correct = 0;
   double train_ms = 0, predict_ms = 0;
   std::vector<ConfusionCell> confusion;     // this fold's nonzero [true][predicted] counts
+  // A choice made by nested validation (evaluateFoldChoosing): the feature set trained and tested,
+  // and each candidate's mean accuracy over the inner folds; empty without a choice.
+  std::string chosen;
+  std::vector<double> inner_accuracy;
   double accuracy() const { return test_views ? static_cast<double>(correct) / static_cast<double>(test_views) : 0.0; }
 };
 
@@ -37,6 +41,13 @@ struct Evaluation {
 FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                          const std::vector<int>& labels, int classes, const Fold& fold,
                          const ClassifierParams& params);
+// Chooses among candidate feature sets inside fold `fold` of `folds` (innerFolds, at most
+// max_inner): the candidate with the best mean inner accuracy (ties: the first listed) is trained
+// on all the fold's training views and tested on its test views, which no choice has seen.
+// Throws keyturn::Error when the protocol has no other fold to choose on.
+FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
+                                 const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                                 std::size_t fold, int max_inner, const ClassifierParams& params);
 // The folds' confusion cells summed into a classes × classes matrix.
 std::vector<std::vector<int>> sumConfusion(const std::vector<FoldOutcome>& folds, int classes);
 

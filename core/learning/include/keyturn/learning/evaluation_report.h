@@ -30,6 +30,7 @@ struct EvaluationPlan {
   int jobs = 0;
   int low_keypoints = 0;                    // "views with K < low_keypoints" in the summary
   std::optional<LabelKind> label;           // none: each protocol's own (makeProtocol)
+  int inner_folds = 3;                      // per fold, for a feature set 'A|B' (evaluateFoldChoosing)
 };
 
 struct EvaluationRow {

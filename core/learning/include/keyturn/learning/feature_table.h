@@ -36,6 +36,9 @@ struct FeatureTable {
 // "kpd2+gkpd2" → {"kpd2", "gkpd2"} (a feature set: blocks concatenated); names are checked
 // against a table when selected. Throws keyturn::Error for an empty set or part.
 std::vector<std::string> featureSetBlocks(const std::string& set);
+// "kpd2+kpa3|s_kpd2+kpa3+size" → its candidates (one, "kpd2+kpa3", without a '|'): a choice
+// evaluate makes per fold by nested validation. Throws keyturn::Error for an empty candidate.
+std::vector<std::string> featureSetChoices(const std::string& set);
 
 // Writes atomically (temporary name, fsync, rename).
 void saveFeatureTable(const std::string& path, const FeatureTable& table);

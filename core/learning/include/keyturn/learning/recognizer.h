@@ -16,8 +16,10 @@ namespace keyturn::learning {
 
 struct Recognition {
   PointSet filtered;                    // the filtered view
-  ViewDescriptor descriptor;            // keypoints (K), PDFs in the model's block order, timings
-  std::vector<float> features;          // what the classifier saw
+  ViewDescriptor descriptor;            // keypoints (K), one PDF per feature the model needs, timings
+  std::vector<std::string> block_names; // the model's blocks (without a model: its features)
+  std::vector<std::vector<double>> blocks;  // each block's values, in that order
+  std::vector<float> features;          // what the classifier saw: the blocks concatenated
   std::vector<float> probabilities;     // one per class, the model's order
   int best = -1;
   double filter_ms = 0, describe_ms = 0, classify_ms = 0, total_ms = 0;
@@ -26,7 +28,7 @@ struct Recognition {
 class Recognizer {
  public:
   // Throws keyturn::Error when the model uses a block that is not computed live
-  // (only the keypoint and Osada blocks are: kpd2 … gkpcd2, d1 … a3).
+  // (the keypoint and Osada blocks are: kpd2 … gkpcd2, d1 … a3, their s_ twins and size).
   explicit Recognizer(Model model, std::string source = "model");
   static Recognizer load(const std::string& dir);
   // Describes views without a model (no classes, recognize() only describes).
@@ -36,6 +38,7 @@ class Recognizer {
   const ModelInfo& info() const { return model_.info; }
   const std::string& source() const { return source_; }
   const DescriptorOptions& options() const { return options_; }
+  std::vector<std::string> blockNames() const;  // Recognition::block_names
   // Throws keyturn::Error for a cloud the chain cannot describe (too few
   // points or keypoints): the caller shows it and goes on with the next frame.
   // Without a model it only describes. with_geodesic_paths: the descriptor also hands back
@@ -45,9 +48,16 @@ class Recognizer {
   Recognition describe(const Cloud& cloud, bool with_geodesic_paths = false) const;
 
  private:
+  // A block computed live: a feature's PDF, its scale-normalised twin (s_) or the size block.
+  struct LiveBlock {
+    std::string name;
+    std::size_t feature = 0;  // index into options_.features
+    bool scaled = false, size = false;
+  };
   Model model_;
   std::string source_;
   DescriptorOptions options_;
+  std::vector<LiveBlock> live_;
   std::unique_ptr<std::mutex> classify_mutex_ = std::make_unique<std::mutex>();  // one prediction at a time
 };
 

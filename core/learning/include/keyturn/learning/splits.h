@@ -29,4 +29,9 @@ std::vector<Fold> leaveOneInstanceOut(const std::vector<std::string>& categories
 // Throws keyturn::Error naming an id that matches no row.
 Fold fixedSplit(const std::vector<std::string>& ids, const std::vector<std::string>& test_ids);
 
+// Nested validation inside fold i: the protocol's other folds' test views that fold i trains on,
+// each tested against the rest of fold i's training views; at most max_inner of them, spread evenly
+// over the other folds. Fold i's test views are in none of them. Empty when there is no other fold.
+std::vector<Fold> innerFolds(const std::vector<Fold>& outer, std::size_t i, int max_inner);
+
 }  // namespace keyturn::learning
