@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """The docs test: every shell example in README.md and docs/*.md, run as a user would.
 
-Each document gets a work folder of its own (with `build` and `data` linking to the build and the
-repository's data, and the build's app/ and then this test's python3 on PATH); its ```sh blocks run there in order, each as one
+Each document gets a work folder of its own (with `build`, `data` and `tests` linking to the build and
+the repository's data and tests, and the build's app/ and then this test's python3 on PATH); its ```sh blocks run there in order, each as one
 bash script under `set -e`. A block that cannot run here says so in an HTML comment on the lines
 just above it, and the test lists it with its reason:
 
@@ -203,6 +203,7 @@ def prepare_work(work, source, build, rel):
     folder.mkdir(parents=True)
     (folder / "build").symlink_to(build)
     (folder / "data").symlink_to(source / "data")
+    (folder / "tests").symlink_to(source / "tests")  # the real-data fixtures docs/results.md evaluates
     (folder / "home").mkdir()
     return folder
 

@@ -169,6 +169,25 @@ bool mergeShards(const std::string& path, FeatureTable& out, DescribeProgress* p
 
 }  // namespace
 
+BlockName parseBlockName(const std::string& name) {
+  if (kPeerSizes.count(name)) return {BlockName::Peer};
+  if (name == kSize) return {BlockName::Size};
+  BlockName b;
+  std::string feature = name;
+  if (name.rfind(kRandom, 0) == 0) b.kind = BlockName::RandomTwin, feature = name.substr(kRandom.size());
+  if (name.rfind(kScaled, 0) == 0) b.kind = BlockName::ScaledTwin, feature = name.substr(kScaled.size());
+  try {
+    b.feature = parseFeature(feature);
+  } catch (const Error&) {
+    throw Error("unknown block '" + name + "'");
+  }
+  if ((b.kind == BlockName::RandomTwin && !isKeypointFeature(b.feature)) ||
+      (b.kind == BlockName::ScaledTwin && isAngleFeature(b.feature)))
+    throw Error("unknown block '" + name + "' (" +
+                (b.kind == BlockName::RandomTwin ? "u_ twins are of keypoint functions" : "an angle has no scale") + ")");
+  return b;
+}
+
 const std::vector<std::string>& cacheBlocks() {
   static const std::vector<std::string> blocks = [] {
     std::vector<std::string> b;
@@ -188,11 +207,11 @@ const std::vector<std::string>& cacheBlocks() {
 FeatureTable featureLayout(const std::vector<std::string>& blocks, const DescriptorOptions& options) {
   FeatureTable t;
   for (const auto& b : blocks) {
-    const auto peer = kPeerSizes.find(b);
-    const bool prefixed = b.rfind(kRandom, 0) == 0 || b.rfind(kScaled, 0) == 0;
-    if (peer == kPeerSizes.end() && b != kSize) parseFeature(prefixed ? b.substr(2) : b);
+    const BlockName name = parseBlockName(b);
     t.blocks.push_back(b);
-    t.sizes.push_back(peer != kPeerSizes.end() ? peer->second : b == kSize ? kSizeBlockWidth : options.histogram.bins);
+    t.sizes.push_back(name.kind == BlockName::Peer   ? kPeerSizes.at(b)
+                      : name.kind == BlockName::Size ? kSizeBlockWidth
+                                                     : options.histogram.bins);
   }
   t.spec = featureSpec(options);
   return t;

@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <chrono>
+#include <optional>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/features.h"
+#include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_spec.h"
 
 namespace keyturn::learning {
@@ -23,21 +25,21 @@ Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model
   int inputs = 0;
   for (const auto& b : model_.info.blocks) {
     LiveBlock live{b};
-    live.size = b == "size";
-    live.scaled = b.rfind("s_", 0) == 0;
+    std::optional<BlockName> parsed;
+    try {
+      parsed = parseBlockName(b);
+    } catch (const Error&) {
+    }
+    if (!parsed || parsed->kind == BlockName::Peer || parsed->kind == BlockName::RandomTwin)
+      throw Error(source_ + ": block '" + b +
+                  "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, "
+                  "a3, their s_ twins and size)");
+    live.size = parsed->kind == BlockName::Size;
+    live.scaled = parsed->kind == BlockName::ScaledTwin;
     if (!live.size) {
-      Feature f = Feature::KPD2;
-      try {
-        f = parseFeature(live.scaled ? b.substr(2) : b);
-        if (live.scaled && isAngleFeature(f)) throw Error("an angle has no scaled twin");
-      } catch (const Error&) {
-        throw Error(source_ + ": block '" + b +
-                    "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, "
-                    "a3, their s_ twins and size)");
-      }
-      const auto it = std::find(options_.features.begin(), options_.features.end(), f);
+      const auto it = std::find(options_.features.begin(), options_.features.end(), parsed->feature);
       live.feature = static_cast<std::size_t>(it - options_.features.begin());
-      if (it == options_.features.end()) options_.features.push_back(f);
+      if (it == options_.features.end()) options_.features.push_back(parsed->feature);
     }
     options_.scaled_twin = options_.scaled_twin || live.scaled;
     inputs += live.size ? kSizeBlockWidth : options_.histogram.bins;

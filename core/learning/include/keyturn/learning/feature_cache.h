@@ -1,8 +1,8 @@
 #pragma once
 // The feature cache of a dataset (docs/results.md): every view described once
 // per parameter set by every block evaluate, train and consistency use — ISS
-// keypoint functions, the same on random keypoints (u_*), Osada's D2/D3/A3 and
-// the peers ESF, VFH and OUR-CVFH — kept in DATASET/.keyturn/features-<hash>.csv,
+// keypoint functions, the same on random keypoints (u_*), Osada's D2/D3/A3, the
+// length functions in RMS radii (s_*), the size block and the peers ESF, VFH and OUR-CVFH — kept in DATASET/.keyturn/features-<hash>.csv,
 // the hash being of the feature specification (feature_spec.h). Shards (views
 // i ≡ I−1 mod N for --shard I/N) are written beside it and merged when all are present.
 #include <cstddef>
@@ -34,6 +34,15 @@ class DescribeProgress {
   virtual void note(const std::string& line) = 0;     // what the cache did ("merged 4 feature shards")
   virtual void warning(const std::string& line) = 0;  // what went wrong and was recovered from
 };
+
+// What a block name says: a feature's PDF ("kpd2"), its twin on random keypoints ("u_kpd2"), its
+// scale-normalised twin ("s_kpd2"; lengths only), the size block ("size") or a peer ("esf").
+struct BlockName {
+  enum Kind { Pdf, RandomTwin, ScaledTwin, Size, Peer } kind = Pdf;
+  Feature feature = Feature::KPD2;  // for Pdf and the twins
+};
+// Throws keyturn::Error for a name that is none of these.
+BlockName parseBlockName(const std::string& name);
 
 // Every block of the cache, in its column order.
 const std::vector<std::string>& cacheBlocks();
