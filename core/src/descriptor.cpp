@@ -126,8 +126,8 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   }
   out.times.graph = clock.lap();
 
+  out.size = viewSize(set.points);  // the scaled twins' unit and the size block
   // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.
-  out.size = viewSize(set.points);
   auto pdfsFor = [&](const std::vector<int>& kp_index, bool with_shape_functions, GeodesicResult* geo_out,
                      std::vector<std::vector<double>>* scaled_out) {
     std::vector<Eigen::Vector3f> kp;
