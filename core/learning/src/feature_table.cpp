@@ -191,25 +191,31 @@ FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const s
   return out;
 }
 
-std::vector<std::string> featureSetBlocks(const std::string& set) {
+namespace {
+
+// A feature set split at `sep`; an empty part (also before a trailing separator) is "empty WHAT".
+std::vector<std::string> splitFeatureSet(const std::string& set, char sep, const std::string& what) {
   std::vector<std::string> out;
   std::stringstream ss(set);
-  for (std::string b; std::getline(ss, b, '+');) {
-    if (b.empty()) throw Error("feature set '" + set + "': empty part");
-    out.push_back(b);
+  for (std::string part; std::getline(ss, part, sep);) {
+    if (part.empty()) throw Error("feature set '" + set + "': empty " + what);
+    out.push_back(part);
   }
+  if (!set.empty() && set.back() == sep) throw Error("feature set '" + set + "': empty " + what);
+  return out;
+}
+
+}  // namespace
+
+std::vector<std::string> featureSetBlocks(const std::string& set) {
+  std::vector<std::string> out = splitFeatureSet(set, '+', "part");
   if (out.empty()) throw Error("empty feature set");
   return out;
 }
 
 std::vector<std::string> featureSetChoices(const std::string& set) {
-  std::vector<std::string> out;
-  std::stringstream ss(set);
-  for (std::string c; std::getline(ss, c, '|');) {
-    if (c.empty()) throw Error("feature set '" + set + "': empty choice");
-    out.push_back(c);
-  }
-  if (out.empty() || set.back() == '|') throw Error("feature set '" + set + "': empty choice");
+  std::vector<std::string> out = splitFeatureSet(set, '|', "choice");
+  if (out.empty()) throw Error("feature set '" + set + "': empty choice");
   return out;
 }
 
