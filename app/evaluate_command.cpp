@@ -33,6 +33,7 @@ struct EvaluateArgs {
   int jobs = 0, inner_folds = 3;
   std::uint64_t split_seed = 7;
   std::string label;  // "": each protocol's own
+  std::vector<std::string> train_extra;
   DescriptorFlags flags;
   learning::ClassifierParams params;
 };
@@ -62,11 +63,14 @@ int runEvaluate(const EvaluateArgs& a) {
   plan.low_keypoints = a.flags.options.low_keypoints;
   plan.inner_folds = a.inner_folds;
   if (!a.label.empty()) plan.label = learning::parseLabelKind(a.label);
-  learning::EvaluationRun run = learning::prepareEvaluation(plan, [&a](int bins) {
+  plan.train_extra = a.train_extra;
+  const auto describe = [&a](const std::string& dataset, int bins) {
     DescriptorOptions options = a.flags.options;
     options.histogram.bins = bins;
-    return datasetFeatures(a.dataset, options, a.jobs, a.quiet);
-  });
+    return datasetFeatures(dataset, options, a.jobs, a.quiet);
+  };
+  learning::EvaluationRun run = learning::prepareEvaluation(
+      plan, [&](int bins) { return describe(a.dataset, bins); }, describe);
   const std::filesystem::path out(a.out);
   if (!a.shard.empty()) {
     const auto [shard, shards] = learning::parseShard(a.shard);
@@ -122,6 +126,11 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--label", a->label,
                   "instance or category, for every protocol (default: instance, category for leave-instance; "
                   "leave-instance is always category)");
+  cmd->add_option("--train-extra", a->train_extra,
+                  "Dataset of the same views rendered again (keyturn simulate --jitter): a view's twin is trained on "
+                  "only where the view is; repeatable")
+      ->allow_extra_args(false)  // one folder per --train-extra: the dataset positional stays free
+      ->check(CLI::ExistingDirectory);
   cmd->add_option("--out,-o", a->out, "Report folder")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views / folds (default: all cores)");
   cmd->add_flag("--json", a->json, "Also print the report as JSON on standard output");

@@ -1,10 +1,14 @@
 #include "keyturn/rig/dataset_simulation.h"
 
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
+#include <random>
 
 #include "keyturn/core/error.h"
 #include "keyturn/rig/simulated_rig.h"
+#include "keyturn/sim/mesh.h"
+#include "keyturn/sim/tof_view.h"
 
 namespace keyturn::rig {
 namespace {
@@ -18,7 +22,121 @@ CaptureOptions baseOptions(const DatasetSimulation& s) {
   return base;
 }
 
+// FNV-1a over the view's identity and the seed: a draw that depends on nothing else.
+std::uint64_t viewHash(std::uint64_t seed, const ViewKey& v) {
+  std::uint64_t h = 1469598103934665603ull ^ seed;
+  char angle[32];
+  std::snprintf(angle, sizeof angle, "%.3f", v.commanded_deg);
+  for (const std::string& part : {v.cls, v.instance, v.elevation, std::string(angle)}) {
+    for (unsigned char c : part) h = (h ^ c) * 1099511628211ull;
+    h = (h ^ 0x1f) * 1099511628211ull;
+  }
+  return h;
+}
+
+CaptureOptions viewOptions(const CaptureOptions& base, const ObjectRow& obj, double el, const std::string& label) {
+  CaptureOptions o = base;
+  o.cls = obj.cls;
+  o.instance = obj.instance;
+  o.elevation_deg = el;
+  o.elevation_label = label;
+  return o;
+}
+
+std::string elevationLabel(double el) { return std::to_string(static_cast<int>(std::lround(el))); }
+
+// Without jitter: one rig per object and elevation, the whole turn captured in one sequence.
+void simulateSequences(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base, CaptureReport& total,
+                       const std::function<void()>& view_done) {
+  for (const auto& obj : s.objects) {
+    for (double el : s.elevations) {
+      if (s.stop && *s.stop) return;
+      SimulatedRigOptions so;
+      so.dir = s.out + "/.sim";
+      so.camera.mesh = obj.mesh;
+      so.camera.elevation_deg = el;
+      so.camera.seed = s.seed;
+      so.fast = true;
+      SimulatedRig simrig = openSimulatedRig(so);
+      CaptureOptions o = viewOptions(base, obj, el, elevationLabel(el));
+      o.camera_from_turntable_zero = simrig.camera_from_turntable;
+      const auto rep = runCapture(*simrig.camera, *simrig.turntable, dataset, o, [&](const CaptureProgress&) {
+        if (view_done) view_done();
+      });
+      total.written += rep.written;
+      total.skipped += rep.skipped;
+      total.redos += rep.redos;
+    }
+  }
+}
+
+// With jitter: a rig per view, opened with the view's draw, capturing that one view.
+void simulateJitteredViews(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base,
+                           CaptureReport& total, const std::function<void()>& view_done) {
+  for (const auto& obj : s.objects) {
+    const sim::Mesh mesh = sim::loadMeshOrBuiltin(obj.mesh);
+    for (double el : s.elevations)
+      for (double angle : sequenceAngles(base)) {
+        if (s.stop && *s.stop) return;
+        const ViewKey key{obj.cls, obj.instance, elevationLabel(el), angle};
+        if (dataset.has(key)) {
+          ++total.skipped;
+          if (view_done) view_done();
+          continue;
+        }
+        const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
+        SimulatedRigOptions so;
+        so.dir = s.out + "/.sim";
+        so.camera.mesh = obj.mesh;
+        so.camera.elevation_deg = draw.elevation_deg;
+        so.camera.distance = sim::operatorDistance(sim::scaledMesh(mesh, draw.scale)) * draw.distance_scale;
+        so.camera.scale = draw.scale;
+        so.camera.roll_deg = draw.roll_deg;
+        so.camera.seed = viewHash(s.seed, key);  // each view its own noise
+        so.fast = true;
+        SimulatedRig simrig = openSimulatedRig(so);
+        if (draw.integration > 0) {
+          drivers::TofSettings settings = simrig.camera->settings();
+          settings.auto_exposure.enabled = false;
+          settings.integration_time = static_cast<std::uint8_t>(draw.integration);
+          simrig.camera->configure(settings);
+        }
+        CaptureOptions o = viewOptions(base, obj, draw.elevation_deg, key.elevation);
+        o.start_deg = angle;
+        o.range_deg = base.step_deg;  // this view only
+        o.camera_from_turntable_zero = simrig.camera_from_turntable;
+        const auto rep = runCapture(*simrig.camera, *simrig.turntable, dataset, o);
+        total.written += rep.written;
+        total.skipped += rep.skipped;
+        total.redos += rep.redos;
+        if (view_done) view_done();
+      }
+  }
+}
+
 }  // namespace
+
+void ViewJitter::check() const {
+  if (!(distance >= 0 && distance < 0.5)) throw Error("jitter: the distance fraction must be in [0, 0.5)");
+  if (!(scale >= 0 && scale < 0.5)) throw Error("jitter: the scale fraction must be in [0, 0.5)");
+  if (!(elevation_deg >= 0 && elevation_deg <= 20)) throw Error("jitter: the elevation must be within 0–20°");
+  if (!(tilt_deg >= 0 && tilt_deg <= 20)) throw Error("jitter: the tilt must be within 0–20°");
+  if (integration_max > 0 && !(integration_min >= 1 && integration_min <= integration_max && integration_max <= 255))
+    throw Error("jitter: the integration codes must satisfy 1 <= MIN <= MAX <= 255");
+}
+
+JitteredView drawJitter(const ViewJitter& j, std::uint64_t seed, const ViewKey& view, double elevation_deg) {
+  std::mt19937_64 rng(viewHash(seed, view));
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  JitteredView d;
+  d.distance_scale = 1.0 + j.distance * u(rng);
+  d.elevation_deg = elevation_deg + j.elevation_deg * u(rng);
+  d.roll_deg = j.tilt_deg * u(rng);
+  if (j.integration_max > 0)
+    d.integration = std::uniform_int_distribution<int>(j.integration_min, j.integration_max)(rng);
+  d.scale = 1.0 + j.scale * u(rng);  // drawn last: the other draws do not depend on it
+  return d;
+}
 
 void DatasetSimulation::checkMeshes(const std::string& list_path) const {
   for (const auto& o : objects)
@@ -30,33 +148,12 @@ std::size_t DatasetSimulation::views() const {
 }
 
 CaptureReport simulateDataset(const DatasetSimulation& s, const std::function<void()>& view_done) {
+  s.jitter.check();
   Dataset dataset(s.out);
   const CaptureOptions base = baseOptions(s);
   CaptureReport total;
-  for (const auto& obj : s.objects) {
-    for (double el : s.elevations) {
-      if (s.stop && *s.stop) break;
-      SimulatedRigOptions so;
-      so.dir = s.out + "/.sim";
-      so.camera.mesh = obj.mesh;
-      so.camera.elevation_deg = el;
-      so.camera.seed = s.seed;
-      so.fast = true;
-      SimulatedRig simrig = openSimulatedRig(so);
-      CaptureOptions o = base;
-      o.cls = obj.cls;
-      o.instance = obj.instance;
-      o.elevation_deg = el;
-      o.elevation_label = std::to_string(static_cast<int>(std::lround(el)));
-      o.camera_from_turntable_zero = simrig.camera_from_turntable;
-      const auto rep = runCapture(*simrig.camera, *simrig.turntable, dataset, o, [&](const CaptureProgress&) {
-        if (view_done) view_done();
-      });
-      total.written += rep.written;
-      total.skipped += rep.skipped;
-      total.redos += rep.redos;
-    }
-  }
+  if (s.jitter.any()) simulateJitteredViews(s, dataset, base, total, view_done);
+  else simulateSequences(s, dataset, base, total, view_done);
   total.stopped = s.stop && *s.stop;
   return total;
 }

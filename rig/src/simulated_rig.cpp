@@ -24,6 +24,8 @@ std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles&
   c.mesh = o.mesh.rfind("builtin:", 0) == 0 ? o.mesh : fs::absolute(o.mesh).string();
   c.elevation = o.elevation_deg;
   c.distance = o.distance;
+  c.roll = o.roll_deg;
+  c.scale = o.scale;
   c.seed = o.seed;
   c.faults.random_rate = o.fault_rate;
   c.frame_rate = o.frame_rate;
@@ -34,7 +36,8 @@ std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles&
     sim::SceneView view;
     view.distance = o.distance;
     view.elevation_deg = o.elevation_deg;
-    *camera_from_turntable = sim::cameraFromTurntable(sim::loadMeshOrBuiltin(c.mesh), view);
+    view.roll_deg = o.roll_deg;
+    *camera_from_turntable = sim::cameraFromTurntable(sim::scaledMesh(sim::loadMeshOrBuiltin(c.mesh), c.scale), view);
   }
   return openCamera("sim", "", "", std::move(log));
 }

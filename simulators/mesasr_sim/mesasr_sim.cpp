@@ -87,7 +87,7 @@ int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned s
     d->config = MesaSrSimConfig::fromEnvironment();
     if (d->config.faults.open_fail || unplugged(d->config)) return -1;
     if (!ethernet && serial != 0 && serial != d->config.serial) return 0;  // no such camera
-    const auto mesh = keyturn::sim::loadMeshOrBuiltin(d->config.mesh);
+    const auto mesh = keyturn::sim::scaledMesh(keyturn::sim::loadMeshOrBuiltin(d->config.mesh), d->config.scale);
     d->renderer = std::make_unique<keyturn::sim::TofViewRenderer>(mesh);
     d->distance = d->config.distance > 0 ? d->config.distance : keyturn::sim::operatorDistance(mesh);
     d->ethernet = ethernet;
@@ -108,6 +108,7 @@ void renderFrame(CMesaDevice& d) {
   keyturn::sim::SceneView v;
   v.distance = d.distance;
   v.elevation_deg = d.config.elevation;
+  v.roll_deg = d.config.roll;
   v.turntable_deg = d.config.world.empty()
                         ? d.config.turntable_deg
                         : keyturn::sim::readWorldTurntable(d.config.world, d.config.turntable_deg);

@@ -1,5 +1,6 @@
 #include "keyturn/sim/mesasr_sim_config.h"
 
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -34,6 +35,10 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
     c.distance = j.value("distance", c.distance);
     c.elevation = j.value("elevation", c.elevation);
     c.turntable_deg = j.value("turntable_deg", c.turntable_deg);
+    c.roll = j.value("roll", c.roll);
+    if (!(std::abs(c.roll) <= 90)) throw Error(path + ": roll must be within ±90°");
+    c.scale = j.value("scale", c.scale);
+    if (!(c.scale >= 0.1 && c.scale <= 10)) throw Error(path + ": scale must be in [0.1, 10]");
     c.world = j.value("world", c.world);
     c.serial = jsonInteger(j, "serial", c.serial, std::uint32_t{0}, std::numeric_limits<std::uint32_t>::max(), path);
     c.seed = jsonInteger(j, "seed", c.seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), path);
@@ -67,7 +72,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
 
 void MesaSrSimConfig::save(const std::string& path) const {
   nlohmann::json j = {{"mesh", mesh},       {"distance", distance}, {"elevation", elevation},
-                      {"turntable_deg", turntable_deg}, {"serial", serial}, {"seed", seed},
+                      {"turntable_deg", turntable_deg}, {"roll", roll}, {"scale", scale}, {"serial", serial}, {"seed", seed},
                       {"frame_rate", frame_rate},
                       {"faults", {{"open_fail", faults.open_fail}, {"timeout_every", faults.timeout_every},
                                   {"corrupt_every", faults.corrupt_every},

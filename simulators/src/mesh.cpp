@@ -256,6 +256,12 @@ Mesh loadMeshOrBuiltin(const std::string& name) {
   return loadMesh(name);
 }
 
+Mesh scaledMesh(Mesh mesh, double factor) {
+  const float f = static_cast<float>(factor);
+  for (auto& v : mesh.vertices) v *= f;
+  return mesh;
+}
+
 Mesh makeMugMesh() {
   Mesh m;
   const int seg = 48;

@@ -51,7 +51,10 @@ CameraPlacement placeCamera(const Mesh& mesh, const SceneView& view, const Intri
   CameraPlacement c;
   c.eye = target + static_cast<float>(dist) * Eigen::Vector3f(0.f, -std::cos(el), std::sin(el));
   const Eigen::Vector3f fwd = (target - c.eye).normalized();
-  const Eigen::Vector3f right = fwd.cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f level_right = fwd.cross(Eigen::Vector3f::UnitZ()).normalized();
+  const Eigen::Vector3f level_down = fwd.cross(level_right);
+  const float roll = static_cast<float>(view.roll_deg) * kPi / 180.f;
+  const Eigen::Vector3f right = std::cos(roll) * level_right + std::sin(roll) * level_down;
   const Eigen::Vector3f down = fwd.cross(right);
   c.cam_to_world << right, down, fwd;
   return c;

@@ -99,6 +99,25 @@ check "consistency writes CSV and one plot per elevation" test -s "$work/cons/co
 check "the first view is identical to itself" \
   test "$(awk -F, '$1 == 30 && $2 == 0 {print $4 + $8}' "$work/cons/consistency.csv")" = "0"
 check "24 views + header" test "$(wc -l < "$work/cons/consistency.csv")" -eq 25
+# A training-side twin: the same views each with its own camera, trained on only beside its view.
+"$KT" simulate --objects "$(dirname "$0")/../data/objects-two-categories.csv" --elevations 30,60 --step 30 -q \
+  --jitter-distance 0.15 --jitter-elevation 5 --jitter-tilt 3 --jitter-scale 0.2 --jitter-integration 15:60 --out "$work/twin"
+check "a jittered simulate exits 0" test $? -eq 0
+check "the twin has the same view ids" \
+  test "$(cut -d, -f1-3,5 "$work/twin/manifest.csv" | sort)" = "$(cut -d, -f1-3,5 "$work/ds/manifest.csv" | sort)"
+check "its views are seen from their own elevations" \
+  test "$(awk -F, 'NR > 1 && $4 != $3' "$work/twin/manifest.csv" | wc -l)" -gt 80
+"$KT" evaluate "$work/ds" --train-extra "$work/twin" --features kpd2 --classifier xgboost --protocol leave-instance \
+  $fast -q --out "$work/augmented" --json > "$work/augmented.json"
+check "evaluate --train-extra exits 0" test $? -eq 0
+check "the report says what trained beside the views" grep -q "Training augmented by 96 twin views" "$work/augmented/report.md"
+check "every fold's training views brought their twins" \
+  test "$(grep -c '"twin_views"' "$work/augmented.json")" -eq 4
+"$KT" simulate --objects "$(dirname "$0")/../data/objects-two-categories.csv" --elevations 30 --step 45 -q --out "$work/other"
+"$KT" evaluate "$work/ds" --train-extra "$work/other" --features kpd2 --classifier xgboost --protocol kfold4 \
+  $fast -q --out "$work/r5" 2> "$work/extra.err"
+check "a twin of other views is refused" test $? -ne 0
+check "the refusal names the twin and the view" grep -q "other: view .*/e30/a45.0 is not a view of the dataset" "$work/extra.err"
 "$KT" evaluate "$work/ds" --protocol sideways --out "$work/r4" 2> "$work/proto.err"
 check "an unknown protocol is named" grep -q "unknown protocol 'sideways'" "$work/proto.err"
 finish

@@ -81,6 +81,14 @@ TEST(MesaSrSimConfig, IntegersThatDoNotFitAreNamedNotCast) {
   EXPECT_EQ(c.serial, 4294967295u);
   EXPECT_EQ(c.seed, 18446744073709551615ull);  // exact: read as an unsigned integer, not through double
   EXPECT_EQ(c.faults.disconnect_after, 7);
+  EXPECT_EQ(err(R"({"roll": 120})"), path + ": roll must be within ±90°");
+  EXPECT_EQ(err(R"({"scale": 0})"), path + ": scale must be in [0.1, 10]");
+  sim::MesaSrSimConfig rolled;
+  rolled.roll = -2.5;
+  rolled.scale = 1.25;
+  rolled.save(path);
+  EXPECT_EQ(sim::MesaSrSimConfig::fromFile(path).roll, -2.5);
+  EXPECT_EQ(sim::MesaSrSimConfig::fromFile(path).scale, 1.25);
   fs::remove(path);
 }
 

@@ -4,14 +4,17 @@
 // sphere target's refused.
 #include <gtest/gtest.h>
 
-
+#include <Eigen/Core>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <set>
 
 #include "keyturn/core/error.h"
 #include "keyturn/rig/axis_calibration_run.h"
 #include "keyturn/rig/capture_rig.h"
 #include "keyturn/rig/dataset_simulation.h"
+#include "keyturn/rig/sidecars.h"
 #include "support/error_of.h"
 
 namespace fs = std::filesystem;
@@ -54,6 +57,55 @@ TEST(DatasetSimulation, WritesEveryViewOnceAndResumes) {
   const rig::CaptureReport again = rig::simulateDataset(s);
   EXPECT_EQ(again.written, 0u);
   EXPECT_EQ(again.skipped, 6u);
+  fs::remove_all(out);
+}
+
+// The training-side twin (simulate --jitter-*): each view its own elevation, roll, distance and
+// integration time, drawn from its identity alone, under the nominal view's label.
+TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
+  const fs::path out = freshDir("jitter");
+  rig::DatasetSimulation s = mugAt(out);
+  s.elevations = {30};
+  s.jitter.distance = 0.2;
+  s.jitter.elevation_deg = 5;
+  s.jitter.tilt_deg = 4;
+  s.jitter.scale = 0.2;
+  s.jitter.integration_min = 15;
+  s.jitter.integration_max = 60;
+  const rig::ViewKey first{"mug", "builtin", "30", 0};
+  const rig::JitteredView d = rig::drawJitter(s.jitter, s.seed, first, 30);
+  EXPECT_EQ(rig::drawJitter(s.jitter, s.seed, first, 30).roll_deg, d.roll_deg) << "a view's draw is its own";
+  EXPECT_NE(rig::drawJitter(s.jitter, s.seed + 1, first, 30).roll_deg, d.roll_deg);
+  std::size_t told = 0;
+  EXPECT_EQ(rig::simulateDataset(s, [&] { ++told; }).written, 3u);
+  EXPECT_EQ(told, 3u);
+  const auto rows = rig::Dataset::readManifest(out.string());
+  ASSERT_EQ(rows.size(), 3u);
+  std::set<double> elevations;
+  std::set<int> integrations;
+  for (const auto& r : rows) {
+    EXPECT_EQ(r.key.elevation, "30");
+    EXPECT_GE(r.elevation_deg, 25.0);
+    EXPECT_LE(r.elevation_deg, 35.0);
+    EXPECT_NEAR(r.elevation_deg, rig::drawJitter(s.jitter, s.seed, r.key, 30).elevation_deg, 1e-3);
+    elevations.insert(r.elevation_deg);
+    const rig::ViewCamera cam = rig::readViewCamera((out / r.sidecar()).string());
+    EXPECT_EQ(cam.settings.integration_time, rig::drawJitter(s.jitter, s.seed, r.key, 30).integration);
+    integrations.insert(cam.settings.integration_time);
+    // The pose is the jittered camera's: its roll tilts the table's normal out of the image's
+    // vertical plane (x = 0) by sin(roll) of its length.
+    const auto pose = rig::readViewTransform((out / r.sidecar()).string());
+    ASSERT_TRUE(pose.has_value());
+    const Eigen::Vector3d up_in_camera = pose->topLeftCorner<3, 3>() * Eigen::Vector3d::UnitZ();
+    const double roll = rig::drawJitter(s.jitter, s.seed, r.key, 30).roll_deg;
+    EXPECT_NEAR(-up_in_camera.x() / std::hypot(up_in_camera.x(), up_in_camera.y()), std::sin(roll * M_PI / 180), 1e-6);
+  }
+  EXPECT_EQ(elevations.size(), 3u);
+  EXPECT_GE(integrations.size(), 2u);
+  EXPECT_TRUE(rig::Dataset::verify(out.string()).ok());
+  EXPECT_EQ(rig::simulateDataset(s).skipped, 3u) << "a jittered dataset resumes like any other";
+  s.jitter.elevation_deg = 30;
+  EXPECT_EQ(errorOf([&] { rig::simulateDataset(s); }), "jitter: the elevation must be within 0–20°");
   fs::remove_all(out);
 }
 

@@ -5,6 +5,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/sim/mesh.h"
+#include "keyturn/sim/tof_view.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -112,4 +113,16 @@ TEST(Mesh, BadFilesAreNamedErrors) {
   const auto empty = (dir() / "empty.stl").string();
   std::ofstream(empty).close();
   EXPECT_NE(errorOf(empty).find("empty file"), std::string::npos);
+}
+
+// Another instance's size for the same shape: grown about the turntable axis, base still on the table.
+TEST(Mesh, ScaledAboutTheTurntableAxisOnTheTable) {
+  const sim::Mesh mug = sim::makeMugMesh();
+  const sim::Mesh big = sim::scaledMesh(mug, 1.5);
+  ASSERT_EQ(big.vertices.size(), mug.vertices.size());
+  EXPECT_EQ(big.triangles, mug.triangles);
+  EXPECT_NEAR(big.boundsMin().z(), 0.0, 1e-7);
+  EXPECT_NEAR(big.boundsMax().z(), 1.5 * mug.boundsMax().z(), 1e-6);
+  EXPECT_TRUE((big.boundsMax() - big.boundsMin()).isApprox(1.5f * (mug.boundsMax() - mug.boundsMin()), 1e-6f));
+  EXPECT_GT(sim::operatorDistance(big), sim::operatorDistance(mug)) << "framed for its size";
 }

@@ -37,16 +37,18 @@ double Evaluation::predictMsPerView() const {
 
 FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                          const std::vector<int>& labels, int classes, const Fold& fold,
-                         const ClassifierParams& params) {
+                         const ClassifierParams& params, const TwinRows& twins) {
   FoldOutcome out;
   out.name = fold.name;
+  const std::vector<std::size_t> train = withTwins(fold.train, twins);
   out.train_views = fold.train.size();
+  out.twin_views = train.size() - fold.train.size();
   out.test_views = fold.test.size();
   std::vector<int> y;
-  for (auto r : fold.train) y.push_back(labels[r]);
+  for (auto r : train) y.push_back(labels.at(r));
   const auto t0 = std::chrono::steady_clock::now();
   auto clf = makeClassifier(params);
-  clf->fit(table.select(blocks, fold.train), y, classes);
+  clf->fit(table.select(blocks, train), y, classes);
   const auto t1 = std::chrono::steady_clock::now();
   const std::vector<int> predicted = argmaxRows(clf->predictProba(table.select(blocks, fold.test)));
   const auto t2 = std::chrono::steady_clock::now();
@@ -64,17 +66,19 @@ FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::strin
 
 FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
                                  const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
-                                 std::size_t fold, int max_inner, const ClassifierParams& params) {
+                                 std::size_t fold, int max_inner, const ClassifierParams& params,
+                                 const TwinRows& twins) {
   const std::vector<Fold> inner = innerFolds(folds, fold, max_inner);
   if (inner.empty()) throw Error("a choice among feature sets needs a protocol with at least two folds");
   std::vector<double> score;
   for (const auto& c : candidates) {
     double sum = 0;
-    for (const auto& f : inner) sum += evaluateFold(table, featureSetBlocks(c), labels, classes, f, params).accuracy();
+    for (const auto& f : inner) sum += evaluateFold(table, featureSetBlocks(c), labels, classes, f, params, twins).accuracy();
     score.push_back(sum / static_cast<double>(inner.size()));
   }
   const auto best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
-  FoldOutcome out = evaluateFold(table, featureSetBlocks(candidates[best]), labels, classes, folds[fold], params);
+  FoldOutcome out =
+      evaluateFold(table, featureSetBlocks(candidates[best]), labels, classes, folds[fold], params, twins);
   out.chosen = candidates[best];
   out.inner_accuracy = std::move(score);
   return out;

@@ -40,6 +40,7 @@ json planKey(const EvaluationRun& run) {
   return {{"feature_sets", p.feature_sets}, {"classifiers", p.classifiers}, {"protocols", p.protocols},
           {"bins", p.bins},                 {"split_seed", p.split_seed},   {"params", params},
           {"tables", tables},               {"trainings", run.totalFolds()}, {"inner_folds", p.inner_folds},
+          {"train_extra", p.train_extra},
           // --label: parts judged by other labels are another run
           {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"}};
 }
@@ -101,6 +102,7 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
         o.confusion.push_back({jsonInteger(cell, "t", 0, classes - 1, path), jsonInteger(cell, "p", 0, classes - 1, path),
                                jsonInteger(cell, "n", 0, static_cast<int>(o.test_views), path)});
       }
+      o.twin_views = jsonInteger(f, "twin_views", std::size_t{0}, std::size_t{0}, most, path);
       if (f.contains("chosen")) {
         o.chosen = f.at("chosen").get<std::string>();
         o.inner_accuracy = f.at("inner_accuracy").get<std::vector<double>>();
@@ -131,6 +133,7 @@ std::string evaluationPartJson(const EvaluationRun& run, int shard, int shards) 
                      {"train_views", o.train_views}, {"test_views", o.test_views}, {"correct", o.correct},
                      {"train_ms", o.train_ms},   {"predict_ms", o.predict_ms}, {"confusion", cells}});
     if (!o.chosen.empty()) folds.back()["chosen"] = o.chosen, folds.back()["inner_accuracy"] = o.inner_accuracy;
+    if (o.twin_views) folds.back()["twin_views"] = o.twin_views;
   }
   const json j{{"format", kFormat}, {"version", kVersion}, {"shard", shard + 1}, {"shards", shards},
                {"plan", planKey(run)},  {"seconds", run.total_s}, {"folds", folds}};

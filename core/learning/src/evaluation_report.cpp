@@ -112,6 +112,27 @@ std::string nestedChoicesInWords(const EvaluationRun& run) {
   return md.str();
 }
 
+// The dataset's own views of a bin count's table: the twins appended for training left out.
+FeatureTable datasetRows(const EvaluationRun& run, int bins) {
+  FeatureTable t = run.tables.at(bins);
+  if (!run.twins.at(bins).empty()) t.rows.resize(run.twins.at(bins).size());
+  return t;
+}
+
+// "Training augmented by DATASET (N views): …" — what the twins are and the rule they follow.
+std::string augmentationInWords(const EvaluationRun& run, int bins) {
+  const TwinRows& twins = run.twins.at(bins);
+  if (twins.empty()) return "";
+  std::size_t n = 0;
+  for (const auto& t : twins) n += t.size();
+  std::ostringstream md;
+  md << "Training augmented by " << n << " twin views from";
+  for (std::size_t k = 0; k < run.plan.train_extra.size(); ++k) md << (k ? ", " : " ") << "`" << run.plan.train_extra[k] << "`";
+  md << ": a twin (the same view id rendered again) is trained on only in the folds, outer and inner, that train on "
+        "its view; no test view and no twin of one was trained on.\n\n";
+  return md.str();
+}
+
 }  // namespace
 
 std::size_t EvaluationRun::totalFolds() const {
@@ -120,10 +141,12 @@ std::size_t EvaluationRun::totalFolds() const {
   return n;
 }
 
-EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe) {
+EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe,
+                                const std::function<FeatureTable(const std::string&, int)>& describe_extra) {
   const auto start = Clock::now();
   if (plan.feature_sets.empty() || plan.classifiers.empty() || plan.protocols.empty() || plan.bins.empty())
     throw Error("evaluate needs at least one feature set, classifier and protocol");
+  if (!plan.train_extra.empty() && !describe_extra) throw Error("evaluate: no way to describe the --train-extra datasets");
   for (const auto& c : plan.classifiers) makeClassifier(paramsOf(plan, c));  // unknown names fail before any work
   EvaluationRun run;
   run.plan = plan;
@@ -136,8 +159,20 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
       for (const auto& choice : featureSetChoices(set))
         for (const auto& b : featureSetBlocks(choice))
           if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
-    for (const auto& pn : plan.protocols) {
-      run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
+    std::vector<std::unique_ptr<Protocol>> made;  // on the dataset's own views, before any twin joins
+    for (const auto& pn : plan.protocols)
+      made.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
+    TwinRows& twins = run.twins[bins];
+    for (const auto& extra : plan.train_extra) {
+      const TwinRows more = appendTwins(run.tables[bins], describe_extra(extra, bins), extra);
+      if (twins.empty()) twins.resize(more.size());
+      for (std::size_t r = 0; r < more.size(); ++r) twins[r].insert(twins[r].end(), more[r].begin(), more[r].end());
+    }
+    if (!plan.train_extra.empty()) run.describe_s[bins] = secondsSince(t0);
+    for (auto& p : made) p->labels.of_row = labelsWithTwins(std::move(p->labels.of_row), twins);
+    for (auto& p : made) {
+      const std::string pn = p->name;
+      run.protocols.push_back(std::move(p));
       for (const auto& set : plan.feature_sets)
         if (featureSetChoices(set).size() > 1 && run.protocols.back()->folds.size() < 2)
           throw Error("feature set '" + set + "': a choice needs a protocol of at least two folds (" + pn + " has " +
@@ -178,9 +213,9 @@ void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, in
     r.ev.folds[jobs[i].fold] =
         choices.size() > 1
             ? evaluateFoldChoosing(tables.at(r.bins), choices, r.proto->labels.of_row, classes, r.proto->folds,
-                                   jobs[i].fold, run.plan.inner_folds, params)
+                                   jobs[i].fold, run.plan.inner_folds, params, run.twins.at(r.bins))
             : evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row, classes,
-                           r.proto->folds[jobs[i].fold], params);
+                           r.proto->folds[jobs[i].fold], params, run.twins.at(r.bins));
     std::lock_guard<std::mutex> lock(mutex);
     if (fold_done) fold_done();
   });
@@ -200,6 +235,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
   nlohmann::json js;
   js["dataset"] = a.dataset;
   js["seconds"] = run.total_s;
+  if (!a.train_extra.empty()) js["train_extra"] = a.train_extra;
   for (const auto& r : rows) {
     std::size_t tested = 0;
     nlohmann::json folds = nlohmann::json::array();
@@ -207,6 +243,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
       tested += f.test_views;
       folds.push_back({{"name", f.name}, {"accuracy", f.accuracy()}, {"train_views", f.train_views},
                        {"test_views", f.test_views}});
+      if (f.twin_views) folds.back()["twin_views"] = f.twin_views;
       if (!f.chosen.empty()) folds.back()["chosen"] = f.chosen, folds.back()["inner_accuracy"] = f.inner_accuracy;
     }
     csv << r.bins << ',' << r.protocol << ',' << r.proto->labels.kindName() << ',' << r.features << ',' << r.classifier
@@ -224,8 +261,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
   std::ostringstream md;
   md << "# keyturn evaluate: " << a.dataset << "\n\n";
   for (int bins : a.bins) {
-    const FeatureTable& t = run.tables.at(bins);
-    const TableSummary s = summarise(t, a.low_keypoints);
+    const TableSummary s = summarise(datasetRows(run, bins), a.low_keypoints);
     const double describe_s = run.describe_s.at(bins);
     md << "## " << bins << " bins\n\n"
        << s.views << " views; ISS keypoints K per view: median " << s.k_median << " (" << s.k_min << "–" << s.k_max
@@ -241,6 +277,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
       for (std::size_t i = 0; i < missing.size(); ++i) md << (i ? ", " : "") << missing[i];
       md << ".\n\n";
     }
+    md << augmentationInWords(run, bins);
     md << "Accuracy % (mean ± sd over folds). Labels: " << labelsInWords(run) << ".\n\n| features |";
     for (const auto& pn : a.protocols)
       for (const auto& c : a.classifiers) md << ' ' << c << " " << pn << " |";
@@ -286,7 +323,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
     }
 
   // Per-class PDFs (instances) of the paper's main functions and a baseline.
-  const FeatureTable& t0 = run.tables.at(a.bins.front());
+  const FeatureTable t0 = datasetRows(run, a.bins.front());
   const Labels by_instance = labelRows(t0, LabelKind::Instance);
   for (const std::string block : {"kpd2", "gkpd2", "kpa3", "d2"}) addClassPdfPlots(t0, by_instance, block, report.plots);
   md << "\nPer-class PDFs (mean ± 1 sd over each instance's views): `pdfs/`.\n";

@@ -14,12 +14,34 @@
 
 namespace keyturn::rig {
 
+// Per-view jitter, for a training-side twin of a dataset (evaluate --train-extra): every view
+// rendered with its own framing distance, elevation, camera roll and integration time, drawn
+// from (seed, class, instance, elevation, angle) alone, so a resumed or repeated run draws the same.
+struct ViewJitter {
+  double distance = 0;       // framing distance × (1 ± distance), uniform
+  double elevation_deg = 0;  // nominal elevation ± this, uniform (the view keeps the nominal label)
+  double tilt_deg = 0;       // camera roll about the optical axis ± this, uniform
+  double scale = 0;          // object grown × (1 ± scale), uniform; framed for its new size
+  int integration_min = 0, integration_max = 0;  // SR4000 integration code, uniform; 0: the camera's own
+  bool any() const { return distance > 0 || elevation_deg > 0 || tilt_deg > 0 || scale > 0 || integration_max > 0; }
+  // Throws keyturn::Error for a magnitude out of its range (fractions < 0.5, angles ≤ 20°, codes 1–255).
+  void check() const;
+};
+
+// One view's draw: what the simulated camera is given for it.
+struct JitteredView {
+  double distance_scale = 1, elevation_deg = 0, roll_deg = 0, scale = 1;
+  int integration = 0;  // 0: left as the camera has it
+};
+JitteredView drawJitter(const ViewJitter& jitter, std::uint64_t seed, const ViewKey& view, double elevation_deg);
+
 struct DatasetSimulation {
   std::string out;                  // the dataset folder (its rig's files in OUT/.sim)
   std::vector<ObjectRow> objects;
   std::vector<double> elevations;   // degrees; labelled by their whole degrees
   double step_deg = 5;
-  std::uint64_t seed = 1;           // sensor noise
+  std::uint64_t seed = 1;           // sensor noise (and, with jitter, each view's draw)
+  ViewJitter jitter;                // none by default: the rig opened once per object and elevation
   std::atomic<bool>* stop = nullptr;  // set (e.g. by Ctrl-C) to stop after the current view
 
   // Throws keyturn::Error naming list_path and the object whose mesh is missing.

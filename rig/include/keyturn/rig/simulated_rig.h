@@ -34,6 +34,8 @@ struct SimulatedCameraOptions {
   std::string mesh = "builtin:mug";  // builtin:NAME or a mesh file
   double elevation_deg = 30;
   double distance = 0;               // 0: the mesh's own framing distance
+  double roll_deg = 0;               // about the optical axis: a camera mounted off level
+  double scale = 1;                  // the mesh grown by this factor (another instance's size)
   std::uint64_t seed = 1;
   double fault_rate = 0;             // random faults per acquisition
   double frame_rate = 0;             // 0: as fast as it renders

@@ -35,6 +35,8 @@ struct MesaSrSimConfig {
   double distance = 0.0;
   double elevation = 30.0;
   double turntable_deg = 0.0;
+  double roll = 0.0;  // degrees about the optical axis
+  double scale = 1.0;  // the mesh grown by this factor (sim::scaledMesh)
   std::string world;
   std::uint32_t serial = 4000123;
   std::uint64_t seed = 1;

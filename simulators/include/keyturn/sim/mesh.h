@@ -32,4 +32,8 @@ Mesh makeSphereTargetMesh(double radius = 0.03, double offset = 0.07);
 // "builtin:mug", "builtin:sphere-target", or a mesh file.
 Mesh loadMeshOrBuiltin(const std::string& name);
 
+// The mesh grown by `factor` about the origin (the turntable axis on the table), so its base stays
+// on z = 0 and it stays centred on the table: another instance's size for the same shape.
+Mesh scaledMesh(Mesh mesh, double factor);
+
 }  // namespace keyturn::sim

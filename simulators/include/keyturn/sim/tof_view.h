@@ -26,6 +26,7 @@ struct SceneView {
   double distance = 0.0;        // camera to object centre (m); 0 = operator placement
   double elevation_deg = 30.0;  // camera above the turntable plane
   double turntable_deg = 0.0;   // object rotation about the turntable (z) axis
+  double roll_deg = 0.0;        // camera turned about its optical axis (mounted off level)
   double object_reflectivity = 0.6;
   double table_reflectivity = 0.35;
   double table_half_size = 0.6;  // square table (m) the turntable stands on

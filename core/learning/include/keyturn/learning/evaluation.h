@@ -9,6 +9,7 @@
 #include "keyturn/learning/classifier.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/splits.h"
+#include "keyturn/learning/training_twins.h"
 
 namespace keyturn::learning {
 
@@ -19,6 +20,7 @@ struct ConfusionCell {
 struct FoldOutcome {
   std::string name;
   std::size_t train_views = 0, test_views = 0, correct = 0;
+  std::size_t twin_views = 0;               // augmentation trained on beside train_views (TwinRows)
   double train_ms = 0, predict_ms = 0;
   std::vector<ConfusionCell> confusion;     // this fold's nonzero [true][predicted] counts
   // A choice made by nested validation (evaluateFoldChoosing): the feature set trained and tested,
@@ -37,17 +39,20 @@ struct Evaluation {
   double predictMsPerView() const;
 };
 
-// labels: class index per table row (0 .. classes - 1). One fold trained and tested; params as given.
+// labels: class index per table row (0 .. classes - 1), twins included. One fold trained and
+// tested; params as given. twins: each training row's twins are trained on too (none by default).
 FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                          const std::vector<int>& labels, int classes, const Fold& fold,
-                         const ClassifierParams& params);
+                         const ClassifierParams& params, const TwinRows& twins = {});
 // Chooses among candidate feature sets inside fold `fold` of `folds` (innerFolds, at most
 // max_inner): the candidate with the best mean inner accuracy (ties: the first listed) is trained
 // on all the fold's training views and tested on its test views, which no choice has seen.
-// Throws keyturn::Error when the protocol has no other fold to choose on.
+// Inner folds train on the twins of their own training rows only. Throws keyturn::Error when the
+// protocol has no other fold to choose on.
 FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
                                  const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
-                                 std::size_t fold, int max_inner, const ClassifierParams& params);
+                                 std::size_t fold, int max_inner, const ClassifierParams& params,
+                                 const TwinRows& twins = {});
 // The folds' confusion cells summed into a classes × classes matrix.
 std::vector<std::vector<int>> sumConfusion(const std::vector<FoldOutcome>& folds, int classes);
 

@@ -31,6 +31,7 @@ struct EvaluationPlan {
   int low_keypoints = 0;                    // "views with K < low_keypoints" in the summary
   std::optional<LabelKind> label;           // none: each protocol's own (makeProtocol)
   int inner_folds = 3;                      // per fold, for a feature set 'A|B' (evaluateFoldChoosing)
+  std::vector<std::string> train_extra;     // datasets of twins to train on (training_twins.h)
 };
 
 struct EvaluationRow {
@@ -43,7 +44,8 @@ struct EvaluationRow {
 struct EvaluationRun {
   EvaluationPlan plan;
   std::map<int, FeatureTable> tables;       // per bin count
-  std::map<int, double> describe_s;         // time to describe (or load) each table
+  std::map<int, double> describe_s;         // time to describe (or load) each table, twins included
+  std::map<int, TwinRows> twins;            // per bin count: the rows appended from plan.train_extra
   std::vector<std::unique_ptr<Protocol>> protocols;
   std::vector<EvaluationRow> rows;
   double total_s = 0;                       // from prepareEvaluation to the end of evaluateRows
@@ -60,8 +62,12 @@ struct FoldJob {
 std::vector<FoldJob> foldJobs(const EvaluationRun& run, int shard = 0, int shards = 1);
 
 // Checks the plan (at least one of each, classifier and block names), gets each bin count's
-// table from describe(bins) and lays out the rows. Throws keyturn::Error naming what is wrong.
-EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe);
+// table from describe(bins), appends the twins of plan.train_extra from describe_extra(dataset,
+// bins) (the folds are the protocols' on the dataset's own views) and lays out the rows. Throws
+// keyturn::Error naming what is wrong.
+EvaluationRun prepareEvaluation(
+    const EvaluationPlan& plan, const std::function<FeatureTable(int bins)>& describe,
+    const std::function<FeatureTable(const std::string& dataset, int bins)>& describe_extra = {});
 // Trains and tests the shard's folds (all of them by default) on plan.jobs threads; fold_done after each.
 void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done = nullptr, int shard = 0,
                   int shards = 1);
