@@ -6,6 +6,7 @@
 #include <random>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/fnv1a.h"
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
@@ -22,16 +23,13 @@ CaptureOptions baseOptions(const DatasetSimulation& s) {
   return base;
 }
 
-// FNV-1a over the view's identity and the seed: a draw that depends on nothing else.
+// FNV-1a over the view's identity (unit-separated fields), keyed by the seed: a draw that depends
+// on nothing else.
 std::uint64_t viewHash(std::uint64_t seed, const ViewKey& v) {
-  std::uint64_t h = 1469598103934665603ull ^ seed;
   char angle[32];
   std::snprintf(angle, sizeof angle, "%.3f", v.commanded_deg);
-  for (const std::string& part : {v.cls, v.instance, v.elevation, std::string(angle)}) {
-    for (unsigned char c : part) h = (h ^ c) * 1099511628211ull;
-    h = (h ^ 0x1f) * 1099511628211ull;
-  }
-  return h;
+  const std::string identity = v.cls + '\x1f' + v.instance + '\x1f' + v.elevation + '\x1f' + angle + '\x1f';
+  return fnv1a(identity, 1469598103934665603ull ^ seed);
 }
 
 CaptureOptions viewOptions(const CaptureOptions& base, const ObjectRow& obj, double el, const std::string& label) {
@@ -70,7 +68,34 @@ void simulateSequences(const DatasetSimulation& s, Dataset& dataset, const Captu
   }
 }
 
-// With jitter: a rig per view, opened with the view's draw, capturing that one view.
+// One jittered view: a rig opened with the view's draw, capturing that view only.
+CaptureReport captureJitteredView(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base,
+                                  const ObjectRow& obj, const sim::Mesh& mesh, const ViewKey& key, double el) {
+  const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
+  SimulatedRigOptions so;
+  so.dir = s.out + "/.sim";
+  so.camera.mesh = obj.mesh;
+  so.camera.elevation_deg = draw.elevation_deg;
+  so.camera.distance = sim::operatorDistance(sim::scaledMesh(mesh, draw.scale)) * draw.distance_scale;
+  so.camera.scale = draw.scale;
+  so.camera.roll_deg = draw.roll_deg;
+  so.camera.seed = viewHash(s.seed, key);  // each view its own noise
+  so.fast = true;
+  SimulatedRig simrig = openSimulatedRig(so);
+  if (draw.integration > 0) {
+    drivers::TofSettings settings = simrig.camera->settings();
+    settings.auto_exposure.enabled = false;
+    settings.integration_time = static_cast<std::uint8_t>(draw.integration);
+    simrig.camera->configure(settings);
+  }
+  CaptureOptions o = viewOptions(base, obj, draw.elevation_deg, key.elevation);
+  o.start_deg = key.commanded_deg;
+  o.range_deg = base.step_deg;  // this view only
+  o.camera_from_turntable_zero = simrig.camera_from_turntable;
+  return runCapture(*simrig.camera, *simrig.turntable, dataset, o);
+}
+
+// With jitter: every view its own rig (captureJitteredView); views already there are skipped unopened.
 void simulateJitteredViews(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base,
                            CaptureReport& total, const std::function<void()>& view_done) {
   for (const auto& obj : s.objects) {
@@ -81,34 +106,12 @@ void simulateJitteredViews(const DatasetSimulation& s, Dataset& dataset, const C
         const ViewKey key{obj.cls, obj.instance, elevationLabel(el), angle};
         if (dataset.has(key)) {
           ++total.skipped;
-          if (view_done) view_done();
-          continue;
+        } else {
+          const CaptureReport rep = captureJitteredView(s, dataset, base, obj, mesh, key, el);
+          total.written += rep.written;
+          total.skipped += rep.skipped;
+          total.redos += rep.redos;
         }
-        const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
-        SimulatedRigOptions so;
-        so.dir = s.out + "/.sim";
-        so.camera.mesh = obj.mesh;
-        so.camera.elevation_deg = draw.elevation_deg;
-        so.camera.distance = sim::operatorDistance(sim::scaledMesh(mesh, draw.scale)) * draw.distance_scale;
-        so.camera.scale = draw.scale;
-        so.camera.roll_deg = draw.roll_deg;
-        so.camera.seed = viewHash(s.seed, key);  // each view its own noise
-        so.fast = true;
-        SimulatedRig simrig = openSimulatedRig(so);
-        if (draw.integration > 0) {
-          drivers::TofSettings settings = simrig.camera->settings();
-          settings.auto_exposure.enabled = false;
-          settings.integration_time = static_cast<std::uint8_t>(draw.integration);
-          simrig.camera->configure(settings);
-        }
-        CaptureOptions o = viewOptions(base, obj, draw.elevation_deg, key.elevation);
-        o.start_deg = angle;
-        o.range_deg = base.step_deg;  // this view only
-        o.camera_from_turntable_zero = simrig.camera_from_turntable;
-        const auto rep = runCapture(*simrig.camera, *simrig.turntable, dataset, o);
-        total.written += rep.written;
-        total.skipped += rep.skipped;
-        total.redos += rep.redos;
         if (view_done) view_done();
       }
   }

@@ -112,11 +112,15 @@ std::string nestedChoicesInWords(const EvaluationRun& run) {
   return md.str();
 }
 
-// The dataset's own views of a bin count's table: the twins appended for training left out.
-FeatureTable datasetRows(const EvaluationRun& run, int bins) {
-  FeatureTable t = run.tables.at(bins);
-  if (!run.twins.at(bins).empty()) t.rows.resize(run.twins.at(bins).size());
-  return t;
+// The dataset's own views of a bin count's table, the twins appended for training left out: the
+// table itself without augmentation, else a copy cut to them in `cut`.
+const FeatureTable& datasetRows(const EvaluationRun& run, int bins, FeatureTable& cut) {
+  const FeatureTable& t = run.tables.at(bins);
+  const std::size_t originals = run.twins.at(bins).size();
+  if (originals == 0) return t;
+  cut = t;
+  cut.rows.resize(originals);
+  return cut;
 }
 
 // "Training augmented by DATASET (N views): …" — what the twins are and the rule they follow.
@@ -159,9 +163,14 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
       for (const auto& choice : featureSetChoices(set))
         for (const auto& b : featureSetBlocks(choice))
           if (t.offset(b) < 0) throw Error("feature set '" + set + "': unknown block '" + b + "'");
-    std::vector<std::unique_ptr<Protocol>> made;  // on the dataset's own views, before any twin joins
+    const std::size_t first = run.protocols.size();  // this bin count's, made before any twin joins
     for (const auto& pn : plan.protocols)
-      made.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
+      run.protocols.push_back(std::make_unique<Protocol>(makeProtocol(pn, t, plan.split_seed, plan.label)));
+    for (std::size_t k = first; k < run.protocols.size(); ++k)  // refused before any twin is described
+      for (const auto& set : plan.feature_sets)
+        if (featureSetChoices(set).size() > 1 && run.protocols[k]->folds.size() < 2)
+          throw Error("feature set '" + set + "': a choice needs a protocol of at least two folds (" +
+                      run.protocols[k]->name + " has " + std::to_string(run.protocols[k]->folds.size()) + ")");
     TwinRows& twins = run.twins[bins];
     for (const auto& extra : plan.train_extra) {
       const TwinRows more = appendTwins(run.tables[bins], describe_extra(extra, bins), extra);
@@ -169,16 +178,11 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
       for (std::size_t r = 0; r < more.size(); ++r) twins[r].insert(twins[r].end(), more[r].begin(), more[r].end());
     }
     if (!plan.train_extra.empty()) run.describe_s[bins] = secondsSince(t0);
-    for (auto& p : made) p->labels.of_row = labelsWithTwins(std::move(p->labels.of_row), twins);
-    for (auto& p : made) {
-      const std::string pn = p->name;
-      run.protocols.push_back(std::move(p));
+    for (std::size_t k = first; k < run.protocols.size(); ++k) {
+      Protocol& p = *run.protocols[k];
+      p.labels.of_row = labelsWithTwins(std::move(p.labels.of_row), twins);
       for (const auto& set : plan.feature_sets)
-        if (featureSetChoices(set).size() > 1 && run.protocols.back()->folds.size() < 2)
-          throw Error("feature set '" + set + "': a choice needs a protocol of at least two folds (" + pn + " has " +
-                      std::to_string(run.protocols.back()->folds.size()) + ")");
-      for (const auto& set : plan.feature_sets)
-        for (const auto& c : plan.classifiers) run.rows.push_back({bins, pn, set, c, run.protocols.back().get(), {}});
+        for (const auto& c : plan.classifiers) run.rows.push_back({bins, p.name, set, c, &p, {}});
     }
   }
   run.total_s = secondsSince(start);
@@ -261,7 +265,8 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
   std::ostringstream md;
   md << "# keyturn evaluate: " << a.dataset << "\n\n";
   for (int bins : a.bins) {
-    const TableSummary s = summarise(datasetRows(run, bins), a.low_keypoints);
+    FeatureTable cut;
+    const TableSummary s = summarise(datasetRows(run, bins, cut), a.low_keypoints);
     const double describe_s = run.describe_s.at(bins);
     md << "## " << bins << " bins\n\n"
        << s.views << " views; ISS keypoints K per view: median " << s.k_median << " (" << s.k_min << "–" << s.k_max
@@ -323,7 +328,8 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
     }
 
   // Per-class PDFs (instances) of the paper's main functions and a baseline.
-  const FeatureTable t0 = datasetRows(run, a.bins.front());
+  FeatureTable cut;
+  const FeatureTable& t0 = datasetRows(run, a.bins.front(), cut);
   const Labels by_instance = labelRows(t0, LabelKind::Instance);
   for (const std::string block : {"kpd2", "gkpd2", "kpa3", "d2"}) addClassPdfPlots(t0, by_instance, block, report.plots);
   md << "\nPer-class PDFs (mean ± 1 sd over each instance's views): `pdfs/`.\n";

@@ -1,5 +1,6 @@
 #include "keyturn/learning/training_twins.h"
 
+#include <algorithm>
 #include <unordered_map>
 
 #include "keyturn/core/error.h"
@@ -41,12 +42,12 @@ std::vector<std::size_t> withTwins(const std::vector<std::size_t>& rows, const T
 }
 
 std::vector<int> labelsWithTwins(std::vector<int> labels, const TwinRows& twins) {
-  const std::size_t originals = labels.size();
-  for (std::size_t r = 0; r < originals && r < twins.size(); ++r)
-    for (std::size_t t : twins[r]) {
-      if (labels.size() <= t) labels.resize(t + 1, -1);
-      labels[t] = labels[r];
-    }
+  std::size_t rows = labels.size();
+  for (const auto& of_row : twins)
+    for (std::size_t t : of_row) rows = std::max(rows, t + 1);
+  labels.resize(rows, -1);
+  for (std::size_t r = 0; r < twins.size(); ++r)
+    for (std::size_t t : twins[r]) labels[t] = labels[r];
   return labels;
 }
 

@@ -6,8 +6,9 @@
 
 namespace keyturn {
 
-inline std::uint64_t fnv1a(const std::string& s) {
-  std::uint64_t h = 1469598103934665603ull;
+// basis: FNV's offset basis, or another start (a seed folded in) for a keyed hash.
+inline std::uint64_t fnv1a(const std::string& s, std::uint64_t basis = 1469598103934665603ull) {
+  std::uint64_t h = basis;
   for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
   return h;
 }
