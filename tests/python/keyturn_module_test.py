@@ -174,13 +174,15 @@ class Describe(unittest.TestCase):
 
         def work():
             entered.set()
-            keyturn.describe(FRAME)
+            # Dense (120 samples across): ~0.5 s, well past the sleep below; at the default
+            # working resolution the chain takes ~50 ms on this frame, about the sleep itself.
+            keyturn.describe(FRAME, working_samples_across=120)
             done.set()
 
         t = threading.Thread(target=work)
         t.start()
         entered.wait()
-        time.sleep(0.05)  # the thread is inside the chain (over a second on this frame)
+        time.sleep(0.05)  # the thread is inside the chain
         while not done.is_set():
             counted[0] += 1
         t.join()
