@@ -10,8 +10,14 @@
 cluster_dir=""
 cluster_error=""
 
-cluster_free_port() {
-  python3 -c 'import socket; s = socket.socket(); s.bind(("127.0.0.1", 0)); print(s.getsockname()[1])'
+# cluster_free_ports N: N distinct free loopback ports, one per line. All sockets are held
+# open until every port is drawn: ports drawn one call at a time can repeat (a closed
+# port is free again), and slurmctld and slurmd on one port answer each other's messages.
+cluster_free_ports() {
+  python3 -c 'import socket, sys
+socks = [socket.socket() for _ in range(int(sys.argv[1]))]
+for s in socks: s.bind(("127.0.0.1", 0))
+print("\n".join(str(s.getsockname()[1]) for s in socks))' "$1"
 }
 
 # cluster_wait SECONDS COMMAND...: true once COMMAND succeeds, polled every 0.2 s.
@@ -43,14 +49,15 @@ cluster_start() {
   cluster_wait 10 test -S "$d/munge/munge.socket" || { cluster_error="munged made no socket"; return 1; }
 
   # The node as slurmd sees this machine (CPUs, sockets, memory), named kt1 on loopback.
-  local node
+  local node ports
+  ports=($(cluster_free_ports 2))
   node=$(slurmd -C 2> /dev/null | head -1 | sed 's/^NodeName=[^ ]*/NodeName=kt1/')
   [ -n "$node" ] || { cluster_error="slurmd -C printed no node line"; return 1; }
   cat > "$d/slurm.conf" << EOF
 ClusterName=keyturn-test
 SlurmctldHost=localhost(127.0.0.1)
-SlurmctldPort=$(cluster_free_port)
-SlurmdPort=$(cluster_free_port)
+SlurmctldPort=${ports[0]}
+SlurmdPort=${ports[1]}
 SlurmUser=root
 SlurmdUser=root
 AuthType=auth/munge
@@ -79,8 +86,9 @@ EOF
   export SLURM_CONF=$d/slurm.conf
   slurmctld -D > "$d/log/slurmctld.out" 2>&1 &
   slurmd -D -N kt1 > "$d/log/slurmd.out" 2>&1 &
+  # (A first start has no state files yet; slurmctld logs that as an error, so it is left out.)
   if ! cluster_wait 60 cluster_node_idle; then
-    cluster_error="node kt1 not idle after 60 s (state '$(sinfo -h -N -o %t 2>&1 | head -1)'); slurmctld: $(grep -m1 -i error "$d/log/slurmctld.log" "$d/log/slurmctld.out" 2> /dev/null | tail -1) slurmd: $(grep -i -m1 'error\|fatal' "$d/log/slurmd.log" 2> /dev/null)"
+    cluster_error="node kt1 not idle after 60 s (state '$(sinfo -h -N -o %t 2>&1 | head -1)'); slurmctld: $(grep -h -i error "$d/log/slurmctld.log" "$d/log/slurmctld.out" 2> /dev/null | grep -v 'Could not open .* state file' | head -1) slurmd: $(grep -i -m1 'error\|fatal' "$d/log/slurmd.log" 2> /dev/null)"
     return 1
   fi
 }
