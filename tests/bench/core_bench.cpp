@@ -197,3 +197,13 @@ BENCHMARK(BM_PclEsfRealScaling)->Arg(1000)->Arg(3000)->Arg(10000)->Arg(30000)->A
     ->Unit(benchmark::kMillisecond);
 
 BENCHMARK_MAIN();
+
+// The geodesic searches with the scalar relaxation loop forced: the AVX2 path's gain.
+static void BM_GeodesicsScalar(benchmark::State& s) {
+  const int which = static_cast<int>(s.range(0));
+  detail::useScalarGeodesics(true);
+  for (auto _ : s)
+    benchmark::DoNotOptimize(geodesicKeypointDistances(fx().graph, fx().set, fx().keypoints, which));
+  detail::useScalarGeodesics(false);
+}
+BENCHMARK(BM_GeodesicsScalar)->Arg(kGkpd2)->Arg(kGkpcd2)->Unit(benchmark::kMillisecond);

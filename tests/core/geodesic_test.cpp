@@ -210,3 +210,33 @@ TEST(LocalCompleteGraph, ShortcutFreeGraphKeepsDistancesWithinOnePercent) {
     EXPECT_LE(worst, 0.01) << "worst relative excess over the exact graph";
   }
 }
+
+// The AVX2 relaxation compares eight edges at once and hands the improving ones, in edge order,
+// to the scalar update: on the benchmark view (every pair of its ISS keypoints, both costs) and on
+// the cylinder every distance is the scalar loop's to the bit.
+TEST(Geodesic, VectorisedSearchesAreBitIdenticalToTheScalarLoop) {
+  if (!detail::geodesicsUseAvx2()) GTEST_SKIP() << "this CPU has no AVX2: only the scalar loop runs";
+  const Cloud view = filterCloud(sim::builtinBenchmarkView(), FilterOptions());
+  const PointSet mug = PointSet::fromCloud(view);
+  const RadiusSearch search(mug);
+  const double res = cloudResolution(mug, search);
+  const LocalCompleteGraph graph = buildLocalCompleteGraph(mug, search, res, GraphOptions());
+  std::vector<int> kp;
+  for (int v = 0; v < static_cast<int>(mug.size()); v += 37) kp.push_back(v);  // 56 spread vertices
+  const GeodesicResult fast = geodesicKeypointDistances(graph, mug, kp);
+  const std::vector<float> fast_curved = shortestPathLengths(graph, kp[3], true);
+  const CylinderGraph c;
+  const std::vector<float> fast_cyl = shortestPathLengths(c.graph, 0, false);
+  detail::useScalarGeodesics(true);
+  EXPECT_FALSE(detail::geodesicsUseAvx2());
+  const GeodesicResult slow = geodesicKeypointDistances(graph, mug, kp);
+  const std::vector<float> slow_curved = shortestPathLengths(graph, kp[3], true);
+  const std::vector<float> slow_cyl = shortestPathLengths(c.graph, 0, false);
+  detail::useScalarGeodesics(false);
+  ASSERT_EQ(fast.gkpd2.size(), kp.size() * (kp.size() - 1) / 2 - static_cast<std::size_t>(fast.unreachable_pairs));
+  EXPECT_EQ(fast.gkpd1, slow.gkpd1);
+  EXPECT_EQ(fast.gkpd2, slow.gkpd2);
+  EXPECT_EQ(fast.gkpcd2, slow.gkpcd2);
+  EXPECT_EQ(fast_curved, slow_curved);
+  EXPECT_EQ(fast_cyl, slow_cyl);
+}

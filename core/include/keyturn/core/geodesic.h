@@ -74,4 +74,12 @@ int centroidVertex(const PointSet& set);
 std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const LocalCompleteGraph& graph, const PointSet& set,
                                                                     const std::vector<int>& keypoints);
 
+namespace detail {
+// The searches relax edges eight at a time with AVX2 where the CPU has it, with results
+// bit-identical to the scalar loop; true forces the scalar loop (tests and benchmarks compare them).
+void useScalarGeodesics(bool scalar);
+// Whether the searches take the AVX2 path now (the CPU has AVX2 and it is not switched off).
+bool geodesicsUseAvx2();
+}  // namespace detail
+
 }  // namespace keyturn
