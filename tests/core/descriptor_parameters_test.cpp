@@ -35,7 +35,7 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
   const std::map<std::string, std::string> expected = {
       {"bins", "32"},          {"range", "fixed"},        {"extent_m", "0.35"},   {"filter", "on"},
       {"plane_removal", "on"}, {"max_range_m", "3"},      {"jump_edge_deg", "10"}, {"iss_frame", "6"},
-      {"iss_nms", "4"},        {"iss_density", "2"},      {"graph_radius", "3.5"}, {"osada_samples", "20000"},
+      {"iss_nms", "3"},        {"iss_density", "2"},      {"graph_radius", "3.5"}, {"osada_samples", "20000"},
       {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
 }

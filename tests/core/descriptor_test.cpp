@@ -60,11 +60,11 @@ TEST(Descriptor, ConnectedSurfaceHasEveryPairReachable) {
   DescriptorOptions o;
   o.filter = false;
   const auto d = describeView(test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))), o);
-  EXPECT_EQ(d.keypointCount(), 8);
+  EXPECT_GE(d.keypointCount(), 8);  // the corners, and points of the edges' plateaus (Iss tests)
   EXPECT_EQ(d.unreachable_pairs, 0);
   EXPECT_EQ(d.unreachable_keypoints, 0);
-  // 28 pairs of cube corners: 12 edges (0.1 m), 12 face diagonals, 4 space
-  // diagonals; their geodesics are ≥ the Euclidean distances, so GKPD2's mass
+  // Keypoints on the cube's edges and corners: their geodesics over the faces are
+  // ≥ the Euclidean distances (and longer wherever a pair's segment cuts the cube), so GKPD2's mass
   // sits at or right of KPD2's.
   const auto& kpd2 = d.pdfs[0];
   const auto& gkpd2 = d.pdfs[4];
@@ -83,9 +83,10 @@ TEST(Descriptor, HandsBackItsGeodesicPathsOnlyWhenAsked) {
   const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))));
   EXPECT_TRUE(describeFilteredPoints(set, o).geodesic_paths.empty());
   const ViewDescriptor d = describeFilteredPoints(set, o, 0.0, true);
-  // One path per reachable keypoint (the cube is connected: all 8), ending at that keypoint,
-  // and the same polylines the graph built from scratch gives.
-  ASSERT_EQ(d.geodesic_paths.size(), 8u);
+  // One path per reachable keypoint (the cube is connected: all of them), ending at that
+  // keypoint, and the same polylines the graph built from scratch gives.
+  ASSERT_GE(d.keypointCount(), 8);
+  ASSERT_EQ(d.geodesic_paths.size(), static_cast<std::size_t>(d.keypointCount()));
   for (std::size_t k = 0; k < d.geodesic_paths.size(); ++k)
     EXPECT_TRUE(d.geodesic_paths[k].back().isApprox(d.keypoints[k])) << k;
   const RadiusSearch search(set);
@@ -96,7 +97,7 @@ TEST(Descriptor, HandsBackItsGeodesicPathsOnlyWhenAsked) {
   // Without a geodesic feature the graph is built for the paths alone; the PDFs are unchanged.
   o.features = {Feature::KPD2};
   const ViewDescriptor kpd2 = describeFilteredPoints(set, o, 0.0, true);
-  EXPECT_EQ(kpd2.geodesic_paths.size(), 8u);
+  EXPECT_EQ(kpd2.geodesic_paths.size(), d.geodesic_paths.size());
   EXPECT_EQ(kpd2.pdfs, describeFilteredPoints(set, o).pdfs);
 }
 
@@ -265,14 +266,14 @@ TEST(RealData, EveryShippedKinectCutIsDescribedByDefault) {
   for (const char* kind : {"full", "masked", "crop"})
     for (const auto& e : std::filesystem::directory_iterator(std::string(KEYTURN_REAL_DATA) + "/" + kind)) {
       const ViewDescriptor d = describeView(loadCloud(e.path().string()), DescriptorOptions());
-      EXPECT_GE(d.keypointCount(), 5) << e.path();  // measured 13–62 (docs/filtering.md)
+      EXPECT_GE(d.keypointCount(), 12) << e.path();  // measured 18–64 over the three kinds (docs/filtering.md)
       EXPECT_LE(d.keypointCount(), 64) << e.path();
       EXPECT_FALSE(d.filter.anyFlagged()) << e.path() << ": " << d.filter.flaggedSummary();
       EXPECT_EQ(d.filter.kind, std::string(kind) == "full"     ? InputKind::Frame
                                : std::string(kind) == "masked" ? InputKind::MaskedFrame
                                                                : InputKind::SegmentedCloud)
           << e.path();
-      EXPECT_LT(d.points, 4500u) << e.path();  // the working resolution bounds N (measured 928–4,003)
+      EXPECT_LT(d.points, 3000u) << e.path();  // the working resolution bounds N (measured 373–2,179)
       ++described;
     }
   EXPECT_EQ(described, 2 + 5 + 38);

@@ -1,5 +1,8 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <array>
+
 #include "keyturn/core/iss.h"
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/sim/tof_view.h"
@@ -22,19 +25,49 @@ float nearest(const std::vector<Eigen::Vector3f>& set, const Eigen::Vector3f& p)
 }
 }  // namespace
 
+// Distance of p from the nearest of the cube's 12 edges (p on its surface).
+static float distanceFromAnEdge(const Eigen::Vector3f& p, float side, const Eigen::Vector3f& c) {
+  const Eigen::Vector3f d = ((p - c).cwiseAbs() - Eigen::Vector3f::Constant(0.5f * side)).cwiseAbs();
+  // On an edge two coordinates sit at ±side/2: the second smallest offset from a face.
+  std::array<float, 3> o = {d.x(), d.y(), d.z()};
+  std::sort(o.begin(), o.end());
+  return o[1];
+}
+
+// The keypoints in falling saliency.
+static std::vector<int> bySaliency(const IssResult& r) {
+  std::vector<int> kp = r.keypoints;
+  std::stable_sort(kp.begin(), kp.end(), [&](int a, int b) { return r.saliency[a] > r.saliency[b]; });
+  return kp;
+}
+
 TEST(Iss, FindsTheEightCornersOfACube) {
   const Eigen::Vector3f centre(0.f, 0.f, 1.f);
   const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
   const RadiusSearch search(set);
   const double res = cloudResolution(set, search);
   ASSERT_NEAR(res, 0.005, 1e-4);
-  const IssResult r = detectIssKeypoints(set, search, res, IssOptions());
-  std::vector<Eigen::Vector3f> kp;
-  for (int i : r.keypoints) kp.push_back(set.points[i]);
   const auto corners = cubeCorners(0.1f, centre);
+  const IssResult r = detectIssKeypoints(set, search, res, IssOptions());
+  const std::vector<int> ranked = bySaliency(r);
+  ASSERT_GE(ranked.size(), 8u);
+  // The eight most salient keypoints are the eight corners, one each.
+  std::vector<Eigen::Vector3f> top;
+  for (int k = 0; k < 8; ++k) top.push_back(set.points[ranked[k]]);
+  for (const auto& c : corners) EXPECT_LT(nearest(top, c), 2.5 * res) << "corner " << c.transpose();
+  // Every keypoint lies on an edge or the sample row beside it, never inside a face: faces are
+  // exactly planar (λ3 = 0). Along a straight edge λ3 is a plateau, so a suppression radius
+  // under the edge's half length keeps some of it.
+  for (int i : r.keypoints)
+    EXPECT_LT(distanceFromAnEdge(set.points[i], 0.1f, centre), 1.5 * res) << "keypoint off the edges "
+                                                                           << set.points[i].transpose();
+  // With r_nms 4 × resolution the corners suppress their edges: the corners alone.
+  IssOptions wide;
+  wide.nms_radius = 4.0;
+  const IssResult w = detectIssKeypoints(set, search, res, wide);
+  std::vector<Eigen::Vector3f> kp;
+  for (int i : w.keypoints) kp.push_back(set.points[i]);
   for (const auto& c : corners) EXPECT_LT(nearest(kp, c), 2.5 * res) << "corner " << c.transpose();
-  // Every keypoint belongs to a corner: faces are exactly planar (λ3 = 0).
-  for (const auto& k : kp) EXPECT_LT(nearest(corners, k), 2.5 * res) << "stray keypoint " << k.transpose();
   EXPECT_EQ(kp.size(), 8u);
 }
 
@@ -50,13 +83,13 @@ TEST(Iss, AgreesWithPclOnACube) {
                                    o.min_neighbors);
   ASSERT_FALSE(pcl.empty());
   for (const auto& c : cubeCorners(0.1f, centre)) EXPECT_LT(nearest(pcl, c), 2.5 * res);
-  const IssResult ours = detectIssKeypoints(set, search, res, o);
-  std::vector<Eigen::Vector3f> kp;
-  for (int i : ours.keypoints) kp.push_back(set.points[i]);
-  // Every keyturn keypoint has a PCL keypoint beside it. PCL may add some on the
-  // flat faces: its unweighted scatter about the mean leaves rounding-level λ3
-  // there, which keyturn treats as planar.
-  for (const auto& k : kp) EXPECT_LT(nearest(pcl, k), 3.0 * res);
+  // keyturn's eight most salient keypoints (its corners) each have a PCL keypoint beside them.
+  // Which points of an edge's plateau of equal λ3 survive suppression depends on tie-breaking,
+  // which the two implementations do differently; PCL also adds some on the flat faces: its
+  // unweighted scatter about the mean leaves rounding-level λ3 there, which keyturn treats as planar.
+  const std::vector<int> ranked = bySaliency(detectIssKeypoints(set, search, res, o));
+  ASSERT_GE(ranked.size(), 8u);
+  for (int k = 0; k < 8; ++k) EXPECT_LT(nearest(pcl, set.points[ranked[k]]), 3.0 * res) << k;
 }
 
 TEST(Iss, ExactlyPlanarPatchHasNoKeypoints) {

@@ -141,7 +141,7 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
   const std::map<std::string, std::string> expected = {
       {"working_samples_across", "40"}, {"max_keypoints", "64"},
       {"bins", "32"},           {"cache_version", "5"},  {"extent_m", "0.35"},      {"filter", "on"},
-      {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "4"},
+      {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "3"},
       {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},
       {"osada_samples", "20000"}, {"plane_removal", "on"}, {"range", "fixed"},      {"seed", "7"}};
   EXPECT_EQ(featureSpec(DescriptorOptions()), expected);
