@@ -204,6 +204,7 @@ def prepare_work(work, source, build, rel):
     (folder / "build").symlink_to(build)
     (folder / "data").symlink_to(source / "data")
     (folder / "tests").symlink_to(source / "tests")  # the real-data fixtures docs/results.md evaluates
+    (folder / "scripts").symlink_to(source / "scripts")  # the scripts the docs run (e.g. real-surface-repeatability.py)
     (folder / "home").mkdir()
     return folder
 
