@@ -179,8 +179,8 @@ class Dijkstra {
   // Most relaxations improve nothing (about 95 % for plain lengths, 80 % for curved costs), so eight
   // edges are compared at once — one gather of their targets' costs — and only the lanes that improve
   // go, in edge order, through the same relax(): the same float operations in the same order as the
-  // scalar loop, so both give bit-identical results (tested). A vertex's targets are distinct, so an
-  // update within a block cannot change another lane's comparison.
+  // scalar loop, so both give bit-identical results (tested). relax() compares again with the current
+  // cost, and costs only fall, so a lane the block's compare passes over the scalar loop would too.
   template <bool Curved>
   __attribute__((target("avx2"))) void relaxAvx2(int v, int begin, int end) {
     const float* w = Curved ? g_.curved.data() : g_.length.data();

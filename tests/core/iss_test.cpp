@@ -23,10 +23,9 @@ float nearest(const std::vector<Eigen::Vector3f>& set, const Eigen::Vector3f& p)
   for (const auto& q : set) best = std::min(best, (q - p).norm());
   return best;
 }
-}  // namespace
 
 // Distance of p from the nearest of the cube's 12 edges (p on its surface).
-static float distanceFromAnEdge(const Eigen::Vector3f& p, float side, const Eigen::Vector3f& c) {
+float distanceFromAnEdge(const Eigen::Vector3f& p, float side, const Eigen::Vector3f& c) {
   const Eigen::Vector3f d = ((p - c).cwiseAbs() - Eigen::Vector3f::Constant(0.5f * side)).cwiseAbs();
   // On an edge two coordinates sit at ±side/2: the second smallest offset from a face.
   std::array<float, 3> o = {d.x(), d.y(), d.z()};
@@ -35,11 +34,12 @@ static float distanceFromAnEdge(const Eigen::Vector3f& p, float side, const Eige
 }
 
 // The keypoints in falling saliency.
-static std::vector<int> bySaliency(const IssResult& r) {
+std::vector<int> bySaliency(const IssResult& r) {
   std::vector<int> kp = r.keypoints;
   std::stable_sort(kp.begin(), kp.end(), [&](int a, int b) { return r.saliency[a] > r.saliency[b]; });
   return kp;
 }
+}  // namespace
 
 TEST(Iss, FindsTheEightCornersOfACube) {
   const Eigen::Vector3f centre(0.f, 0.f, 1.f);
