@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <algorithm>
+#include <type_traits>
 
 #include "keyturn/core/error.h"
 
@@ -139,7 +140,7 @@ class Dijkstra {
     }
     touched_.clear();
     heap_.clear();
-    const int* off = g_.offsets.data();
+    const int* off = Curved ? g_.curved_offsets.data() : g_.offsets.data();
     float* cost = cost_.data();
     const bool avx2 = useAvx2();
     cost[source] = 0.f;
@@ -163,14 +164,14 @@ class Dijkstra {
   // Relaxes edge e of the settled vertex v.
   template <bool Curved>
   void relax(int v, int e) {
-    const float* w = Curved ? g_.curved.data() : g_.length.data();
-    const int t = g_.targets[e];
+    const float* w = Curved ? g_.curved_cost.data() : g_.length.data();
+    const int t = (Curved ? g_.curved_targets : g_.targets)[e];
     const float nc = cost_[v] + w[e];
     if (nc < cost_[t]) {
       if (settled_[t]) return;  // rounding only: settled costs are final
       if (cost_[t] == kInf) touched_.push_back(t);
       cost_[t] = nc;
-      if (Curved) euclid_[t] = euclid_[v] + g_.length[e];
+      if (Curved) euclid_[t] = euclid_[v] + g_.curved_length[e];
       heap_.pushOrDecrease(t, cost_.data());
     }
   }
@@ -183,8 +184,8 @@ class Dijkstra {
   // cost, and costs only fall, so a lane the block's compare passes over the scalar loop would too.
   template <bool Curved>
   __attribute__((target("avx2"))) void relaxAvx2(int v, int begin, int end) {
-    const float* w = Curved ? g_.curved.data() : g_.length.data();
-    const int* tgt = g_.targets.data();
+    const float* w = Curved ? g_.curved_cost.data() : g_.length.data();
+    const int* tgt = Curved ? g_.curved_targets.data() : g_.targets.data();
     const float* cost = cost_.data();
     const __m256 c = _mm256_set1_ps(cost_[v]);
     int e = begin;
@@ -211,6 +212,18 @@ class Dijkstra {
 
 }  // namespace
 
+namespace {
+// The curvature factor of an edge between vertices with normals a and b: max(sin θ, ε).
+float curvatureFactor(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float eps) {
+  float c = 1.f;  // no normal: treat as maximally curved
+  if (a.allFinite() && b.allFinite()) {
+    const float d = std::min(1.f, std::abs(a.dot(b)));
+    c = std::sqrt(1.f - d * d);  // sin(arccos(n_a·n_b))
+  }
+  return std::max(c, eps);
+}
+}  // namespace
+
 LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSearch& search,
                                            double resolution, const GraphOptions& options) {
   const int n = static_cast<int>(set.size());
@@ -232,67 +245,90 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
   }
 
   const bool weights = options.curvature_weights;
+  const float eps = static_cast<float>(options.curvature_epsilon);
+  std::vector<float> nb_cost;  // curved cost of each r-ball edge
   if (weights) {
     g.normals.resize(n);
     for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
+    nb_cost.resize(nb.size());
+    for (int i = 0; i < n; ++i)
+      for (int a = nb_off[i]; a < nb_off[i + 1]; ++a)
+        nb_cost[a] = curvatureFactor(g.normals[i], g.normals[nb[a]], eps) * nb_len[a];
   }
 
-  // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph. A 2-hop edge j–k
-  // comes with its common neighbours i; the shortest j–i–k through them is kept in `via`.
+  // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph. Each edge j–k comes with
+  // its two-edge paths j–i–k through common neighbours i: the shortest such length is kept in
+  // `via` (for the Euclidean graph's shortcut rule), the cheapest curved cost in `via_cost`.
   g.offsets.assign(n + 1, 0);
   const std::size_t expect = 2 * nb.size() + 16;
   g.targets.reserve(expect);
   g.length.reserve(expect);
-  if (weights) g.curved.reserve(expect);
+  if (weights) {
+    g.curved_offsets.assign(n + 1, 0);
+    g.curved_targets.reserve(expect);
+    g.curved_cost.reserve(expect);
+    g.curved_length.reserve(expect);
+  }
   std::vector<int> mark(n, -1);
-  std::vector<float> via(n, kInf);
+  std::vector<float> via(n, kInf), via_cost(weights ? n : 0, kInf);
   std::vector<int> seen;
   const float stretch = static_cast<float>(1.0 + std::max(0.0, options.shortcut_tolerance));
   const bool exact = !(options.shortcut_tolerance > 0.0);
-  const float eps = static_cast<float>(options.curvature_epsilon);
+  const bool prune_curved = options.curved_dominance_pruning;
   for (int j = 0; j < n; ++j) {
     const Eigen::Vector3f& pj = set.points[j];
     seen.clear();
     mark[j] = j;
-    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {  // N(j): direct edges, never left out
+    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {  // N(j): direct edges, never left out of the Euclidean graph
       mark[nb[a]] = j;
       via[nb[a]] = -1.f;
+      if (weights) via_cost[nb[a]] = kInf;
       seen.push_back(nb[a]);
     }
-    for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
-      const int i = nb[a];
-      const float ji = nb_len[a];
-      for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) {
-        const int k = nb[b];
-        if (mark[k] != j) {
-          mark[k] = j;
-          via[k] = kInf;
-          seen.push_back(k);
+    // The two-edge paths j–i–k, with or without their curved costs (one loop, compiled twice).
+    auto paths = [&](auto with_cost) {
+      constexpr bool kCost = decltype(with_cost)::value;
+      for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
+        const int i = nb[a];
+        const float ji = nb_len[a];
+        const float cji = kCost ? nb_cost[a] : 0.f;
+        for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) {
+          const int k = nb[b];
+          if (mark[k] != j) {
+            mark[k] = j;
+            via[k] = kInf;
+            if (kCost) via_cost[k] = kInf;
+            seen.push_back(k);
+          }
+          via[k] = std::min(via[k], ji + nb_len[b]);  // a direct neighbour's −1 stays: every 2-path is > 0
+          if (kCost) via_cost[k] = std::min(via_cost[k], cji + nb_cost[b]);
         }
-        via[k] = std::min(via[k], ji + nb_len[b]);  // a direct neighbour's −1 stays: every 2-path is > 0
       }
-    }
+    };
+    if (weights) paths(std::true_type());
+    else paths(std::false_type());
     for (int k : seen) {
       const float len = (set.points[k] - pj).norm();
       if (!exact && via[k] >= 0.f && via[k] <= stretch * len) continue;  // a 2-path nearly as short
       g.targets.push_back(k);
       g.length.push_back(len);
       if (!weights) continue;
-      const Eigen::Vector3f& nj = g.normals[j];
-      const Eigen::Vector3f& nk = g.normals[k];
-      float c = 1.f;  // no normal: treat as maximally curved
-      if (nj.allFinite() && nk.allFinite()) {
-        const float d = std::min(1.f, std::abs(nj.dot(nk)));
-        c = std::sqrt(1.f - d * d);  // sin(arccos(n_j·n_k))
-      }
-      g.curved.push_back(std::max(c, eps) * len);
+      const float cost = curvatureFactor(g.normals[j], g.normals[k], eps) * len;
+      // Undercut by j–i–k, the edge is on no cheapest path: leaving it out changes no cost.
+      // The rule is symmetric (the same paths, the same sums), so the graph stays undirected.
+      if (prune_curved && via_cost[k] < cost) continue;
+      g.curved_targets.push_back(k);
+      g.curved_cost.push_back(cost);
+      g.curved_length.push_back(len);
     }
     g.offsets[j + 1] = static_cast<int>(g.targets.size());
+    if (weights) g.curved_offsets[j + 1] = static_cast<int>(g.curved_targets.size());
   }
   return g;
 }
 
 std::vector<float> shortestPathLengths(const LocalCompleteGraph& graph, int source, bool curvature) {
+  if (curvature && !graph.hasCurvedGraph()) throw Error("curvature-weighted paths need a graph built with curvature weights");
   std::vector<float> out(graph.vertexCount(), kInf);
   Dijkstra dj(graph);
   dj.run(source, curvature, std::numeric_limits<int>::max(), [&](int v, float e) {
@@ -371,7 +407,7 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   for (int pass = 0; pass < 2; ++pass) {
     const bool curved = pass == 1;
     if (!(which & (curved ? kGkpcd2 : kGkpd2))) continue;
-    if (curved && graph.curved.size() != graph.targets.size())
+    if (curved && !graph.hasCurvedGraph())
       throw Error("GKPCD2 needs a graph built with curvature weights");
     std::vector<float>& out = curved ? res.gkpcd2 : res.gkpd2;
     int unreachable = 0;

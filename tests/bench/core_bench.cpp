@@ -107,6 +107,7 @@ static void BM_GraphBuild(benchmark::State& s) {
   for (auto _ : s)
     benchmark::DoNotOptimize(buildLocalCompleteGraph(fx().set, *fx().search, fx().res, GraphOptions()));
   s.counters["edges"] = static_cast<double>(fx().graph.edgeCount());
+  s.counters["curved_edges"] = static_cast<double>(fx().graph.curvedEdgeCount());
 }
 BENCHMARK(BM_GraphBuild)->Unit(benchmark::kMillisecond);
 

@@ -22,17 +22,27 @@ struct GraphOptions {
   // graph distance then lies within [d, (1 + tolerance) d] of the exact graph's, and
   // Dijkstra scans about a quarter of the edges. 0 = the exact graph.
   double shortcut_tolerance = 0.01;
+  // GKPCD2's graph leaves out every edge that a two-edge path through a common neighbour
+  // undercuts in curved cost: such an edge lies on no cheapest path, so the cheapest paths
+  // are those of the whole edge set. false keeps every edge (tests compare the two).
+  bool curved_dominance_pruning = true;
 };
 
-// Compressed adjacency (CSR) with Euclidean and curvature-weighted edge costs.
+// Compressed adjacency (CSR) with Euclidean edge lengths, and GKPCD2's curvature-weighted
+// graph over the same vertices in its own CSR (a subset of the edges, see GraphOptions).
 struct LocalCompleteGraph {
   std::vector<int> offsets;       // size n+1
   std::vector<int> targets;
   std::vector<float> length;      // Euclidean edge length L
-  std::vector<float> curved;      // max(C, ε) · L, C = sin(arccos(n_i·n_j)); empty without curvature weights
-  std::vector<Eigen::Vector3f> normals;  // PCA normal per vertex (NaN when undefined); idem
+  // Empty without curvature weights:
+  std::vector<int> curved_offsets, curved_targets;
+  std::vector<float> curved_cost;    // max(C, ε) · L, C = sin(arccos(n_i·n_j))
+  std::vector<float> curved_length;  // L of the same edge
+  std::vector<Eigen::Vector3f> normals;  // PCA normal per vertex (NaN when undefined)
   std::size_t vertexCount() const { return offsets.empty() ? 0 : offsets.size() - 1; }
   std::size_t edgeCount() const { return targets.size() / 2; }
+  std::size_t curvedEdgeCount() const { return curved_targets.size() / 2; }
+  bool hasCurvedGraph() const { return curved_offsets.size() == offsets.size() && !offsets.empty(); }
 };
 
 LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSearch& search,
