@@ -246,29 +246,42 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
 
   const bool weights = options.curvature_weights;
   const float eps = static_cast<float>(options.curvature_epsilon);
-  std::vector<float> nb_cost;  // curved cost of each r-ball edge
   if (weights) {
     g.normals.resize(n);
     for (int i = 0; i < n; ++i) g.normals[i] = pcaNormal(set, i, nb, nb_off[i], nb_off[i + 1]);
-    nb_cost.resize(nb.size());
-    for (int i = 0; i < n; ++i)
-      for (int a = nb_off[i]; a < nb_off[i + 1]; ++a)
-        nb_cost[a] = curvatureFactor(g.normals[i], g.normals[nb[a]], eps) * nb_len[a];
   }
 
   // adj(j) = N(j) ∪ ⋃_{i∈N(j)} N(i) \ {j}: the local complete graph. Each edge j–k comes with
   // its two-edge paths j–i–k through common neighbours i: the shortest such length is kept in
   // `via` (for the Euclidean graph's shortcut rule), the cheapest curved cost in `via_cost`.
-  g.offsets.assign(n + 1, 0);
-  const std::size_t expect = 2 * nb.size() + 16;
-  g.targets.reserve(expect);
-  g.length.reserve(expect);
-  if (weights) {
-    g.curved_offsets.assign(n + 1, 0);
-    g.curved_targets.reserve(expect);
-    g.curved_cost.reserve(expect);
-    g.curved_length.reserve(expect);
+  // Both rules are symmetric, so each edge is decided once, from its smaller end (k > j: the
+  // rows N(i) are sorted and `after[i]` walks past j as j grows), and written into both rows.
+  for (int i = 0; i < n; ++i) {
+    const auto begin = nb.begin() + nb_off[i], end = nb.begin() + nb_off[i + 1];
+    if (std::is_sorted(begin, end)) continue;
+    std::vector<std::pair<int, float>> row;
+    for (auto it = begin; it != end; ++it) row.emplace_back(*it, nb_len[it - nb.begin()]);
+    std::sort(row.begin(), row.end());
+    for (std::size_t q = 0; q < row.size(); ++q) {
+      nb[nb_off[i] + q] = row[q].first;
+      nb_len[nb_off[i] + q] = row[q].second;
+    }
   }
+  std::vector<float> nb_cost;  // curved cost of each r-ball edge
+  if (weights) {
+    nb_cost.resize(nb.size());
+    for (int i = 0; i < n; ++i)
+      for (int a = nb_off[i]; a < nb_off[i + 1]; ++a)
+        nb_cost[a] = curvatureFactor(g.normals[i], g.normals[nb[a]], eps) * nb_len[a];
+  }
+  struct Edge {
+    int j, k;
+    float length, cost;
+    bool euclidean, curved;  // kept in the Euclidean graph, in the curved one
+  };
+  std::vector<Edge> edges;
+  edges.reserve(nb.size());
+  std::vector<int> after(nb_off.begin(), nb_off.end() - 1);  // first entry of N(i) above j
   std::vector<int> mark(n, -1);
   std::vector<float> via(n, kInf), via_cost(weights ? n : 0, kInf);
   std::vector<int> seen;
@@ -278,21 +291,25 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
   for (int j = 0; j < n; ++j) {
     const Eigen::Vector3f& pj = set.points[j];
     seen.clear();
-    mark[j] = j;
     for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {  // N(j): direct edges, never left out of the Euclidean graph
-      mark[nb[a]] = j;
-      via[nb[a]] = -1.f;
-      if (weights) via_cost[nb[a]] = kInf;
-      seen.push_back(nb[a]);
+      const int k = nb[a];
+      mark[k] = j;
+      via[k] = -1.f;
+      if (weights) via_cost[k] = kInf;
+      if (k > j) seen.push_back(k);
     }
-    // The two-edge paths j–i–k, with or without their curved costs (one loop, compiled twice).
+    // The two-edge paths j–i–k, k > j, with or without their curved costs (one loop, compiled twice).
     auto paths = [&](auto with_cost) {
       constexpr bool kCost = decltype(with_cost)::value;
       for (int a = nb_off[j]; a < nb_off[j + 1]; ++a) {
         const int i = nb[a];
         const float ji = nb_len[a];
         const float cji = kCost ? nb_cost[a] : 0.f;
-        for (int b = nb_off[i]; b < nb_off[i + 1]; ++b) {
+        int b = after[i];
+        const int end = nb_off[i + 1];
+        while (b < end && nb[b] <= j) ++b;
+        after[i] = b;
+        for (; b < end; ++b) {
           const int k = nb[b];
           if (mark[k] != j) {
             mark[k] = j;
@@ -310,19 +327,50 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
     for (int k : seen) {
       const float len = (set.points[k] - pj).norm();
       if (!exact && via[k] >= 0.f && via[k] <= stretch * len) continue;  // a 2-path nearly as short
-      g.targets.push_back(k);
-      g.length.push_back(len);
-      if (!weights) continue;
-      const float cost = curvatureFactor(g.normals[j], g.normals[k], eps) * len;
-      // Undercut by j–i–k, the edge is on no cheapest path: leaving it out changes no cost.
-      // The rule is symmetric (the same paths, the same sums), so the graph stays undirected.
-      if (prune_curved && via_cost[k] < cost) continue;
-      g.curved_targets.push_back(k);
-      g.curved_cost.push_back(cost);
-      g.curved_length.push_back(len);
+      Edge e{j, k, len, 0.f, true, false};
+      if (weights) {
+        e.cost = curvatureFactor(g.normals[j], g.normals[k], eps) * len;
+        // Undercut by j–i–k, the edge is on no cheapest path: leaving it out changes no cost.
+        e.curved = !(prune_curved && via_cost[k] < e.cost);
+      }
+      edges.push_back(e);
     }
-    g.offsets[j + 1] = static_cast<int>(g.targets.size());
-    if (weights) g.curved_offsets[j + 1] = static_cast<int>(g.curved_targets.size());
+  }
+
+  // The CSR rows, each edge in both (rows in the order the edges were decided).
+  auto rows = [&](std::vector<int>& offsets, auto keep) {
+    offsets.assign(n + 1, 0);
+    for (const Edge& e : edges)
+      if (keep(e)) {
+        ++offsets[e.j + 1];
+        ++offsets[e.k + 1];
+      }
+    for (int v = 0; v < n; ++v) offsets[v + 1] += offsets[v];
+    return std::vector<int>(offsets.begin(), offsets.end() - 1);  // the next free slot per row
+  };
+  {
+    std::vector<int> slot = rows(g.offsets, [](const Edge&) { return true; });
+    g.targets.resize(g.offsets[n]);
+    g.length.resize(g.offsets[n]);
+    for (const Edge& e : edges) {
+      int s = slot[e.j]++;
+      g.targets[s] = e.k, g.length[s] = e.length;
+      s = slot[e.k]++;
+      g.targets[s] = e.j, g.length[s] = e.length;
+    }
+  }
+  if (weights) {
+    std::vector<int> slot = rows(g.curved_offsets, [](const Edge& e) { return e.curved; });
+    g.curved_targets.resize(g.curved_offsets[n]);
+    g.curved_cost.resize(g.curved_offsets[n]);
+    g.curved_length.resize(g.curved_offsets[n]);
+    for (const Edge& e : edges) {
+      if (!e.curved) continue;
+      int s = slot[e.j]++;
+      g.curved_targets[s] = e.k, g.curved_cost[s] = e.cost, g.curved_length[s] = e.length;
+      s = slot[e.k]++;
+      g.curved_targets[s] = e.j, g.curved_cost[s] = e.cost, g.curved_length[s] = e.length;
+    }
   }
   return g;
 }
