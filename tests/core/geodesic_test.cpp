@@ -30,6 +30,49 @@ struct CylinderGraph {
     graph = buildLocalCompleteGraph(set, *search, res, GraphOptions());
   }
 };
+// The surfaces the graph tests compare two graphs on: a cylinder and the benchmark mug as filtered.
+struct GraphInput {
+  PointSet set;
+  std::unique_ptr<RadiusSearch> search;
+  double res = 0;
+  explicit GraphInput(PointSet s) : set(std::move(s)) {
+    search = std::make_unique<RadiusSearch>(set);
+    res = cloudResolution(set, *search);
+  }
+  LocalCompleteGraph graph(const GraphOptions& o) const { return buildLocalCompleteGraph(set, *search, res, o); }
+};
+std::vector<std::unique_ptr<GraphInput>> cylinderAndMug() {
+  std::vector<std::unique_ptr<GraphInput>> out;
+  out.push_back(std::make_unique<GraphInput>(
+      PointSet::fromCloud(test::unorganized(test::cylinderSurface(kR, kH, kAround, kRings)))));
+  out.push_back(std::make_unique<GraphInput>(PointSet::fromCloud(filterCloud(sim::builtinBenchmarkView(), FilterOptions()))));
+  return out;
+}
+
+// Path lengths from 8 spread sources on `other` against `reference`: the least and largest relative
+// excess, the largest difference, and how many vertices were compared (reachability must agree).
+struct PathComparison {
+  double least_excess = 1.0, worst_excess = -1.0, worst_difference = 0.0;
+  int compared = 0;
+};
+PathComparison comparePaths(const LocalCompleteGraph& reference, const LocalCompleteGraph& other, bool curved) {
+  PathComparison c;
+  const int n = static_cast<int>(reference.vertexCount());
+  for (int source = 0; source < n; source += n / 7) {
+    const auto d0 = shortestPathLengths(reference, source, curved);
+    const auto d1 = shortestPathLengths(other, source, curved);
+    for (int v = 0; v < n; ++v) {
+      EXPECT_EQ(std::isfinite(d0[v]), std::isfinite(d1[v])) << "vertex " << v << " from " << source;
+      if (!std::isfinite(d0[v]) || !std::isfinite(d1[v]) || d0[v] <= 0.f) continue;
+      const double excess = static_cast<double>(d1[v] / d0[v]) - 1.0;
+      c.least_excess = std::min(c.least_excess, excess);
+      c.worst_excess = std::max(c.worst_excess, excess);
+      c.worst_difference = std::max(c.worst_difference, std::abs(excess));
+      ++c.compared;
+    }
+  }
+  return c;
+}
 }  // namespace
 
 TEST(LocalCompleteGraph, EdgesAreExactlyTheTwoHopClosure) {
@@ -183,32 +226,16 @@ TEST(Geodesic, WithoutCurvatureWeightsTheLengthsAreTheSame) {
 // nearly matches: it keeps every r-ball edge, over a quarter fewer edges in all, and every
 // distance within 1 % of the exact local complete graph's (never shorter).
 TEST(LocalCompleteGraph, ShortcutFreeGraphKeepsDistancesWithinOnePercent) {
-  const Cloud view = filterCloud(sim::builtinBenchmarkView(), FilterOptions());
-  for (const PointSet& set : {PointSet::fromCloud(test::unorganized(test::cylinderSurface(kR, kH, kAround, kRings))),
-                              PointSet::fromCloud(view)}) {
-    const RadiusSearch search(set);
-    const double res = cloudResolution(set, search);
+  for (const auto& in : cylinderAndMug()) {
     GraphOptions exact_options;
     exact_options.shortcut_tolerance = 0.0;
-    const auto exact = buildLocalCompleteGraph(set, search, res, exact_options);
-    const auto sparse = buildLocalCompleteGraph(set, search, res, GraphOptions());
+    const auto exact = in->graph(exact_options);
+    const auto sparse = in->graph(GraphOptions());
     EXPECT_LT(sparse.edgeCount() * 4, exact.edgeCount() * 3);  // measured: 38 % fewer on the mug
-    const int n = static_cast<int>(set.size());
-    double worst = 0.0;
-    int compared = 0;
-    for (int source = 0; source < n; source += n / 7) {
-      const auto d0 = shortestPathLengths(exact, source, false);
-      const auto d1 = shortestPathLengths(sparse, source, false);
-      for (int v = 0; v < n; ++v) {
-        if (!std::isfinite(d0[v]) || d0[v] <= 0.f) continue;
-        ASSERT_TRUE(std::isfinite(d1[v]));
-        EXPECT_GE(d1[v], d0[v] * (1.f - 1e-5f));
-        worst = std::max(worst, static_cast<double>(d1[v] / d0[v]) - 1.0);
-        ++compared;
-      }
-    }
-    EXPECT_GT(compared, 1000);
-    EXPECT_LE(worst, 0.01) << "worst relative excess over the exact graph";
+    const PathComparison c = comparePaths(exact, sparse, false);
+    EXPECT_GT(c.compared, 1000);
+    EXPECT_GE(c.least_excess, -1e-5) << "a sparse-graph distance shorter than the exact graph's";
+    EXPECT_LE(c.worst_excess, 0.01) << "worst relative excess over the exact graph";
   }
 }
 
@@ -248,39 +275,22 @@ TEST(Geodesic, VectorisedSearchesAreBitIdenticalToTheScalarLoop) {
 // relaxations come in another order). The Euclidean graph is untouched and the curved one stays
 // undirected.
 TEST(LocalCompleteGraph, CurvedGraphLeavesOutOnlyEdgesNoCheapestPathTakes) {
-  const Cloud view = filterCloud(sim::builtinBenchmarkView(), FilterOptions());
-  for (const PointSet& set : {PointSet::fromCloud(test::unorganized(test::cylinderSurface(kR, kH, kAround, kRings))),
-                              PointSet::fromCloud(view)}) {
-    const RadiusSearch search(set);
-    const double res = cloudResolution(set, search);
+  for (const auto& in : cylinderAndMug()) {
     GraphOptions whole_options;
     whole_options.curved_dominance_pruning = false;
-    const auto whole = buildLocalCompleteGraph(set, search, res, whole_options);
-    const auto pruned = buildLocalCompleteGraph(set, search, res, GraphOptions());
+    const auto whole = in->graph(whole_options);
+    const auto pruned = in->graph(GraphOptions());
     EXPECT_EQ(pruned.targets, whole.targets);
     EXPECT_EQ(pruned.length, whole.length);
     EXPECT_EQ(whole.curved_targets, whole.targets);
     EXPECT_LT(pruned.curvedEdgeCount() * 5, whole.curvedEdgeCount());  // measured: 10 % kept on the mug, 9 % on the cylinder
-    const int n = static_cast<int>(set.size());
     std::set<std::pair<int, int>> edges;
-    for (int v = 0; v < n; ++v)
+    for (int v = 0; v < static_cast<int>(pruned.vertexCount()); ++v)
       for (int e = pruned.curved_offsets[v]; e < pruned.curved_offsets[v + 1]; ++e)
         edges.insert({v, pruned.curved_targets[e]});
     for (const auto& [a, b] : edges) ASSERT_TRUE(edges.count({b, a})) << a << "–" << b << " one way only";
-
-    double worst = 0.0;
-    int compared = 0;
-    for (int source = 0; source < n; source += n / 7) {
-      const auto d0 = shortestPathLengths(whole, source, true);
-      const auto d1 = shortestPathLengths(pruned, source, true);
-      for (int v = 0; v < n; ++v) {
-        ASSERT_EQ(std::isfinite(d0[v]), std::isfinite(d1[v]));
-        if (!std::isfinite(d0[v]) || d0[v] <= 0.f) continue;
-        worst = std::max(worst, std::abs(static_cast<double>(d1[v] / d0[v]) - 1.0));
-        ++compared;
-      }
-    }
-    EXPECT_GT(compared, 1000);
-    EXPECT_LE(worst, 1e-5) << "worst relative difference from the whole edge set's paths";
+    const PathComparison c = comparePaths(whole, pruned, true);
+    EXPECT_GT(c.compared, 1000);
+    EXPECT_LE(c.worst_difference, 1e-5) << "worst relative difference from the whole edge set's paths";
   }
 }
