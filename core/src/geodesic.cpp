@@ -45,6 +45,16 @@ Eigen::Vector3f pcaNormal(const PointSet& set, int i, const std::vector<int>& nb
   return eig.eigenvectors().col(0).cast<float>();  // smallest eigenvalue
 }
 
+// The curvature factor of an edge between vertices with normals a and b: max(sin θ, ε).
+float curvatureFactor(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float eps) {
+  float c = 1.f;  // no normal: treat as maximally curved
+  if (a.allFinite() && b.allFinite()) {
+    const float d = std::min(1.f, std::abs(a.dot(b)));
+    c = std::sqrt(1.f - d * d);  // sin(arccos(n_a·n_b))
+  }
+  return std::max(c, eps);
+}
+
 // Indexed 4-ary min-heap of vertices keyed by cost: at most one entry per
 // vertex (decrease-key instead of duplicates), so it never outgrows the graph.
 class VertexHeap {
@@ -212,18 +222,6 @@ class Dijkstra {
 
 }  // namespace
 
-namespace {
-// The curvature factor of an edge between vertices with normals a and b: max(sin θ, ε).
-float curvatureFactor(const Eigen::Vector3f& a, const Eigen::Vector3f& b, float eps) {
-  float c = 1.f;  // no normal: treat as maximally curved
-  if (a.allFinite() && b.allFinite()) {
-    const float d = std::min(1.f, std::abs(a.dot(b)));
-    c = std::sqrt(1.f - d * d);  // sin(arccos(n_a·n_b))
-  }
-  return std::max(c, eps);
-}
-}  // namespace
-
 LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSearch& search,
                                            double resolution, const GraphOptions& options) {
   const int n = static_cast<int>(set.size());
@@ -274,10 +272,10 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
       for (int a = nb_off[i]; a < nb_off[i + 1]; ++a)
         nb_cost[a] = curvatureFactor(g.normals[i], g.normals[nb[a]], eps) * nb_len[a];
   }
-  struct Edge {
+  struct Edge {  // j < k; every edge is in the Euclidean graph
     int j, k;
     float length, cost;
-    bool euclidean, curved;  // kept in the Euclidean graph, in the curved one
+    bool curved;  // also in the curved one
   };
   std::vector<Edge> edges;
   edges.reserve(nb.size());
@@ -327,7 +325,7 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
     for (int k : seen) {
       const float len = (set.points[k] - pj).norm();
       if (!exact && via[k] >= 0.f && via[k] <= stretch * len) continue;  // a 2-path nearly as short
-      Edge e{j, k, len, 0.f, true, false};
+      Edge e{j, k, len, 0.f, false};
       if (weights) {
         e.cost = curvatureFactor(g.normals[j], g.normals[k], eps) * len;
         // Undercut by j–i–k, the edge is on no cheapest path: leaving it out changes no cost.
