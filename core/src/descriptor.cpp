@@ -137,7 +137,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
       switch (o.features[f]) {
         case Feature::KPD2: values[f] = keypointDistances(kp); break;
         case Feature::KPD3: values[f] = keypointSqrtAreas(kp); break;
-        case Feature::KPA3: values[f] = keypointAngles(kp); break;
+        case Feature::KPA3: break;  // binned as it is computed, below
         default: break;
       }
     }
@@ -169,6 +169,11 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
         continue;
       }
       HistogramRange range = featureRange(o.features[f], o.histogram);
+      if (o.features[f] == Feature::KPA3) {  // 3·C(K,3) angles: binned without most of their arccos
+        pdfs.push_back(keypointAnglePdf(kp, o.histogram.bins, range));
+        if (scaled_out) scaled_out->push_back(pdfs.back());
+        continue;
+      }
       if (o.histogram.mode == RangeMode::PerView && !isAngleFeature(o.features[f])) {
         float hi = 0.f;
         for (float v : values[f]) hi = std::max(hi, v);

@@ -29,17 +29,16 @@ std::vector<float> keypointSqrtAreas(const std::vector<Eigen::Vector3f>& kp) {
 }
 
 namespace {
-// Angle between two edge vectors of known squared lengths, via the clamped cosine.
-inline float angleOf(const Eigen::Vector3f& u, const Eigen::Vector3f& v, float uu, float vv) {
-  const float c = u.dot(v) / std::sqrt(uu * vv);
-  return std::acos(std::clamp(c, -1.0f, 1.0f));
+// The clamped cosine of the angle between two edge vectors of known squared lengths.
+inline float cosineOf(const Eigen::Vector3f& u, const Eigen::Vector3f& v, float uu, float vv) {
+  return std::clamp(u.dot(v) / std::sqrt(uu * vv), -1.0f, 1.0f);
 }
-}  // namespace
 
-std::vector<float> keypointAngles(const std::vector<Eigen::Vector3f>& kp) {
+// Calls visit(cosine) for each interior angle of every non-degenerate triangle, in the order
+// keypointAngles lists them.
+template <typename Visit>
+void forEachAngleCosine(const std::vector<Eigen::Vector3f>& kp, Visit&& visit) {
   const std::size_t k = kp.size();
-  std::vector<float> out;
-  if (k >= 3) out.reserve(k * (k - 1) * (k - 2) / 2);
   for (std::size_t a = 0; a < k; ++a)
     for (std::size_t b = a + 1; b < k; ++b) {
       const Eigen::Vector3f ab = kp[b] - kp[a];
@@ -49,12 +48,59 @@ std::vector<float> keypointAngles(const std::vector<Eigen::Vector3f>& kp) {
         const Eigen::Vector3f ac = kp[c] - kp[a], bc = kp[c] - kp[b];
         const float lac = ac.squaredNorm(), lbc = bc.squaredNorm();
         if (lac <= 0.f || lbc <= 0.f) continue;
-        out.push_back(angleOf(ab, ac, lab, lac));     // at a
-        out.push_back(angleOf(-ab, bc, lab, lbc));    // at b
-        out.push_back(angleOf(-ac, -bc, lac, lbc));   // at c
+        visit(cosineOf(ab, ac, lab, lac));     // at a
+        visit(cosineOf(-ab, bc, lab, lbc));    // at b
+        visit(cosineOf(-ac, -bc, lac, lbc));   // at c
       }
     }
+}
+
+// arccos within 6.7e-5 rad (Abramowitz & Stegun 4.4.45), for picking a bin before the exact call.
+inline float roughArccos(float x) {
+  const float ax = std::abs(x);
+  const float r = std::sqrt(1.f - ax) * (1.5707288f + ax * (-0.2121144f + ax * (0.0742610f - 0.0187293f * ax)));
+  return x >= 0.f ? r : static_cast<float>(M_PI) - r;
+}
+}  // namespace
+
+std::vector<float> keypointAngles(const std::vector<Eigen::Vector3f>& kp) {
+  const std::size_t k = kp.size();
+  std::vector<float> out;
+  if (k >= 3) out.reserve(k * (k - 1) * (k - 2) / 2);
+  forEachAngleCosine(kp, [&](float c) { out.push_back(std::acos(c)); });
   return out;
+}
+
+std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int bins, HistogramRange range) {
+  bins = std::max(bins, 1);
+  const double width = range.hi - range.lo;
+  if (!(width > 0)) return histogramPdf(keypointAngles(kp), bins, range);
+  std::vector<std::size_t> count(bins, 0);
+  std::size_t counted = 0;
+  // The rough arccos decides the bin when it lies, in units of bins, farther than its error bound
+  // (1e-4 rad, with room for float rounding) from both edges of the bin; otherwise the float
+  // arccos keypointAngles uses, binned by histogramPdf's own formula (clamped into the range).
+  const float lo = static_cast<float>(range.lo), scale = static_cast<float>(bins / width);
+  const float margin = static_cast<float>(1e-4 * bins / width);
+  forEachAngleCosine(kp, [&](float c) {
+    if (!std::isfinite(c)) return;
+    ++counted;
+    const float t = (roughArccos(c) - lo) * scale;
+    if (t > margin && t < static_cast<float>(bins) - margin) {
+      const int b = static_cast<int>(t);
+      const float f = t - static_cast<float>(b);
+      if (f > margin && f < 1.f - margin) {
+        ++count[b];
+        return;
+      }
+    }
+    const double exact = std::floor((std::acos(c) - range.lo) / width * bins);
+    ++count[!(exact >= 0) ? 0 : exact >= bins ? bins - 1 : static_cast<int>(exact)];
+  });
+  std::vector<double> pdf(bins, 0.0);
+  if (counted > 0)
+    for (int b = 0; b < bins; ++b) pdf[b] = static_cast<double>(count[b]) / static_cast<double>(counted);
+  return pdf;
 }
 
 }  // namespace keyturn

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <random>
 
 #include "keyturn/core/keypoint_functions.h"
 
@@ -56,4 +57,30 @@ TEST(KeypointFunctions, CountsGrowAsPairsAndTriples) {
   EXPECT_EQ(keypointDistances(pts).size(), 190u);
   EXPECT_EQ(keypointSqrtAreas(pts).size(), 1140u);
   EXPECT_EQ(keypointAngles(pts).size(), 3420u);
+}
+
+// KPA3's PDF binned from a rough arccos where it cannot be wrong is exactly the histogram of
+// keypointAngles: on random sets, on a regular grid (many angles exactly on bin edges: 45°, 90°
+// at 8 or 16 bins), at several bin counts and on a range narrower than [0, π] (clamping).
+TEST(Kpa3, PdfIsExactlyTheHistogramOfTheAngles) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(-0.1f, 0.1f);
+  std::vector<std::vector<Eigen::Vector3f>> sets;
+  for (int s = 0; s < 4; ++s) {
+    std::vector<Eigen::Vector3f> pts;
+    for (int i = 0; i < 40; ++i) pts.emplace_back(u(rng), u(rng), 0.5f + 0.3f * u(rng));
+    sets.push_back(pts);
+  }
+  std::vector<Eigen::Vector3f> grid;
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j) grid.emplace_back(0.01f * i, 0.01f * j, 0.f);
+  sets.push_back(grid);
+  for (const auto& pts : sets)
+    for (int bins : {1, 8, 16, 32, 90})
+      for (const HistogramRange range : {HistogramRange{0.0, M_PI}, HistogramRange{0.3, 2.0}}) {
+        const auto fast = keypointAnglePdf(pts, bins, range);
+        const auto exact = histogramPdf(keypointAngles(pts), bins, range);
+        EXPECT_EQ(fast, exact) << bins << " bins, range " << range.lo << "–" << range.hi;
+      }
+  EXPECT_EQ(keypointAnglePdf({}, 32, {0.0, M_PI}), std::vector<double>(32, 0.0));
 }
