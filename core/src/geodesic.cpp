@@ -253,18 +253,8 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
   // its two-edge paths j–i–k through common neighbours i: the shortest such length is kept in
   // `via` (for the Euclidean graph's shortcut rule), the cheapest curved cost in `via_cost`.
   // Both rules are symmetric, so each edge is decided once, from its smaller end (k > j: the
-  // rows N(i) are sorted and `after[i]` walks past j as j grows), and written into both rows.
-  for (int i = 0; i < n; ++i) {
-    const auto begin = nb.begin() + nb_off[i], end = nb.begin() + nb_off[i + 1];
-    if (std::is_sorted(begin, end)) continue;
-    std::vector<std::pair<int, float>> row;
-    for (auto it = begin; it != end; ++it) row.emplace_back(*it, nb_len[it - nb.begin()]);
-    std::sort(row.begin(), row.end());
-    for (std::size_t q = 0; q < row.size(); ++q) {
-      nb[nb_off[i] + q] = row[q].first;
-      nb_len[nb_off[i] + q] = row[q].second;
-    }
-  }
+  // rows N(i) are in ascending index order — search.radius's contract — and `after[i]` walks
+  // past j as j grows), and written into both rows.
   std::vector<float> nb_cost;  // curved cost of each r-ball edge
   if (weights) {
     nb_cost.resize(nb.size());

@@ -79,7 +79,7 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
   std::size_t counted = 0;
   // The rough arccos decides the bin when it lies, in units of bins, farther than its error bound
   // (1e-4 rad, with room for float rounding) from both edges of the bin; otherwise the float
-  // arccos keypointAngles uses, binned by histogramPdf's own formula (clamped into the range).
+  // arccos keypointAngles uses, in histogramPdf's own bin (histogramBin).
   const float lo = static_cast<float>(range.lo), scale = static_cast<float>(bins / width);
   const float margin = static_cast<float>(1e-4 * bins / width);
   forEachAngleCosine(kp, [&](float c) {
@@ -94,8 +94,7 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
         return;
       }
     }
-    const double exact = std::floor((std::acos(c) - range.lo) / width * bins);
-    ++count[!(exact >= 0) ? 0 : exact >= bins ? bins - 1 : static_cast<int>(exact)];
+    ++count[histogramBin(std::acos(c), bins, range)];
   });
   std::vector<double> pdf(bins, 0.0);
   if (counted > 0)
