@@ -30,5 +30,6 @@ Command addClassifyCommand(CLI::App& app);
 Command addConsistencyCommand(CLI::App& app);
 Command addSlurmCommand(CLI::App& app);
 Command addImportCommand(CLI::App& app);
+Command addStabilityCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -22,7 +22,7 @@ int main(int argc, char** argv) {
                              addCalibrateCommand(app), addRepeatabilityCommand(app),
                              addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app),
                              addConsistencyCommand(app), addSlurmCommand(app),
-                             addImportCommand(app)};
+                             addImportCommand(app), addStabilityCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

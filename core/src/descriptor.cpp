@@ -105,7 +105,9 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   std::vector<int> keypoints;
   const bool need_kp = wants(o.features, isKeypointFeature);
   if (need_kp) {
-    keypoints = detectIssKeypoints(set, search, out.resolution, o.iss).keypoints;
+    IssResult iss = detectIssKeypoints(set, search, out.resolution, o.iss);
+    keypoints = std::move(iss.keypoints);
+    out.keypoint_weight = std::move(iss.weight);
     for (int i : keypoints) out.keypoints.push_back(set.points[i]);
     out.keypoint_index = keypoints;
     out.times.iss = clock.lap();
@@ -128,15 +130,22 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
 
   out.size = viewSize(set.points);  // the scaled twins' unit and the size block
   // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.
-  auto pdfsFor = [&](const std::vector<int>& kp_index, bool with_shape_functions, GeodesicResult* geo_out,
-                     std::vector<std::vector<double>>* scaled_out) {
+  // kp_weight: one per keypoint (the weighted budget), or null: each value's weight follows from it.
+  auto pdfsFor = [&](const std::vector<int>& kp_index, const std::vector<double>* kp_weight, bool with_shape_functions,
+                     GeodesicResult* geo_out, std::vector<std::vector<double>>* scaled_out) {
     std::vector<Eigen::Vector3f> kp;
     for (int i : kp_index) kp.push_back(set.points[i]);
-    std::vector<std::vector<float>> values(o.features.size());
+    std::vector<std::vector<float>> values(o.features.size()), weights(o.features.size());
     for (std::size_t f = 0; f < o.features.size(); ++f) {
       switch (o.features[f]) {
-        case Feature::KPD2: values[f] = keypointDistances(kp); break;
-        case Feature::KPD3: values[f] = keypointSqrtAreas(kp); break;
+        case Feature::KPD2:
+          values[f] = keypointDistances(kp);
+          if (kp_weight) weights[f] = pairWeights(*kp_weight);
+          break;
+        case Feature::KPD3:
+          values[f] = keypointSqrtAreas(kp);
+          if (kp_weight) weights[f] = tripleWeights(*kp_weight);
+          break;
         case Feature::KPA3: break;  // binned as it is computed, below
         default: break;
       }
@@ -149,11 +158,11 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
         if (f == Feature::GKPD2) which |= kGkpd2;
         if (f == Feature::GKPCD2) which |= kGkpcd2;
       }
-      GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which);
+      GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which, kp_weight);
       for (std::size_t f = 0; f < o.features.size(); ++f) {
-        if (o.features[f] == Feature::GKPD1) values[f] = std::move(geo.gkpd1);
-        if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2);
-        if (o.features[f] == Feature::GKPCD2) values[f] = std::move(geo.gkpcd2);
+        if (o.features[f] == Feature::GKPD1) values[f] = geo.gkpd1, weights[f] = geo.gkpd1_weight;
+        if (o.features[f] == Feature::GKPD2) values[f] = geo.gkpd2, weights[f] = geo.gkpd2_weight;
+        if (o.features[f] == Feature::GKPCD2) values[f] = geo.gkpcd2, weights[f] = geo.gkpcd2_weight;
       }
       if (geo_out) *geo_out = std::move(geo);
       out.times.geodesic += clock.lap();
@@ -170,7 +179,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
       }
       HistogramRange range = featureRange(o.features[f], o.histogram);
       if (o.features[f] == Feature::KPA3) {  // 3·C(K,3) angles: binned without most of their arccos
-        pdfs.push_back(keypointAnglePdf(kp, o.histogram.bins, range));
+        pdfs.push_back(keypointAnglePdf(kp, o.histogram.bins, range, o.histogram.binning, kp_weight));
         if (scaled_out) scaled_out->push_back(pdfs.back());
         continue;
       }
@@ -179,13 +188,15 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
         for (float v : values[f]) hi = std::max(hi, v);
         range.hi = hi > 0.f ? hi : 1.0;
       }
-      pdfs.push_back(histogramPdf(values[f], o.histogram.bins, range));
+      const std::vector<float>* w = kp_weight && isKeypointFeature(o.features[f]) ? &weights[f] : nullptr;
+      pdfs.push_back(histogramPdf(values[f], o.histogram.bins, range, nullptr, o.histogram.binning, w));
       if (scaled_out) {
         HistogramOptions scaled = o.histogram;
         scaled.extent = kScaledExtent * std::max(out.size.rms_radius, 1e-9);
         scaled_out->push_back(isAngleFeature(o.features[f])
                                   ? pdfs.back()
-                                  : histogramPdf(values[f], o.histogram.bins, featureRange(o.features[f], scaled)));
+                                  : histogramPdf(values[f], o.histogram.bins, featureRange(o.features[f], scaled),
+                                                 nullptr, o.histogram.binning, w));
       }
     }
     out.times.histogram += clock.lap();
@@ -193,7 +204,8 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   };
 
   GeodesicResult geo;
-  out.pdfs = pdfsFor(keypoints, true, &geo, o.scaled_twin ? &out.scaled_pdfs : nullptr);
+  out.pdfs = pdfsFor(keypoints, out.keypoint_weight.empty() ? nullptr : &out.keypoint_weight, true, &geo,
+                     o.scaled_twin ? &out.scaled_pdfs : nullptr);
   out.unreachable_keypoints = geo.unreachable_from_centroid;
   out.unreachable_pairs = geo.unreachable_pairs;
   if (paths) {
@@ -207,7 +219,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     std::iota(all.begin(), all.end(), 0);
     std::vector<int> drawn;
     std::sample(all.begin(), all.end(), std::back_inserter(drawn), keypoints.size(), std::mt19937_64(o.random_seed));
-    out.random_keypoint_pdfs = pdfsFor(drawn, false, nullptr, nullptr);
+    out.random_keypoint_pdfs = pdfsFor(drawn, nullptr, false, nullptr, nullptr);
   }
   graph = LocalCompleteGraph();
   out.times.total =

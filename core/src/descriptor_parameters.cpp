@@ -104,6 +104,11 @@ std::vector<DescriptorParameter> makeTable() {
                  if (t != "fixed" && t != "per-view") throw Error("must be fixed or per-view, not '" + t + "'");
                  o.histogram.mode = t == "fixed" ? RangeMode::Fixed : RangeMode::PerView;
                }});
+  t.push_back({"binning", "--binning",
+               "How a value is counted: hard (all in its bin) or linear (shared between the two nearest bin "
+               "centres: the PDF moves continuously with the values)",
+               Kind::Choice, [](const DescriptorOptions& o) -> std::string { return binningName(o.histogram.binning); },
+               [](DescriptorOptions& o, const std::string& t) { o.histogram.binning = parseBinning(t); }, "hard"});
   t.push_back(number("extent_m", "--extent", "Object extent E in metres for fixed ranges (distances span [0,E])",
                      [](auto& o) -> auto& { return o.histogram.extent; }, Sign::Positive));
   t.push_back(onOff("filter", "--no-filter", "Use the cloud as it is (already segmented)",
@@ -143,8 +148,28 @@ std::vector<DescriptorParameter> makeTable() {
                  o.working.enabled = v > 0;
                  if (v > 0) o.working.samples_across = v;
                }});
+  t.push_back({"working_grid", "--voxel-grid",
+               "Working resolution's voxel grid: object (at the view's centroid and principal axes: moving the "
+               "view keeps the same points) or camera (the camera frame's, before issue 30)",
+               Kind::Choice, [](const DescriptorOptions& o) -> std::string { return voxelAnchorName(o.working.anchor); },
+               [](DescriptorOptions& o, const std::string& t) { o.working.anchor = parseVoxelAnchor(t); }, "camera"});
+  t.push_back({"working_points", "--voxel-points",
+               "Working resolution's points: means (each voxel's mean) or thinned (the nearest measured points "
+               "thinned to the spacing, before issue 30)",
+               Kind::Choice, [](const DescriptorOptions& o) -> std::string { return voxelPointsName(o.working.points); },
+               [](DescriptorOptions& o, const std::string& t) { o.working.points = parseVoxelPoints(t); }, "thinned"});
   t.push_back(whole("max_keypoints", "--max-keypoints", "Keypoint budget: keep the K most salient ISS keypoints (0 = all)",
                     [](auto& o) -> auto& { return o.iss.max_keypoints; }, 0));
+  t.push_back({"budget_taper", "--budget-taper",
+               "Weighted keypoint budget: the least salient fraction of the budget weighs less the less salient it "
+               "is, down to 0 at the first keypoint left out (0 = a hard budget)",
+               Kind::Number, [](const DescriptorOptions& o) { return cacheNumberText(o.iss.budget_taper); },
+               [](DescriptorOptions& o, const std::string& t) {
+                 const double v = parseNumber(t);
+                 if (!(v >= 0) || v > 1) throw Error("must be within 0..1, not '" + t + "'");
+                 o.iss.budget_taper = v;
+               },
+               "0"});
   t.push_back(whole("osada_samples", "--osada-samples", "Samples per Osada shape distribution",
                     [](auto& o) -> auto& { return o.osada.samples; }, 1));
   t.push_back(whole("seed", "--seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",
@@ -179,9 +204,9 @@ DescriptorOptions optionsFromParameterSpec(const std::map<std::string, std::stri
   for (const auto& p : descriptorParameters()) {
     if (p.key.empty()) continue;
     const auto it = spec.find(p.key);
-    if (it == spec.end()) throw Error(source + ": feature spec has no '" + p.key + "'");
+    if (it == spec.end() && p.absent_means.empty()) throw Error(source + ": feature spec has no '" + p.key + "'");
     try {
-      p.set(o, it->second);
+      p.set(o, it == spec.end() ? p.absent_means : it->second);
     } catch (const Error& e) {
       throw Error(source + ": feature spec '" + p.key + "' " + e.what());
     }

@@ -408,7 +408,8 @@ std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int
 }
 
 GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
-                                         const std::vector<int>& keypoints, int which) {
+                                         const std::vector<int>& keypoints, int which,
+                                         const std::vector<double>* weights) {
   GeodesicResult res;
   const int n = static_cast<int>(graph.vertexCount());
   const int k = static_cast<int>(keypoints.size());
@@ -439,6 +440,11 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   }
   std::vector<int> slot(n, -1);
   for (int a = 0; a < k; ++a) slot[order[a]] = a;
+  std::vector<double> weight_of;  // per vertex, only with weights
+  if (weights) {
+    weight_of.assign(n, 0.0);
+    for (int a = 0; a < k; ++a) weight_of[keypoints[a]] = (*weights)[a];
+  }
 
   if (which & kGkpd1) {
     // GKPD1: from the graph vertex nearest the centroid of the view.
@@ -446,6 +452,7 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
     dj.run(res.centroid_vertex, false, k, [&](int v, float e) {
       if (slot[v] < 0) return false;
       res.gkpd1.push_back(e);
+      if (weights) res.gkpd1_weight.push_back(static_cast<float>(weight_of[v]));
       return true;
     });
     res.unreachable_from_centroid = k - static_cast<int>(res.gkpd1.size());
@@ -459,12 +466,14 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
     if (curved && !graph.hasCurvedGraph())
       throw Error("GKPCD2 needs a graph built with curvature weights");
     std::vector<float>& out = curved ? res.gkpcd2 : res.gkpd2;
+    std::vector<float>& out_weight = curved ? res.gkpcd2_weight : res.gkpd2_weight;
     int unreachable = 0;
     for (int a = 0; a + 1 < k; ++a) {
       int found = 0;
       dj.run(order[a], curved, k - 1 - a, [&](int v, float e) {
         if (slot[v] <= a) return false;
         out.push_back(e);
+        if (weights) out_weight.push_back(static_cast<float>(weight_of[order[a]] * weight_of[v]));
         ++found;
         return true;
       });

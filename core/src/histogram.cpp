@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "keyturn/core/error.h"
+
 namespace keyturn {
 
 int histogramBin(double v, int bins, HistogramRange range) {
@@ -14,21 +16,52 @@ int histogramBin(double v, int bins, HistogramRange range) {
   return !(t >= 0) ? 0 : t >= bins ? bins - 1 : static_cast<int>(t);
 }
 
+const char* binningName(Binning b) { return b == Binning::Hard ? "hard" : "linear"; }
+
+Binning parseBinning(const std::string& name) {
+  if (name == "hard") return Binning::Hard;
+  if (name == "linear") return Binning::Linear;
+  throw Error("must be hard or linear, not '" + name + "'");
+}
+
+void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Binning binning, double weight) {
+  const int bins = static_cast<int>(pdf.size());
+  const double width = range.hi - range.lo;
+  if (binning == Binning::Hard || !(width > 0) || bins < 2) {
+    pdf[histogramBin(v, bins, range)] += weight;
+    return;
+  }
+  // Position in bin units from the first bin's centre; bounded in double before any int.
+  const double t = (v - range.lo) / width * bins - 0.5;
+  if (!(t > 0)) {
+    pdf.front() += weight;
+  } else if (!(t < bins - 1)) {
+    pdf.back() += weight;
+  } else {
+    const int b = static_cast<int>(t);
+    const double f = t - b;
+    pdf[b] += weight * (1.0 - f);
+    pdf[b + 1] += weight * f;
+  }
+}
+
 std::vector<double> histogramPdf(const std::vector<float>& values, int bins, HistogramRange range,
-                                 int* clamped) {
+                                 int* clamped, Binning binning, const std::vector<float>* weights) {
   std::vector<double> pdf(std::max(bins, 1), 0.0);
-  std::size_t counted = 0;
+  double counted = 0;
   int outside = 0;
-  for (float v : values) {
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    const float v = values[i];
     if (!std::isfinite(v)) continue;
     // Outside [lo, hi] goes into the first/last bin and is counted as clamped (hi itself
     // belongs to the last bin).
     if (range.hi > range.lo && (v < range.lo || v > range.hi)) ++outside;
-    pdf[histogramBin(v, bins, range)] += 1.0;
-    ++counted;
+    const double w = weights ? (*weights)[i] : 1.0;
+    addToHistogram(pdf, v, range, binning, w);
+    counted += w;
   }
   if (counted > 0)
-    for (double& p : pdf) p /= static_cast<double>(counted);
+    for (double& p : pdf) p /= counted;
   if (clamped) *clamped = outside;
   return pdf;
 }

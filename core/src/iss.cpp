@@ -3,6 +3,7 @@
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 namespace keyturn {
 namespace {
@@ -66,11 +67,26 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
     }
     if (is_max) result.keypoints.push_back(i);
   }
+  const bool weighted = o.budget_taper > 0 && o.max_keypoints > 0;
+  double edge = 0.0;  // the saliency of the first keypoint past the budget (0: none)
   if (o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) > o.max_keypoints) {
     auto& kp = result.keypoints;
     std::stable_sort(kp.begin(), kp.end(), [&](int a, int b) { return result.saliency[a] > result.saliency[b]; });
+    edge = result.saliency[kp[static_cast<std::size_t>(o.max_keypoints)]];
     kp.resize(static_cast<std::size_t>(o.max_keypoints));
     std::sort(kp.begin(), kp.end());
+  }
+  if (weighted && !result.keypoints.empty()) {
+    // Full weight down to the saliency of the (1 − taper)·budget-th most salient keypoint.
+    std::vector<double> s;
+    for (int i : result.keypoints) s.push_back(result.saliency[i]);
+    std::sort(s.begin(), s.end(), std::greater<double>());
+    const std::size_t full =
+        std::clamp<std::size_t>(static_cast<std::size_t>(std::lround((1.0 - std::min(o.budget_taper, 1.0)) * o.max_keypoints)),
+                                1, s.size());
+    const double top = s[full - 1];
+    for (int i : result.keypoints)
+      result.weight.push_back(top > edge ? std::clamp((result.saliency[i] - edge) / (top - edge), 0.0, 1.0) : 1.0);
   }
   return result;
 }

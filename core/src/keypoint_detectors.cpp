@@ -29,7 +29,8 @@ Detector parseDetector(const std::string& n) {
   if (n == "harris3d") return Detector::Harris3d;
   if (n == "sift3d") return Detector::Sift3d;
   if (n == "uniform") return Detector::Uniform;
-  throw Error("unknown detector '" + n + "' (expected iss, harris3d, sift3d, uniform)");
+  if (n == "iss-chain") return Detector::IssChain;
+  throw Error("unknown detector '" + n + "' (expected iss, harris3d, sift3d, uniform, iss-chain)");
 }
 
 std::string detectorName(Detector d) {
@@ -38,6 +39,7 @@ std::string detectorName(Detector d) {
     case Detector::Harris3d: return "harris3d";
     case Detector::Sift3d: return "sift3d";
     case Detector::Uniform: return "uniform";
+    case Detector::IssChain: return "iss-chain";
   }
   return "?";
 }
@@ -126,7 +128,8 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
   std::vector<Eigen::Vector3f> out;
   if (set.size() < 10) return out;
   switch (d) {
-    case Detector::Iss: {
+    case Detector::Iss:
+    case Detector::IssChain: {
       const RadiusSearch search(set);
       for (int i : detectIssKeypoints(set, search, res, o.iss).keypoints) out.push_back(set.points[i]);
       break;
@@ -201,7 +204,7 @@ std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet&
   }
   std::vector<double> score;
   double radius = 0;  // the detector's suppression radius, metres
-  if (d == Detector::Iss) {
+  if (d == Detector::Iss || d == Detector::IssChain) {
     const RadiusSearch search(set);
     score = detectIssKeypoints(set, search, res, uncapped.iss).saliency;
     radius = o.iss.nms_radius * res;

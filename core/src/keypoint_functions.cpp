@@ -34,8 +34,8 @@ inline float cosineOf(const Eigen::Vector3f& u, const Eigen::Vector3f& v, float 
   return std::clamp(u.dot(v) / std::sqrt(uu * vv), -1.0f, 1.0f);
 }
 
-// Calls visit(cosine) for each interior angle of every non-degenerate triangle, in the order
-// keypointAngles lists them.
+// Calls visit(cosine, a, b, c) for each interior angle of every non-degenerate triangle (a, b, c),
+// in the order keypointAngles lists them.
 template <typename Visit>
 void forEachAngleCosine(const std::vector<Eigen::Vector3f>& kp, Visit&& visit) {
   const std::size_t k = kp.size();
@@ -48,9 +48,9 @@ void forEachAngleCosine(const std::vector<Eigen::Vector3f>& kp, Visit&& visit) {
         const Eigen::Vector3f ac = kp[c] - kp[a], bc = kp[c] - kp[b];
         const float lac = ac.squaredNorm(), lbc = bc.squaredNorm();
         if (lac <= 0.f || lbc <= 0.f) continue;
-        visit(cosineOf(ab, ac, lab, lac));     // at a
-        visit(cosineOf(-ab, bc, lab, lbc));    // at b
-        visit(cosineOf(-ac, -bc, lac, lbc));   // at c
+        visit(cosineOf(ab, ac, lab, lac), a, b, c);     // at a
+        visit(cosineOf(-ab, bc, lab, lbc), a, b, c);    // at b
+        visit(cosineOf(-ac, -bc, lac, lbc), a, b, c);   // at c
       }
     }
 }
@@ -67,14 +67,43 @@ std::vector<float> keypointAngles(const std::vector<Eigen::Vector3f>& kp) {
   const std::size_t k = kp.size();
   std::vector<float> out;
   if (k >= 3) out.reserve(k * (k - 1) * (k - 2) / 2);
-  forEachAngleCosine(kp, [&](float c) { out.push_back(std::acos(c)); });
+  forEachAngleCosine(kp, [&](float c, std::size_t, std::size_t, std::size_t) { out.push_back(std::acos(c)); });
   return out;
 }
 
-std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int bins, HistogramRange range) {
+std::vector<float> pairWeights(const std::vector<double>& w) {
+  std::vector<float> out;
+  for (std::size_t a = 0; a < w.size(); ++a)
+    for (std::size_t b = a + 1; b < w.size(); ++b) out.push_back(static_cast<float>(w[a] * w[b]));
+  return out;
+}
+
+std::vector<float> tripleWeights(const std::vector<double>& w) {
+  std::vector<float> out;
+  for (std::size_t a = 0; a < w.size(); ++a)
+    for (std::size_t b = a + 1; b < w.size(); ++b)
+      for (std::size_t c = b + 1; c < w.size(); ++c) out.push_back(static_cast<float>(w[a] * w[b] * w[c]));
+  return out;
+}
+
+std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int bins, HistogramRange range,
+                                     Binning binning, const std::vector<double>* weights) {
   bins = std::max(bins, 1);
   const double width = range.hi - range.lo;
-  if (!(width > 0)) return histogramPdf(keypointAngles(kp), bins, range);
+  if (!(width > 0) && !weights) return histogramPdf(keypointAngles(kp), bins, range, nullptr, binning);
+  if (binning == Binning::Linear || weights) {
+    std::vector<double> pdf(bins, 0.0);
+    double counted = 0;
+    forEachAngleCosine(kp, [&](float c, std::size_t a, std::size_t b, std::size_t d) {
+      if (!std::isfinite(c)) return;
+      const double w = weights ? (*weights)[a] * (*weights)[b] * (*weights)[d] : 1.0;
+      counted += w;
+      addToHistogram(pdf, roughArccos(c), range, binning, w);
+    });
+    if (counted > 0)
+      for (double& p : pdf) p /= counted;
+    return pdf;
+  }
   std::vector<std::size_t> count(bins, 0);
   std::size_t counted = 0;
   // The rough arccos decides the bin when it lies, in units of bins, farther than its error bound
@@ -82,7 +111,7 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
   // arccos keypointAngles uses, in histogramPdf's own bin (histogramBin).
   const float lo = static_cast<float>(range.lo), scale = static_cast<float>(bins / width);
   const float margin = static_cast<float>(1e-4 * bins / width);
-  forEachAngleCosine(kp, [&](float c) {
+  forEachAngleCosine(kp, [&](float c, std::size_t, std::size_t, std::size_t) {
     if (!std::isfinite(c)) return;
     ++counted;
     const float t = (roughArccos(c) - lo) * scale;

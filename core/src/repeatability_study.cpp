@@ -89,6 +89,8 @@ namespace {
 struct Loaded {
   PointSet set;
   double res = 0;
+  PointSet working_set;  // the view at describe's working resolution (iss-chain only)
+  double working_res = 0;
   int budget = 0;
   std::map<Detector, std::vector<Eigen::Vector3f>> native, equal;
   std::map<Detector, double> ms;
@@ -134,6 +136,14 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     data[i].set = PointSet::fromCloud(c);
     if (data[i].set.size() < 2) throw Error(views[i].file + ": fewer than 2 points left to detect keypoints on");
     data[i].res = cloudResolution(data[i].set);
+    if (std::find(o.detectors.begin(), o.detectors.end(), Detector::IssChain) != o.detectors.end()) {
+      // As describe prepares a view (prepareView): the filtered view at the working resolution,
+      // its radii in multiples of the working spacing at least.
+      WorkingResolutionReport w;
+      subsampleToWorkingResolution(c, o.working, &w);
+      data[i].working_set = PointSet::fromCloud(c);
+      data[i].working_res = std::max(cloudResolution(data[i].working_set), w.subsampled ? w.spacing : 0.0);
+    }
     st.mean_resolution_m += data[i].res / views.size();
     progress.step();
   }
@@ -159,10 +169,13 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
     v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
     for (Detector d : o.detectors) {
+      const bool chain = d == Detector::IssChain;
+      const PointSet& set = chain ? v.working_set : v.set;
+      const double res = chain ? v.working_res : v.res;
       const auto t0 = std::chrono::steady_clock::now();
-      v.native[d] = detectKeypoints(d, v.set, v.res, o.detector);
+      v.native[d] = detectKeypoints(d, set, res, o.detector);
       v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      v.equal[d] = detectKeypointsAtBudget(d, v.set, v.res, v.budget, o.detector);
+      v.equal[d] = detectKeypointsAtBudget(d, set, res, v.budget, o.detector);
     }
     progress.step();
   }

@@ -20,9 +20,17 @@ const DescriptorParameter& row(const std::string& flag) {
 std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d) {
   switch (p.kind) {
     case DescriptorParameter::Kind::Switch: return p.get(d) == "on" ? "off" : "on";
-    case DescriptorParameter::Kind::Choice: return p.get(d) == "fixed" ? "per-view" : "fixed";
+    case DescriptorParameter::Kind::Choice: {
+      const std::string now = p.get(d);
+      if (p.flag == "--range") return now == "fixed" ? "per-view" : "fixed";
+      if (p.flag == "--binning") return now == "hard" ? "linear" : "hard";
+      if (p.flag == "--voxel-grid") return now == "object" ? "camera" : "object";
+      if (p.flag == "--voxel-points") return now == "means" ? "thinned" : "means";
+      ADD_FAILURE() << "no other value known for " << p.flag;
+      return now;
+    }
     case DescriptorParameter::Kind::Integer: return std::to_string(std::stoll(p.get(d)) + 3);
-    case DescriptorParameter::Kind::Number: return "1.25";
+    case DescriptorParameter::Kind::Number: return p.flag == "--budget-taper" ? "0.25" : "1.25";
   }
   return "";
 }
@@ -36,8 +44,28 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
       {"bins", "32"},          {"range", "fixed"},        {"extent_m", "0.35"},   {"filter", "on"},
       {"plane_removal", "on"}, {"max_range_m", "3"},      {"jump_edge_deg", "10"}, {"iss_frame", "6"},
       {"iss_nms", "3"},        {"iss_density", "2"},      {"graph_radius", "3.5"}, {"osada_samples", "20000"},
-      {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"}};
+      {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"},
+      {"binning", binningName(DescriptorOptions().histogram.binning)},  {"working_grid", "object"},
+      {"working_points", "means"},
+      {"budget_taper", descriptorParameter("--budget-taper").get(DescriptorOptions())}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
+}
+
+// Rows added after specifications were first written (issue 30's grid and binning): a cache or
+// model written before them has no such key and reads as it was made — the camera-anchored grid
+// and hard binning — while a missing older key is still an error (below).
+TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
+  auto spec = parameterSpec(DescriptorOptions());
+  spec.erase("working_grid");
+  spec.erase("binning");
+  spec.erase("budget_taper");
+  spec.erase("working_points");
+  const DescriptorOptions old = optionsFromParameterSpec(spec, "model.json");
+  EXPECT_EQ(old.working.anchor, VoxelAnchor::CameraGrid);
+  EXPECT_EQ(old.histogram.binning, Binning::Hard);
+  EXPECT_EQ(old.iss.budget_taper, 0.0);
+  EXPECT_EQ(old.working.points, VoxelPoints::Thinned);
+  EXPECT_EQ(parameterSpec(old).at("working_grid"), "camera");
 }
 
 TEST(DescriptorParameters, EachRowOwnsOneSettingAndRoundTrips) {
@@ -110,6 +138,8 @@ TEST(DescriptorParameters, BadValuesNameTheReason) {
   EXPECT_EQ(reason("--iss-nms", "four"), "is not a number: 'four'");
   EXPECT_EQ(reason("--extent", "-1"), "must be positive, not '-1'");
   EXPECT_EQ(reason("--range", "log"), "must be fixed or per-view, not 'log'");
+  EXPECT_EQ(reason("--voxel-grid", "world"), "must be object or camera, not 'world'");
+  EXPECT_EQ(reason("--binning", "soft"), "must be hard or linear, not 'soft'");
   EXPECT_EQ(reason("--no-filter", "maybe"), "must be on or off, not 'maybe'");
   EXPECT_EQ(reason("--seed", "-1"), "is not a whole number: '-1'");
   EXPECT_EQ(reason("--jump-edge-angle", "-5"), "must be 0 (off) or positive, not '-5'");

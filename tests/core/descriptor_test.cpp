@@ -194,11 +194,7 @@ TEST(Descriptor, ScaledTwinIsScaleInvariantAndTheSizeBlockIsNot) {
   EXPECT_TRUE(describeView(test::unorganized(cube), DescriptorOptions{}).scaled_pdfs.empty()) << "only when asked";
 }
 
-// A dense tilted plane (1 mm grid, 0.2 m across, unorganized) is thinned to points at least s apart
-// that still cover it: every measured point within (1 + √3) s of a kept one, and about half a kept
-// point per s² (measured 0.53; a sensor's grid at spacing s has 1), not the ~1.2 that voxel
-// representatives alone leave, 0.6 s apart on average.
-TEST(WorkingResolution, KeepsPointsAtLeastTheSpacingApartAndCoversTheSurface) {
+Cloud denseTiltedPlane() {
   Cloud plane;
   for (int i = 0; i < 200; ++i)
     for (int j = 0; j < 200; ++j) {
@@ -207,9 +203,20 @@ TEST(WorkingResolution, KeepsPointsAtLeastTheSpacingApartAndCoversTheSurface) {
     }
   plane.width = static_cast<std::uint32_t>(plane.points.size());
   plane.height = 1;
+  return plane;
+}
+
+// With thinned points (before issue 30), a dense tilted plane (1 mm grid, 0.2 m across,
+// unorganized) is thinned to points at least s apart that still cover it: every measured point
+// within (1 + √3) s of a kept one, and about half a kept point per s² (measured 0.53; a sensor's
+// grid at spacing s has 1), not the ~1.2 that voxel representatives alone leave, 0.6 s apart on average.
+TEST(WorkingResolution, ThinnedPointsAreAtLeastTheSpacingApartAndCoverTheSurface) {
+  const Cloud plane = denseTiltedPlane();
   Cloud thinned = plane;
   WorkingResolutionReport report;
-  subsampleToWorkingResolution(thinned, WorkingResolutionOptions(), &report);
+  WorkingResolutionOptions o;
+  o.points = VoxelPoints::Thinned;
+  subsampleToWorkingResolution(thinned, o, &report);
   ASSERT_TRUE(report.subsampled);
   const double s = report.spacing;
   EXPECT_GT(s, 0.003);
@@ -232,6 +239,36 @@ TEST(WorkingResolution, KeepsPointsAtLeastTheSpacingApartAndCoversTheSurface) {
   const double area = 0.2 * 0.2 * std::sqrt(1 + 0.4 * 0.4 + 0.3 * 0.3);
   const double per_s2 = static_cast<double>(kept.size()) * s * s / area;
   EXPECT_GT(per_s2, 0.4);
+  EXPECT_LT(per_s2, 0.8);
+}
+
+// With voxel means (the default), the plane's points are the means of 1.25 s voxels of the
+// object's own grid: on the plane, covering it (every measured point within a voxel's diagonal of
+// a mean), one per voxel the plane crosses — in the object's frame the plane lies in one layer, so
+// about (1/1.25)² = 0.64 per s².
+TEST(WorkingResolution, VoxelMeansLieOnTheSurfaceAndCoverIt) {
+  const Cloud plane = denseTiltedPlane();
+  Cloud means = plane;
+  WorkingResolutionReport report;
+  subsampleToWorkingResolution(means, WorkingResolutionOptions(), &report);
+  ASSERT_TRUE(report.subsampled);
+  const double s = report.spacing;
+  const Eigen::Vector3f n = Eigen::Vector3f(0.4f, 0.3f, -1.f).normalized();
+  std::vector<Eigen::Vector3f> kept;
+  for (const auto& p : means.points)
+    if (Cloud::isValid(p)) kept.push_back(p);
+  EXPECT_EQ(kept.size(), report.after);
+  for (const auto& p : kept) EXPECT_NEAR(n.dot(p - Eigen::Vector3f(0, 0, 0.6f)), 0.f, 1e-5f);
+  float farthest = 0;
+  for (std::size_t i = 0; i < plane.points.size(); i += 7) {
+    float d = 1e9f;
+    for (const auto& k : kept) d = std::min(d, (plane.points[i] - k).norm());
+    farthest = std::max(farthest, d);
+  }
+  EXPECT_LE(farthest, static_cast<float>(std::sqrt(3.0) * 1.25 * s));
+  const double area = 0.2 * 0.2 * std::sqrt(1 + 0.4 * 0.4 + 0.3 * 0.3);
+  const double per_s2 = static_cast<double>(kept.size()) * s * s / area;
+  EXPECT_GT(per_s2, 0.55);
   EXPECT_LT(per_s2, 0.8);
 }
 

@@ -4,6 +4,7 @@
 #include <QGraphicsScene>
 #include <QImage>
 #include <QPainter>
+#include <QtCharts/QCategoryAxis>
 #include <QtCharts/QChart>
 #include <QtCharts/QLineSeries>
 #include <QtCharts/QLogValueAxis>
@@ -53,7 +54,18 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
   auto* chart = new QtCharts::QChart();
   chart->setTitle(QString::fromStdString(c.title));
   chart->legend()->setAlignment(Qt::AlignBottom);
-  auto* ax = makeAxis(c.log_x, c.x_label);
+  QtCharts::QAbstractAxis* ax = nullptr;
+  if (c.x_categories.empty()) {
+    ax = makeAxis(c.log_x, c.x_label);
+  } else {
+    auto* cat = new QtCharts::QCategoryAxis();
+    cat->setLabelsPosition(QtCharts::QCategoryAxis::AxisLabelsPositionOnValue);
+    for (std::size_t i = 0; i < c.x_categories.size(); ++i)
+      cat->append(QString::fromStdString(c.x_categories[i]), static_cast<double>(i));
+    cat->setLabelsAngle(-35);
+    cat->setTitleText(QString::fromStdString(c.x_label));
+    ax = cat;
+  }
   auto* ay = makeAxis(c.log_y, c.y_label);
   chart->addAxis(ax, Qt::AlignBottom);
   chart->addAxis(ay, Qt::AlignLeft);
@@ -75,8 +87,9 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
       ymin = std::min(ymin, s.y[i]);
       ymax = std::max(ymax, s.y[i]);
     }
-    QPen pen(palette[k++ % 8]);
+    QPen pen(palette[k % 8]);
     pen.setWidth(3);
+    if (k++ >= 8) pen.setStyle(Qt::DashLine);  // past the palette: the colours again, dashed
     line->setPen(pen);
     line->setPointsVisible(true);
     chart->addSeries(line);
@@ -91,7 +104,8 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
   if (std::isfinite(c.y_max)) ymax = c.y_max;
   if (ymax <= ymin) ymax = ymin + 1;
   if (xmax <= xmin) xmax = xmin + 1;
-  setRange(ax, c.log_x, xmin, xmax);
+  if (!c.x_categories.empty()) ax->setRange(-0.5, static_cast<double>(c.x_categories.size()) - 0.5);
+  else setRange(ax, c.log_x, xmin, xmax);
   setRange(ay, c.log_y, ymin, ymax);
 
   QGraphicsScene scene;

@@ -28,6 +28,7 @@ void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
     chart.y_max = c.y_max;
     chart.log_x = c.log_x;
     chart.log_y = c.log_y;
+    chart.x_categories = c.x_categories;
     saveChartPng(chart, pathOf(c.file), c.width, c.height);
   }
 }

@@ -63,6 +63,7 @@ struct ViewDescriptor {
   double resolution = 0;            // metres
   std::vector<Eigen::Vector3f> keypoints;
   std::vector<int> keypoint_index;  // the keypoints as indices into the filtered points
+  std::vector<double> keypoint_weight;  // per keypoint with a weighted budget (iss.h); empty: each weighs 1
   int unreachable_keypoints = 0;    // keypoints outside the centroid's component
   int unreachable_pairs = 0;
   bool low_keypoints = false;

@@ -31,6 +31,10 @@ struct DescriptorParameter {
   // Parses and checks a value; throws keyturn::Error with a short reason ("must be positive, not '0'")
   // that callers prefix with the key or flag.
   std::function<void(DescriptorOptions&, const std::string&)> set;
+  // For a row added after specifications were first written: the value a specification without
+  // this key stands for (how its features were made), so old caches and models read as they
+  // were. Empty: the key is required.
+  std::string absent_means = {};
 };
 
 const std::vector<DescriptorParameter>& descriptorParameters();

@@ -33,6 +33,7 @@ struct HistogramOptions {
   int bins = 32;
   RangeMode mode = RangeMode::Fixed;
   double extent = 0.35;  // E in metres
+  Binning binning = Binning::Linear;  // issue 30: the PDF moves continuously with its values
 };
 
 RangeMode parseRangeMode(const std::string& name);

@@ -52,6 +52,8 @@ struct GeodesicResult {
   std::vector<float> gkpd1;   // centroid vertex → each reachable keypoint
   std::vector<float> gkpd2;   // each reachable keypoint pair (graph distance)
   std::vector<float> gkpcd2;  // Euclidean length of each pair's curvature-weighted path
+  // With keypoint weights: each value's weight (w of its keypoint, w_a·w_b of its pair), in the same order.
+  std::vector<float> gkpd1_weight, gkpd2_weight, gkpcd2_weight;
   int centroid_vertex = -1;
   int unreachable_from_centroid = 0;  // keypoints in another connected component
   int unreachable_pairs = 0;
@@ -61,9 +63,11 @@ enum GeodesicSet { kGkpd1 = 1, kGkpd2 = 2, kGkpcd2 = 4, kAllGeodesics = 7 };
 
 // keypoints index the graph's vertices. Unreachable keypoints are counted,
 // never put into a histogram as infinity.
+// weights, when given, one per keypoint (the weighted budget, iss.h): the result also holds each
+// value's weight.
 GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
                                          const std::vector<int>& keypoints,
-                                         int which = kAllGeodesics);
+                                         int which = kAllGeodesics, const std::vector<double>* weights = nullptr);
 
 // Single-source shortest paths (all vertices), exposed for tests and plots.
 // With curvature=true the path minimises the curved cost and the returned

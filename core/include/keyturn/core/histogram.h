@@ -1,5 +1,6 @@
 #pragma once
 // PDFs: fixed-bin histograms normalised to sum 1.
+#include <string>
 #include <vector>
 
 namespace keyturn {
@@ -13,7 +14,23 @@ struct HistogramRange {
 // lost; NaN and infinite values are ignored. All-empty input gives all zeros.
 // The bin of a finite value: floor((v − lo) / (hi − lo) · bins), clamped into [0, bins).
 int histogramBin(double v, int bins, HistogramRange range);
+
+// How a value is counted.
+//  Hard: all of it in its bin — a value crossing a bin edge moves a whole count.
+//  Linear: shared between the two bins whose centres it lies between, in proportion to its nearness
+//    (a triangular kernel one bin wide; below the first centre or above the last, all in the end
+//    bin): the PDF moves continuously as the value moves (docs/descriptors.md, "Stability").
+enum class Binning { Hard, Linear };
+const char* binningName(Binning b);          // "hard", "linear"
+Binning parseBinning(const std::string& name);  // throws keyturn::Error
+
+// Adds one value's weight to pdf (pdf.size() bins over range).
+void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Binning binning, double weight = 1.0);
+
+// weights, when given, one per value: each value counts with its weight (the PDF is normalised by
+// the weights' sum over the finite values).
 std::vector<double> histogramPdf(const std::vector<float>& values, int bins, HistogramRange range,
-                                 int* clamped = nullptr);
+                                 int* clamped = nullptr, Binning binning = Binning::Hard,
+                                 const std::vector<float>* weights = nullptr);
 
 }  // namespace keyturn

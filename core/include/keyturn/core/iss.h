@@ -23,11 +23,18 @@ struct IssOptions {
   // working resolution already bounds K; the budget bounds the K^3 triples of KPD3/KPA3
   // and the K searches of GKPD for whatever input still exceeds it.
   int max_keypoints = 64;
+  // The weighted budget (docs/descriptors.md, "Stability"): > 0 gives the budget a soft edge. The
+  // most salient (1 − taper)·max_keypoints keypoints weigh 1; below them a keypoint's weight falls
+  // linearly with its saliency, to 0 at the saliency of the first keypoint past the budget (0 when
+  // none is). A keypoint near the edge then enters and leaves the description gradually, where a
+  // hard cut swaps it whole. 0 = the hard budget (every kept keypoint weighs 1).
+  double budget_taper = 0.0;
 };
 
 struct IssResult {
   std::vector<int> keypoints;     // indices into the PointSet, ascending
   std::vector<double> saliency;   // λ3 per point (0 where the ratio tests failed)
+  std::vector<double> weight;     // per keypoint (same order) with a weighted budget; empty otherwise
 };
 
 IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,

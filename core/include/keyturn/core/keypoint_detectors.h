@@ -11,9 +11,12 @@
 
 namespace keyturn {
 
-enum class Detector { Iss, Harris3d, Sift3d, Uniform };
+// IssChain is ISS as `describe` runs it: on the view brought to the working resolution
+// (working_resolution.h), its radii in multiples of that view's resolution. The detectors here
+// treat it as Iss; the repeatability study hands it the working-resolution view.
+enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain };
 
-Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform; throws keyturn::Error
+Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform, iss-chain; throws keyturn::Error
 std::string detectorName(Detector d);
 
 struct DetectorOptions {

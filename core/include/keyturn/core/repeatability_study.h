@@ -17,6 +17,7 @@
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/keypoint_detectors.h"
 #include "keyturn/core/repeatability.h"
+#include "keyturn/core/working_resolution.h"
 
 namespace keyturn {
 
@@ -38,6 +39,7 @@ struct StudyOptions {
   double overlap_min = 0.05;             // below: a pair has almost no overlap
   bool force = false;                    // score even when the poses give no overlap
   DepthImageOptions depth;               // how depth-image views are read
+  WorkingResolutionOptions working;      // the working resolution iss-chain detects on (describe's)
 };
 
 std::vector<double> parseEpsList(const std::string& text);  // START:STOP:STEP or a comma list; throws keyturn::Error

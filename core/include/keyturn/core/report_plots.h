@@ -20,6 +20,8 @@ struct CurvePlot {
   std::vector<CurveSeries> series;
   double y_min = std::nan(""), y_max = std::nan("");  // NaN: from the data
   bool log_x = false, log_y = false;  // base 10; points ≤ 0 on such an axis are left out
+  // Named x positions: x = 0, 1, … are drawn as these labels (a category axis) instead of numbers.
+  std::vector<std::string> x_categories;
   int width = 900, height = 560;
 };
 

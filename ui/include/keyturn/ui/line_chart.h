@@ -19,6 +19,8 @@ struct LineChart {
   double y_min = std::nan(""), y_max = std::nan("");  // NaN: from the data
   // Logarithmic axes (base 10, whole decades): points ≤ 0 on such an axis are left out.
   bool log_x = false, log_y = false;
+  // Named x positions: x = 0, 1, … labelled with these (slanted) instead of numbers.
+  std::vector<std::string> x_categories;
 };
 
 // Throws keyturn::Error naming the file when it cannot be written.
