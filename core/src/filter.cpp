@@ -198,10 +198,10 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
     if (Cloud::isValid(cloud.points[i])) index.push_back(static_cast<int>(i));
   if (index.size() < 2 || !(tolerance > 0.f)) return;
   const double side = tolerance / std::sqrt(3.0) * 0.999;
-  auto cellOf = [&](const Eigen::Vector3f& p) {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / side)), static_cast<int>(std::floor(p.y() / side)),
-                           static_cast<int>(std::floor(p.z() / side)));
-  };
+  // Bounded before the cast (past int is undefined behaviour): far points share the edge cells and
+  // the distance test below decides.
+  auto axisCell = [&](float x) { return static_cast<int>(std::clamp(std::floor(x / side), -1e9, 1e9)); };
+  auto cellOf = [&](const Eigen::Vector3f& p) { return Eigen::Vector3i(axisCell(p.x()), axisCell(p.y()), axisCell(p.z())); };
   auto key = [](const Eigen::Vector3i& c) { return detail::voxelKey(c.x(), c.y(), c.z()); };
   std::vector<std::pair<std::uint64_t, int>> order(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) order[k] = {key(cellOf(cloud.points[index[k]])), index[k]};

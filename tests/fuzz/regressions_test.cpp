@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/descriptor.h"
 #include "keyturn/sim/mesh.h"
 #include "support/error_of.h"
 
@@ -64,4 +65,23 @@ TEST(FuzzRegression, PlyMeshWithAHugeAsciiListLengthIsNamedWithoutACast) {
                      "in element 'vertex' item 0"),
             std::string::npos)
       << msg;
+}
+
+// Clouds that load fine and are geometrically degenerate (issue 35): each crashed the chain with
+// SIGSEGV in RadiusSearch::radius (a zero resolution left the neighbour table unbuilt, then read).
+TEST(ChainRegression, OnePointCopiedAThousandTimesIsOneLine) {
+  const keyturn::Cloud c = keyturn::loadCloud(KEYTURN_REGRESSIONS "/chain_one_point_1000_times.pcd");
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions()); });
+  EXPECT_EQ(msg, "degenerate cloud: its 1000 points lie on only 1 distinct position, every one shared "
+                 "(nearest-neighbour distance 0, so no resolution)");
+}
+
+TEST(ChainRegression, ASphereFarFromTheOriginIsOneLineNamingFloatPrecision) {
+  // A 5 cm sphere of 3,000 points 1,000 km from the origin: stored as float, its coordinates are
+  // 6.25 cm apart there, so the sphere is a handful of lattice points.
+  const keyturn::Cloud c = keyturn::loadCloud(KEYTURN_REGRESSIONS "/chain_sphere_5cm_1000km.pcd");
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions()); });
+  EXPECT_NE(msg.find("degenerate cloud: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("5.77e+05 m from the origin, where float coordinates are 0.0625 m apart"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
 }
