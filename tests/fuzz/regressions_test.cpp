@@ -67,6 +67,16 @@ TEST(FuzzRegression, PlyMeshWithAHugeAsciiListLengthIsNamedWithoutACast) {
       << msg;
 }
 
+TEST(FuzzRegression, PcdWithASecondDataLineIsRejectedBeforePcl) {
+  // fuzz_point_cloud, 300 s pass (issue 35): PCL's PCDReader::readHeader reads on after DATA and
+  // indexed the bare second "DATA" line's missing type: std::out_of_range escaped loadCloud.
+  const std::string msg = errorOf([] { keyturn::loadCloud(KEYTURN_REGRESSIONS "/pcd_second_data_line.pcd"); });
+  EXPECT_NE(msg.find("pcd_second_data_line.pcd: corrupt PCD header: line 10 ('DATA') is a header line after DATA "
+                     "(line 9)"),
+            std::string::npos)
+      << msg;
+}
+
 // Clouds that load fine and are geometrically degenerate (issue 35): each crashed the chain with
 // SIGSEGV in RadiusSearch::radius (a zero resolution left the neighbour table unbuilt, then read).
 TEST(ChainRegression, OnePointCopiedAThousandTimesIsOneLine) {
