@@ -19,10 +19,19 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/ply_reader.h"
+#include "keyturn/core/radius_search.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn {
+namespace {
+
+// A point keyturn can work with: finite, and within kMaxCoordinate of the origin (farther, float
+// squared distances between points overflow). Others are read as invalid, as NaN and inf are.
+bool measurable(const Eigen::Vector3f& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+
+}  // namespace
+
 namespace {
 
 void quietPcl() {
@@ -101,7 +110,7 @@ Cloud cloudFromPclBlob(const std::string& path, const pcl::PCLPointCloud2& blob)
     cloud.points[i] = Eigen::Vector3f(static_cast<float>(readScalar(rec + fx->offset, fx->datatype)),
                                       static_cast<float>(readScalar(rec + fy->offset, fy->datatype)),
                                       static_cast<float>(readScalar(rec + fz->offset, fz->datatype)));
-    if (!cloud.points[i].allFinite()) cloud.points[i].setConstant(std::nanf(""));
+    if (!measurable(cloud.points[i])) cloud.points[i].setConstant(std::nanf(""));
     if (famp) cloud.amplitude[i] = static_cast<float>(readScalar(rec + famp->offset, famp->datatype));
     if (fconf) cloud.confidence[i] = static_cast<float>(readScalar(rec + fconf->offset, fconf->datatype));
   }
@@ -294,7 +303,7 @@ Cloud loadPly(const std::string& path) {
   if (conf) cloud.confidence.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     cloud.points[i] = Eigen::Vector3d(x->values[i], y->values[i], z->values[i]).cast<float>();
-    if (!cloud.points[i].allFinite()) cloud.points[i].setConstant(std::nanf(""));
+    if (!measurable(cloud.points[i])) cloud.points[i].setConstant(std::nanf(""));
     if (amp) cloud.amplitude[i] = static_cast<float>(amp->values[i]);
     if (conf) cloud.confidence[i] = static_cast<float>(conf->values[i]);
   }

@@ -307,6 +307,10 @@ std::string FilterReport::flaggedSummary() const {
 Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report,
                   const WorkingResolutionOptions* working, WorkingResolutionReport* working_report) {
   Cloud cloud = input;
+  // Points beyond kMaxCoordinate are no measurement (float squared distances between them overflow,
+  // and the voxel steps' means with them): invalid, as a loader reads them.
+  for (auto& p : cloud.points)
+    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) p = kNaN;
   FilterReport r;
   r.kind = classifyInput(input);
   r.input_valid = cloud.validCount();

@@ -95,3 +95,20 @@ TEST(ChainRegression, ASphereFarFromTheOriginIsOneLineNamingFloatPrecision) {
   EXPECT_NE(msg.find("5.77e+05 m from the origin, where float coordinates are 0.0625 m apart"), std::string::npos) << msg;
   EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
 }
+
+TEST(ChainRegression, PointsFartherThanFloatDistancesReachAreInvalid) {
+  // fuzz_chain, first 300 s pass: points up to 1e38 m out survived the cluster step (far cells
+  // share a voxel) and reached the working resolution, where every squared distance to a voxel's
+  // mean was inf, no point became the voxel's representative and cloud.points[-1] was read (UBSan:
+  // pointer overflow; ASan: heap-buffer-overflow). Points beyond kMaxCoordinate are invalid now,
+  // in the filter as in the loaders, so the near cluster is what is described.
+  keyturn::Cloud c;
+  for (int i = 0; i < 100; ++i) c.points.emplace_back(1e37f * static_cast<float>(1 + i % 10), 0.f, 1.f);
+  for (int i = 0; i < 60; ++i)
+    c.points.emplace_back(0.01f * static_cast<float>(i % 4), 0.01f * static_cast<float>((i / 4) % 4), 1.f + 0.01f * static_cast<float>(i / 16));
+  c.width = static_cast<std::uint32_t>(c.points.size());
+  keyturn::PointSet described;
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions(), &described); });
+  for (const auto& p : described.points) EXPECT_LT(p.cwiseAbs().maxCoeff(), 10.f) << msg;
+  EXPECT_EQ(msg.find("degenerate cloud: coordinates"), std::string::npos) << msg;
+}
