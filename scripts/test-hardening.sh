@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The hardening run: a clang build with AddressSanitizer + UndefinedBehaviorSanitizer
 # (leak checking on), the core, driver, rig, simulator, learning and studio tests in it, then short
-# reproducible libFuzzer runs of every loader of outside data. Part of scripts/test.sh.
+# reproducible libFuzzer runs of every loader of outside data, the chain and the models. Part of
+# scripts/test.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 source scripts/toolchain.sh

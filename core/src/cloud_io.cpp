@@ -19,10 +19,19 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/ply_reader.h"
+#include "keyturn/core/radius_search.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn {
+namespace {
+
+// A point keyturn can work with: finite, and within kMaxCoordinate of the origin (farther, float
+// squared distances between points overflow). Others are read as invalid, as NaN and inf are.
+bool measurable(const Eigen::Vector3f& p) { return p.allFinite() && p.cwiseAbs().maxCoeff() <= kMaxCoordinate; }
+
+}  // namespace
+
 namespace {
 
 void quietPcl() {
@@ -101,7 +110,7 @@ Cloud cloudFromPclBlob(const std::string& path, const pcl::PCLPointCloud2& blob)
     cloud.points[i] = Eigen::Vector3f(static_cast<float>(readScalar(rec + fx->offset, fx->datatype)),
                                       static_cast<float>(readScalar(rec + fy->offset, fy->datatype)),
                                       static_cast<float>(readScalar(rec + fz->offset, fz->datatype)));
-    if (!cloud.points[i].allFinite()) cloud.points[i].setConstant(std::nanf(""));
+    if (!measurable(cloud.points[i])) cloud.points[i].setConstant(std::nanf(""));
     if (famp) cloud.amplitude[i] = static_cast<float>(readScalar(rec + famp->offset, famp->datatype));
     if (fconf) cloud.confidence[i] = static_cast<float>(readScalar(rec + fconf->offset, fconf->datatype));
   }
@@ -120,6 +129,29 @@ struct PcdPromise {
   std::string data;              // ascii | binary | binary_compressed
   std::uint64_t data_offset = 0;
 };
+
+// PCL's PCDReader::readHeader goes on reading header lines after DATA, skipping comments and
+// blank lines, as long as a line starts with a keyword (by prefix): a second "DATA" without its
+// type made it throw std::out_of_range, a "POINTS" or "FIELDS" there would redefine the cloud.
+// Such a line (where the data should start) is refused, as PCL would see it.
+void rejectHeaderAfterData(const std::string& path, std::istream& in, int data_line) {
+  static const char* keywords[] = {"VERSION", "FIELDS", "COLUMNS", "SIZE",   "TYPE", "COUNT",
+                                   "WIDTH",   "HEIGHT", "VIEWPOINT", "POINTS", "DATA"};
+  const std::streampos data = in.tellg();
+  std::string line;
+  for (int n = data_line + 1; n < data_line + 64 && std::getline(in, line); ++n) {
+    std::istringstream ls(line);
+    std::string key;
+    if (!(ls >> key) || key[0] == '#') continue;
+    for (const char* k : keywords)
+      if (key.compare(0, std::strlen(k), k) == 0)
+        fail(path, "corrupt PCD header: line " + std::to_string(n) + " ('" + key.substr(0, 20) +
+                       "') is a header line after DATA (line " + std::to_string(data_line) + ")");
+    break;
+  }
+  in.clear();
+  in.seekg(data);
+}
 
 PcdPromise readPcdPromise(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -148,6 +180,7 @@ PcdPromise readPcdPromise(const std::string& path) {
     else if (key == "DATA") {
       ls >> p.data;
       p.data_offset = static_cast<std::uint64_t>(in.tellg());
+      rejectHeaderAfterData(path, in, n + 1);
       break;
     }
   }
@@ -212,8 +245,13 @@ Cloud loadPcd(const std::string& path, std::uintmax_t file_size) {
   Eigen::Vector4f origin;
   Eigen::Quaternionf orientation;
   int version = 0;
-  if (reader.read(path, blob, origin, orientation, version) < 0)
-    fail(path, "corrupt PCD: PCL could not read the point data");
+  int read = -1;
+  try {
+    read = reader.read(path, blob, origin, orientation, version);
+  } catch (const std::exception& e) {  // PCL's header parser indexes tokens with .at()
+    fail(path, std::string("corrupt PCD: PCL's reader failed (") + e.what() + ")");
+  }
+  if (read < 0) fail(path, "corrupt PCD: PCL could not read the point data");
   if (blob.fields.empty()) fail(path, "not a valid PCD file (no fields)");
   return cloudFromPclBlob(path, blob);
 }
@@ -265,7 +303,7 @@ Cloud loadPly(const std::string& path) {
   if (conf) cloud.confidence.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     cloud.points[i] = Eigen::Vector3d(x->values[i], y->values[i], z->values[i]).cast<float>();
-    if (!cloud.points[i].allFinite()) cloud.points[i].setConstant(std::nanf(""));
+    if (!measurable(cloud.points[i])) cloud.points[i].setConstant(std::nanf(""));
     if (amp) cloud.amplitude[i] = static_cast<float>(amp->values[i]);
     if (conf) cloud.confidence[i] = static_cast<float>(conf->values[i]);
   }

@@ -198,10 +198,10 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
     if (Cloud::isValid(cloud.points[i])) index.push_back(static_cast<int>(i));
   if (index.size() < 2 || !(tolerance > 0.f)) return;
   const double side = tolerance / std::sqrt(3.0) * 0.999;
-  auto cellOf = [&](const Eigen::Vector3f& p) {
-    return Eigen::Vector3i(static_cast<int>(std::floor(p.x() / side)), static_cast<int>(std::floor(p.y() / side)),
-                           static_cast<int>(std::floor(p.z() / side)));
-  };
+  // Bounded before the cast (past int is undefined behaviour): far points share the edge cells and
+  // the distance test below decides.
+  auto axisCell = [&](float x) { return static_cast<int>(std::clamp(std::floor(x / side), -1e9, 1e9)); };
+  auto cellOf = [&](const Eigen::Vector3f& p) { return Eigen::Vector3i(axisCell(p.x()), axisCell(p.y()), axisCell(p.z())); };
   auto key = [](const Eigen::Vector3i& c) { return detail::voxelKey(c.x(), c.y(), c.z()); };
   std::vector<std::pair<std::uint64_t, int>> order(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) order[k] = {key(cellOf(cloud.points[index[k]])), index[k]};
@@ -307,6 +307,10 @@ std::string FilterReport::flaggedSummary() const {
 Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report,
                   const WorkingResolutionOptions* working, WorkingResolutionReport* working_report) {
   Cloud cloud = input;
+  // Points beyond kMaxCoordinate are no measurement (float squared distances between them overflow,
+  // and the voxel steps' means with them): invalid, as a loader reads them.
+  for (auto& p : cloud.points)
+    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) p = kNaN;
   FilterReport r;
   r.kind = classifyInput(input);
   r.input_valid = cloud.validCount();

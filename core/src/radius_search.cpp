@@ -9,6 +9,8 @@
 #include <pcl/point_types.h>
 
 #include <algorithm>
+#include <array>
+#include <cstdio>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -163,7 +165,13 @@ std::unique_ptr<RadiusSearch> RadiusSearch::kdTree(const PointSet& set) {
 }
 
 void RadiusSearch::radius(int i, float r, std::vector<int>& out) const {
-  if (r > table_radius_) return impl_->radius(i, r, out);
+  // A radius of 0 (or NaN) holds no other point: i alone, as the contract promises. A cached
+  // table's rows exist only once it was built (table_radius_ > 0).
+  if (!(r > 0.f)) {
+    out.assign(1, i);
+    return;
+  }
+  if (r > table_radius_ || row_offset_.empty()) return impl_->radius(i, r, out);
   out.clear();
   const float r2 = r * r;
   for (int k = row_offset_[i], end = row_offset_[i + 1]; k < end; ++k)
@@ -258,20 +266,70 @@ void RadiusSearch::cacheNeighbourhoods(float radius) {
 }
 bool RadiusSearch::usesGrid() const { return impl_->grid(); }
 
+namespace {
+
+// A float spacing worth naming when points coincide (1 mm: coordinates beyond ~8 km).
+constexpr double kCoarseFloat = 1e-3;
+
+std::string shortNumber(double v) {
+  char b[32];
+  std::snprintf(b, sizeof b, "%.3g", v);
+  return b;
+}
+
+// Points that coincide: how many distinct positions the set has.
+std::size_t distinctPositions(const PointSet& set) {
+  std::vector<std::array<float, 3>> p(set.size());
+  for (std::size_t i = 0; i < set.size(); ++i) p[i] = {set.points[i].x(), set.points[i].y(), set.points[i].z()};
+  std::sort(p.begin(), p.end());
+  return static_cast<std::size_t>(std::unique(p.begin(), p.end()) - p.begin());
+}
+
+// The spacing of float coordinates where the set lies: the largest gap between adjacent floats
+// over its largest |x|, |y|, |z|, and that coordinate.
+std::pair<double, double> floatSpacing(const PointSet& set) {
+  float far = 0.f;
+  for (const auto& p : set.points) far = std::max(far, p.cwiseAbs().maxCoeff());
+  return {static_cast<double>(std::nextafter(far, std::numeric_limits<float>::infinity()) - far),
+          static_cast<double>(far)};
+}
+
+}  // namespace
+
 double cloudResolution(const PointSet& set, const RadiusSearch& search) {
   if (set.size() < 2) throw Error("cloud resolution needs at least 2 valid points, got " +
                                   std::to_string(set.size()));
+  // Squared distances are float: points farther apart than ~1.8e19 m overflow them.
+  const auto [ulp, far] = floatSpacing(set);
+  if (far > kMaxCoordinate)
+    throw Error("degenerate cloud: coordinates up to " + shortNumber(far) + " m from the origin (beyond " +
+                shortNumber(kMaxCoordinate) + " m, float distances overflow)");
   double sum = 0.0;
-  std::size_t n = 0;
+  std::size_t n = 0, apart = 0;
   for (std::size_t i = 0; i < set.size(); ++i) {
     const float d = search.nearestDistance(static_cast<int>(i));
     if (std::isfinite(d)) {
       sum += d;
       ++n;
+      apart += d > 0.f ? 1 : 0;
     }
   }
   if (n == 0) throw Error("cloud resolution undefined: no point has a neighbour");
-  return sum / static_cast<double>(n);
+  const double resolution = sum / static_cast<double>(n);
+  const double spacing = apart ? sum / static_cast<double>(apart) : 0.0;  // of the points with no twin
+  // Far from the origin, float coordinates are coarser than the points' spacing: the view was
+  // rounded onto a lattice when it was stored as float (too late to re-centre it here).
+  const std::string where = " m from the origin, where float coordinates are " + shortNumber(ulp) + " m apart";
+  const std::size_t distinct = resolution > 0 ? 0 : distinctPositions(set);
+  if (!(resolution > 0))
+    throw Error("degenerate cloud: its " + std::to_string(set.size()) + " points lie on only " +
+                std::to_string(distinct) + (distinct == 1 ? " distinct position" : " distinct positions") +
+                ", every one shared (nearest-neighbour distance 0, so no resolution)" +
+                (ulp >= kCoarseFloat ? "; they lie up to " + shortNumber(far) + where : std::string()));
+  if (ulp > spacing / 8)
+    throw Error("degenerate cloud: " + std::to_string(set.size()) + " points up to " + shortNumber(far) + where +
+                ", no finer than their spacing (" + shortNumber(spacing) + " m); store the view about its own origin");
+  return resolution;
 }
 
 double cloudResolution(const PointSet& set) {

@@ -13,8 +13,13 @@ inline std::uint64_t voxelKey(std::int64_t x, std::int64_t y, std::int64_t z) {
          (static_cast<std::uint64_t>(z + (1 << 20)) & 0x1FFFFF) << 42;
 }
 
-inline std::int64_t voxelCell(float coordinate, double inverse_side) {
-  return static_cast<std::int64_t>(std::floor(coordinate * inverse_side));
+// Bounded before the cast (a cell index past int64 is undefined behaviour): a point that far, or a
+// side that small, shares the last cell, and the callers' distance checks decide.
+inline std::int64_t voxelCell(double coordinate, double inverse_side) {
+  const double c = std::floor(coordinate * inverse_side);
+  if (!(c > -4.0e18)) return static_cast<std::int64_t>(-4.0e18);  // NaN too
+  if (c > 4.0e18) return static_cast<std::int64_t>(4.0e18);
+  return static_cast<std::int64_t>(c);
 }
 
 }  // namespace keyturn::detail

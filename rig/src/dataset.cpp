@@ -58,6 +58,29 @@ bool safeName(const std::string& s) {
   return true;
 }
 
+// A manifest's file names are paths inside the dataset folder, made by keyturn from safe names:
+// why a row's name is refused (a path leaving the folder, one no file system holds), or "".
+std::string unsafeViewFile(const std::vector<std::string>& files) {
+  constexpr std::size_t kNameMax = 255;  // bytes per path component (NAME_MAX of Linux file systems)
+  for (const auto& f : files) {
+    const std::string shown = "'" + (f.size() > 60 ? f.substr(0, 60) + "…" : f) + "'";
+    if (f.empty()) return "an empty file name";
+    if (f.find('\0') != std::string::npos) return "file name " + shown + " holds a NUL byte";
+    if (f.front() == '/') return "file " + shown + " is an absolute path, outside the dataset";
+    std::size_t begin = 0;
+    while (begin <= f.size()) {
+      const std::size_t end = std::min(f.find('/', begin), f.size());
+      const std::string part = f.substr(begin, end - begin);
+      if (part == "..") return "file " + shown + " leaves the dataset folder ('..')";
+      if (part.size() > kNameMax)
+        return "file name " + shown + " has a component of " + std::to_string(part.size()) + " bytes (more than " +
+               std::to_string(kNameMax) + ")";
+      begin = end + 1;
+    }
+  }
+  return "";
+}
+
 std::vector<std::string> split(const std::string& s, char sep) {
   std::vector<std::string> out;
   std::string cur;
@@ -291,6 +314,10 @@ std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vect
       r.files = split(c[7], ';');
       r.sha256 = split(c[8], ';');
       if (r.files.size() != r.sha256.size() || r.files.empty()) throw std::invalid_argument("files");
+      if (const std::string why = unsafeViewFile(r.files); !why.empty()) {
+        if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": " + why);
+        continue;
+      }
       out.push_back(r);
     } catch (const std::exception&) {
       if (bad_rows) bad_rows->push_back("line " + std::to_string(n) + ": malformed row");
@@ -311,14 +338,27 @@ VerifyReport Dataset::verify(const std::string& root) {
       const std::string& rel = views[i].files[f];
       referenced.insert(rel);
       const std::string abs = root + "/" + rel;
-      if (!fs::exists(abs)) rep.missing.push_back(rel);
-      else if (sha256File(abs) != views[i].sha256[f]) rep.corrupt.push_back(rel);
+      // One file's trouble (a path the system refuses, no permission) is that file's, not the dataset's.
+      std::error_code ec;
+      const auto st = fs::status(abs, ec);
+      if (st.type() == fs::file_type::not_found) rep.missing.push_back(rel);
+      else if (ec) rep.corrupt.push_back(rel + " (cannot be read: " + ec.message() + ")");
+      else if (st.type() != fs::file_type::regular) rep.corrupt.push_back(rel + " (not a regular file)");
+      else {
+        try {
+          if (sha256File(abs) != views[i].sha256[f]) rep.corrupt.push_back(rel);
+        } catch (const Error&) {
+          rep.corrupt.push_back(rel + " (cannot be read)");
+        }
+      }
     }
   }
   std::error_code ec;
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
-    const std::string rel = fs::relative(it->path(), root).string();
+    std::error_code rel_ec;
+    const std::string rel = fs::relative(it->path(), root, rel_ec).string();
+    if (rel_ec) continue;
     // keyturn's own files beside the views: the simulator's state and the feature cache (.keyturn/).
     if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
         rel.rfind(".keyturn/", 0) == 0)

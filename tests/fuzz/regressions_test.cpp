@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/descriptor.h"
 #include "keyturn/sim/mesh.h"
 #include "support/error_of.h"
 
@@ -64,4 +65,50 @@ TEST(FuzzRegression, PlyMeshWithAHugeAsciiListLengthIsNamedWithoutACast) {
                      "in element 'vertex' item 0"),
             std::string::npos)
       << msg;
+}
+
+TEST(FuzzRegression, PcdWithASecondDataLineIsRejectedBeforePcl) {
+  // fuzz_point_cloud, 300 s pass (issue 35): PCL's PCDReader::readHeader reads on after DATA and
+  // indexed the bare second "DATA" line's missing type: std::out_of_range escaped loadCloud.
+  const std::string msg = errorOf([] { keyturn::loadCloud(KEYTURN_REGRESSIONS "/pcd_second_data_line.pcd"); });
+  EXPECT_NE(msg.find("pcd_second_data_line.pcd: corrupt PCD header: line 10 ('DATA') is a header line after DATA "
+                     "(line 9)"),
+            std::string::npos)
+      << msg;
+}
+
+// Clouds that load fine and are geometrically degenerate (issue 35): each crashed the chain with
+// SIGSEGV in RadiusSearch::radius (a zero resolution left the neighbour table unbuilt, then read).
+TEST(ChainRegression, OnePointCopiedAThousandTimesIsOneLine) {
+  const keyturn::Cloud c = keyturn::loadCloud(KEYTURN_REGRESSIONS "/chain_one_point_1000_times.pcd");
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions()); });
+  EXPECT_EQ(msg, "degenerate cloud: its 1000 points lie on only 1 distinct position, every one shared "
+                 "(nearest-neighbour distance 0, so no resolution)");
+}
+
+TEST(ChainRegression, ASphereFarFromTheOriginIsOneLineNamingFloatPrecision) {
+  // A 5 cm sphere of 3,000 points 1,000 km from the origin: stored as float, its coordinates are
+  // 6.25 cm apart there, so the sphere is a handful of lattice points.
+  const keyturn::Cloud c = keyturn::loadCloud(KEYTURN_REGRESSIONS "/chain_sphere_5cm_1000km.pcd");
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions()); });
+  EXPECT_NE(msg.find("degenerate cloud: "), std::string::npos) << msg;
+  EXPECT_NE(msg.find("5.77e+05 m from the origin, where float coordinates are 0.0625 m apart"), std::string::npos) << msg;
+  EXPECT_EQ(msg.find('\n'), std::string::npos) << msg;
+}
+
+TEST(ChainRegression, PointsFartherThanFloatDistancesReachAreInvalid) {
+  // fuzz_chain, first 300 s pass: points up to 1e38 m out survived the cluster step (far cells
+  // share a voxel) and reached the working resolution, where every squared distance to a voxel's
+  // mean was inf, no point became the voxel's representative and cloud.points[-1] was read (UBSan:
+  // pointer overflow; ASan: heap-buffer-overflow). Points beyond kMaxCoordinate are invalid now,
+  // in the filter as in the loaders, so the near cluster is what is described.
+  keyturn::Cloud c;
+  for (int i = 0; i < 100; ++i) c.points.emplace_back(1e37f * static_cast<float>(1 + i % 10), 0.f, 1.f);
+  for (int i = 0; i < 60; ++i)
+    c.points.emplace_back(0.01f * static_cast<float>(i % 4), 0.01f * static_cast<float>((i / 4) % 4), 1.f + 0.01f * static_cast<float>(i / 16));
+  c.width = static_cast<std::uint32_t>(c.points.size());
+  keyturn::PointSet described;
+  const std::string msg = errorOf([&] { keyturn::describeView(c, keyturn::DescriptorOptions(), &described); });
+  for (const auto& p : described.points) EXPECT_LT(p.cwiseAbs().maxCoeff(), 10.f) << msg;
+  EXPECT_EQ(msg.find("degenerate cloud: coordinates"), std::string::npos) << msg;
 }

@@ -7,6 +7,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <random>
 #include <thread>
 
@@ -134,6 +135,35 @@ TEST_P(ClassifierKind, FoldsTrainedInParallelThreadsMatchSequentialOnes) {
 }
 
 INSTANTIATE_TEST_SUITE_P(XgboostAndMlp, ClassifierKind, ::testing::Values("xgboost", "mlp"));
+
+// fuzz_model (issue 35): a feature row of ±inf or ±3.4e38 gave the network NaN probabilities
+// (nan_to_num made inf the largest float, and standardising that overflowed; with the sigmoid
+// output every class could also round to 0, then 0 / 0): `keyturn classify` printed them and the
+// studio ranked NaN. Infinite values are missing now, huge ones bounded, and a row of zero
+// sigmoids shared out from its logs.
+TEST(Mlp, InfiniteAndHugeFeaturesGiveProbabilities) {
+  Matrix x;
+  std::vector<int> y;
+  blobs(20, 5, x, y);
+  for (bool sigmoid : {false, true}) {
+    ClassifierParams p = paramsFor("mlp");
+    p.mlp.sigmoid_output = sigmoid;
+    auto clf = makeClassifier(p);
+    clf->fit(x, y, 3);
+    Matrix odd(5, 12);
+    odd.setZero();
+    odd.row(0).setConstant(std::numeric_limits<float>::infinity());
+    odd.row(1).setConstant(std::numeric_limits<float>::max());
+    for (int k = 0; k < 12; ++k) odd(2, k) = k % 2 ? std::numeric_limits<float>::max() : -std::numeric_limits<float>::infinity();
+    odd.row(3).setConstant(-std::numeric_limits<float>::max());
+    odd.row(4).setConstant(-std::numeric_limits<float>::infinity());
+    const Matrix prob = clf->predictProba(odd);
+    for (int r = 0; r < 5; ++r) {
+      EXPECT_TRUE(prob.row(r).allFinite()) << "sigmoid " << sigmoid << ", row " << r << ": " << prob.row(r);
+      EXPECT_NEAR(prob.row(r).sum(), 1.f, 1e-4f) << "sigmoid " << sigmoid << ", row " << r;
+    }
+  }
+}
 
 TEST(ModelFile, FeaturesComputedAnotherWayAreNamed) {
   const auto diff = specDifferences({{"bins", "32"}, {"keypoints", "iss"}, {"extent_m", "0.35"}},

@@ -112,6 +112,14 @@ TEST(Recognizer, ABadCloudIsAnErrorNotACrash) {
   nan.height = 1;
   nan.points.assign(4, Eigen::Vector3f::Constant(std::nanf("")));
   EXPECT_THROW(r.recognize(nan), Error);
+  // A live frame of one point seen 1,000 times (issue 35: SIGSEGV in RadiusSearch::radius, which
+  // took the studio down): one line for the studio to show, and the next frame is tried.
+  Cloud same;
+  same.width = 40;
+  same.height = 25;
+  same.points.assign(1000, Eigen::Vector3f(0.05f, -0.02f, 0.8f));
+  const std::string msg = keyturn::test::errorOf([&] { r.recognize(same); });
+  EXPECT_NE(msg.find("degenerate cloud: its"), std::string::npos) << msg;
 }
 
 TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {

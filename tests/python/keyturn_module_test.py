@@ -333,5 +333,24 @@ class BadInput(unittest.TestCase):
         self.assert_one_line(e, "nope")
 
 
+class DegenerateClouds(unittest.TestCase):
+    """Issue 35: clouds that load fine and are degenerate killed the interpreter (SIGSEGV in the
+    chain); fuzz findings escaped as IndexError. Each is a keyturn.Error in one line now."""
+    REG = SOURCE / "tests/fuzz/regressions"
+
+    def test_degenerate_clouds_raise(self):
+        for name in ("chain_one_point_1000_times.pcd", "chain_sphere_5cm_1000km.pcd"):
+            cloud = keyturn.load_cloud(self.REG / name)
+            with self.assertRaises(keyturn.Error) as e:
+                keyturn.describe(cloud)
+            self.assertNotIn("\n", str(e.exception))
+            self.assertIn("degenerate cloud", str(e.exception))
+
+    def test_a_second_pcd_data_line_raises(self):
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.load_cloud(self.REG / "pcd_second_data_line.pcd")
+        self.assertIn("is a header line after DATA", str(e.exception))
+
+
 if __name__ == "__main__":
     unittest.main(verbosity=2)

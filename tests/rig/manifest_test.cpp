@@ -116,3 +116,50 @@ TEST(Manifest, TheFeatureCacheIsNoOrphan) {
   const auto report = rig::Dataset::verify(root.string());
   EXPECT_EQ(report.orphans, std::vector<std::string>{"box/stray.pcd"});
 }
+
+// A row whose file leaves the dataset folder is a bad row: verify must not open (and hash) a file
+// outside it, such as ../../../../etc/hostname (issue 35). The other rows are verified.
+TEST(Manifest, AFileOutsideTheDatasetIsABadRowAndTheRestIsVerified) {
+  const fs::path root = datasetWithTwoViews("outside");
+  const std::string sha = std::string(64, '0');
+  std::ofstream(root / "manifest.csv", std::ios::app)
+      << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,../../../../etc/hostname," << sha << "\n"
+      << "box,b1,30,30.000,270.000,270.0000,2026-01-01T00:00:00.000Z,/etc/hostname," << sha << "\n";
+  const auto report = rig::Dataset::verify(root.string());
+  EXPECT_EQ(report.views, 2u);
+  EXPECT_EQ(report.bad_rows,
+            (std::vector<std::string>{"line 4: file '../../../../etc/hostname' leaves the dataset folder ('..')",
+                                      "line 5: file '/etc/hostname' is an absolute path, outside the dataset"}));
+  EXPECT_TRUE(report.missing.empty());
+  EXPECT_TRUE(report.corrupt.empty());  // hashed, /etc/hostname would have been "corrupt"
+}
+
+// fuzz_dataset, 300 s pass (issue 35): a file name longer than the file system allows made
+// std::filesystem::exists throw in verify, which stopped the whole dataset ("unexpected failure").
+TEST(Manifest, AFileNameLongerThanTheFileSystemAllowsIsABadRowAndTheRestIsVerified) {
+  const fs::path root = datasetWithTwoViews("longname");
+  std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,box/"
+                                                      << std::string(300, 'a') << ".pcd," << std::string(64, '0') << "\n";
+  const auto report = rig::Dataset::verify(root.string());
+  EXPECT_EQ(report.views, 2u);
+  ASSERT_EQ(report.bad_rows.size(), 1u);
+  EXPECT_EQ(report.bad_rows[0].rfind("line 4: file name 'box/aaaa", 0), 0u) << report.bad_rows[0];
+  EXPECT_NE(report.bad_rows[0].find("has a component of 304 bytes (more than 255)"), std::string::npos)
+      << report.bad_rows[0];
+  EXPECT_TRUE(report.missing.empty());
+  EXPECT_TRUE(report.corrupt.empty());
+}
+
+// Past the component check, the whole path can still be refused by the system (ENAMETOOLONG past
+// PATH_MAX): that file is reported, not the dataset stopped.
+TEST(Manifest, APathTheSystemRefusesIsThatFilesProblem) {
+  const fs::path root = datasetWithTwoViews("longpath");
+  std::string deep;
+  for (int i = 0; i < 30; ++i) deep += std::string(200, 'd') + "/";
+  std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,"
+                                                      << deep << "v.pcd," << std::string(64, '0') << "\n";
+  const auto report = rig::Dataset::verify(root.string());
+  EXPECT_EQ(report.views, 3u);
+  ASSERT_EQ(report.corrupt.size(), 1u);
+  EXPECT_NE(report.corrupt[0].find("(cannot be read: File name too long)"), std::string::npos) << report.corrupt[0];
+}

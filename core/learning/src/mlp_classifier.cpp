@@ -12,6 +12,8 @@ namespace keyturn::learning {
 
 namespace {
 
+constexpr double kMaxStandardised = 1e9;
+
 // Dropout is drawn from the caller's generator, not libtorch's global one, so
 // folds trained in parallel threads stay repeatable.
 struct MlpNetImpl : torch::nn::Module {
@@ -26,7 +28,10 @@ struct MlpNetImpl : torch::nn::Module {
     }
   }
   torch::Tensor forward(torch::Tensor x, at::Generator* gen) {
-    x = (x - mean) * scale;
+    // Bounded: a value past ±3e38 / scale (scale is up to 1e6 for a column constant in training)
+    // standardises to inf, and inf − inf in the layers to NaN probabilities. No training row comes
+    // near 1e9 standard deviations.
+    x = ((x - mean) * scale).clamp(-kMaxStandardised, kMaxStandardised);
     for (std::size_t l = 0; l + 1 < layers.size(); ++l) {
       x = torch::relu(layers[l]->forward(x));
       if (gen && dropout > 0)
@@ -47,9 +52,11 @@ std::mutex& initMutex() {
   return m;
 }
 
-// Missing values (NaN: a block a view could not give) enter the network as 0.
+// Missing values (NaN: a block a view could not give) enter the network as 0, and so do ±inf
+// (no feature is infinite; nan_to_num's default made them ±3.4e38, then NaN probabilities).
 torch::Tensor toTensor(const Matrix& x) {
-  return torch::nan_to_num(torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32), 0.0)
+  return torch::nan_to_num(torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32), 0.0,
+                           0.0, 0.0)
       .clone();
 }
 
@@ -98,7 +105,12 @@ class MlpClassifier : public Classifier {
     torch::NoGradGuard no_grad;
     const torch::Tensor logits = net_->forward(toTensor(x), nullptr);
     torch::Tensor prob = params_.mlp.sigmoid_output ? torch::sigmoid(logits) : torch::softmax(logits, 1);
-    if (params_.mlp.sigmoid_output) prob = prob / prob.sum(1, true);
+    if (params_.mlp.sigmoid_output) {
+      // Every class's sigmoid can round to 0 (all logits below about -104): then 0 / 0. Such a
+      // row's shares come from the logs instead (the same ratio, without the underflow).
+      const torch::Tensor sum = prob.sum(1, true);
+      prob = torch::where(sum > 0, prob / sum, torch::softmax(torch::log_sigmoid(logits), 1));
+    }
     prob = prob.contiguous();
     return Eigen::Map<const Matrix>(prob.data_ptr<float>(), prob.size(0), prob.size(1));
   }

@@ -44,8 +44,15 @@ class RadiusSearch {
   std::vector<float> row_d2_;       // their squared distances
 };
 
+// Points farther than this from the origin (metres) are refused: float squared distances
+// between them could overflow.
+constexpr double kMaxCoordinate = 1e18;
+
 // Mean distance from each valid point to its nearest neighbour (the "cloud
-// resolution" all radii are expressed in). Throws for fewer than 2 points.
+// resolution" all radii are expressed in). Throws keyturn::Error (without a file name) for fewer
+// than 2 points and for degenerate sets: coordinates beyond kMaxCoordinate, float coordinates no
+// finer than an eighth of the points' spacing (a view stored far from the origin), a resolution of 0
+// (every point has a twin).
 double cloudResolution(const PointSet& set);
 double cloudResolution(const PointSet& set, const RadiusSearch& search);
 
