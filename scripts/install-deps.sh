@@ -44,8 +44,11 @@ packages=(
   jq
   # the docs test (tests/docs: runs the examples in README.md and docs/, standard library only)
   python3
-  # the Python module (ui/python, pybind11) and its tests (numpy); scikit-learn is optional (docs/python.md)
+  # the Python package (ui/python, pybind11) and its tests (numpy); scikit-learn is optional (docs/python.md)
   python3-dev pybind11-dev python3-numpy
+  # `pip install .` into a venv (pyproject.toml, offline), Open3D clouds in and out, the walkthrough's
+  # plots, and mypy on its typed example (tests/python: python.package, python.walkthrough)
+  python3-venv python3-pip python3-open3d python3-matplotlib mypy
   # the Slurm test (tests/slurm: a private single-node cluster on loopback runs describe and
   # evaluate as array jobs): Slurm's daemons and commands, and munge for its credentials
   slurm-wlm munge

@@ -151,9 +151,10 @@ class Describe(unittest.TestCase):
         for other in (by_cloud, by_array, by_float64):
             np.testing.assert_array_equal(other.feature_vector, by_file.feature_vector)
             self.assertEqual(other.K, by_file.K)
-        # An unorganized array of the valid points is a segmented cloud: another input kind.
+        # An unorganized array of the valid points, said to be one, is a segmented cloud: another input kind.
         flat = c.points[np.isfinite(c.points).all(axis=2)]
-        self.assertEqual(keyturn.describe(flat, features="kpd2").filter["input_kind"], "segmented-cloud")
+        self.assertEqual(keyturn.describe(flat, features="kpd2", kind="segmented").filter["input_kind"],
+                         "segmented-cloud")
 
     def test_parameters_are_the_librarys_table(self):
         p = keyturn.parameters()
@@ -253,7 +254,7 @@ class DatasetTest(unittest.TestCase):
         ds_path = WORK / "ds"
         shutil.rmtree(ds_path / ".keyturn", ignore_errors=True)
         ds = keyturn.Dataset(ds_path)
-        f = ds.features("kpd2+kpa3")
+        f = ds.features("kpd2+kpa3", cache=True)
         self.assertTrue(Path(f.cache).exists())
         self.assertEqual(f.x.shape, (12, 64))
         self.assertEqual(f.x.dtype, np.float32)
@@ -270,7 +271,7 @@ class DatasetTest(unittest.TestCase):
         self.assertIn(f.cache, out.stderr)
         self.assertEqual(os.stat(f.cache).st_mtime_ns, before)
         # Another parameter set is another cache.
-        g = ds.features(["kpd2"], bins=16)
+        g = ds.features(["kpd2"], cache=True, bins=16)
         self.assertNotEqual(g.cache, f.cache)
         self.assertEqual(g.x.shape, (12, 16))
         self.assertEqual(g.spec["bins"], "16")
@@ -302,14 +303,18 @@ class BadInput(unittest.TestCase):
     def test_missing_file_names_it(self):
         missing = WORK / "no-such-view.pcd"
         for call in (keyturn.load_cloud, keyturn.describe, keyturn.Model(MODEL).classify):
-            with self.assertRaises(keyturn.Error) as e:
+            with self.assertRaises(FileNotFoundError) as e:
                 call(missing)
             self.assert_one_line(e, str(missing))
-        with self.assertRaises(keyturn.Error) as e:
+            self.assertEqual(e.exception.filename, str(missing))
+        with self.assertRaises(FileNotFoundError) as e:
             keyturn.Model(WORK / "no-such-model")
         self.assert_one_line(e, "no-such-model")
+        with self.assertRaises(FileNotFoundError) as e:
+            keyturn.Dataset(WORK / "no-such-dataset")
+        self.assert_one_line(e, "no-such-dataset")
         with self.assertRaises(keyturn.Error) as e:
-            keyturn.Dataset(WORK)
+            keyturn.Dataset(SOURCE / "data/frames")  # a folder, not a dataset
         self.assert_one_line(e, "not a keyturn dataset")
 
     def test_bad_parameters(self):
@@ -328,7 +333,7 @@ class BadInput(unittest.TestCase):
 
     def test_unknown_block(self):
         Fixture.make()
-        with self.assertRaises(keyturn.Error) as e:
+        with self.assertRaises(ValueError) as e:
             keyturn.Dataset(WORK / "ds").features("kpd2+nope")
         self.assert_one_line(e, "nope")
 

@@ -3,11 +3,15 @@
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <filesystem>
+#include <map>
+#include <optional>
 
 #include "bindings.h"
 #include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_spec.h"
+#include "keyturn/learning/model_training.h"
 #include "keyturn/rig/dataset.h"
 #include "keyturn/rig/dataset_views.h"
 #include "keyturn/rig/sidecars.h"
@@ -26,12 +30,27 @@ struct View {
 struct Features {
   std::vector<std::string> blocks;
   learning::FeatureTable table;
-  std::string cache;
+  std::optional<std::string> cache;  // the cache file read or written; none when described in memory
 };
+
+// The cache's rows for exactly these views, in their order; none when the cache lacks one.
+std::optional<std::vector<learning::FeatureRow>> cachedRows(const learning::FeatureTable& t,
+                                                            const std::vector<learning::LabelledView>& views) {
+  std::map<std::string, const learning::FeatureRow*> by_id;
+  for (const auto& r : t.rows) by_id[r.id] = &r;
+  std::vector<learning::FeatureRow> rows;
+  for (const auto& v : views) {
+    const auto it = by_id.find(v.id);
+    if (it == by_id.end()) return std::nullopt;
+    rows.push_back(*it->second);
+  }
+  return rows;
+}
 
 class PyDataset {
  public:
   explicit PyDataset(std::string root) : root_(std::move(root)) {
+    requireFile(root_);
     py::gil_scoped_release release;
     views_ = rig::datasetViews(root_, &skipped_, &records_);
   }
@@ -41,18 +60,47 @@ class PyDataset {
   View view(std::size_t i) const { return {views_.at(i), records_.at(i), root_}; }
   const std::vector<std::string>& skipped() const { return skipped_; }
 
-  Features features(const py::object& blocks, int jobs, const py::kwargs& kwargs) const {
+  // Reads the cache when it holds every view; else describes in memory. Writes the cache only
+  // when asked (cache=True): a read has no side effect on the dataset.
+  Features features(const py::object& blocks, int jobs, bool cache, const py::kwargs& kwargs) const {
     Features f;
-    if (py::isinstance<py::str>(blocks)) f.blocks = learning::featureSetBlocks(blocks.cast<std::string>());
-    else
-      for (const auto& b : blocks) f.blocks.push_back(py::str(b));
     const DescriptorOptions options = optionsFrom(kwargs, "Dataset.features");
-    learning::featureLayout(learning::cacheBlocks(), options).select(f.blocks, {});  // a block the cache lacks, first
-    {
-      py::gil_scoped_release release;
-      f.table = learning::loadOrDescribeCache({root_, views_, options, jobs, nullptr});
-      f.cache = learning::featureCachePath(root_, options);
+    const learning::FeatureTable full = learning::featureLayout(learning::cacheBlocks(), options);
+    try {
+      if (py::isinstance<py::str>(blocks)) f.blocks = learning::featureSetBlocks(blocks.cast<std::string>());
+      else
+        for (const auto& b : blocks) f.blocks.push_back(py::str(b));
+      full.select(f.blocks, {});  // a block the cache lacks, first
+    } catch (const Error& e) {
+      throw py::value_error(std::string("Dataset.features: ") + e.what());
     }
+    py::gil_scoped_release release;
+    const std::string path = learning::featureCachePath(root_, options);
+    if (cache) {
+      f.table = learning::loadOrDescribeCache({root_, views_, options, jobs, nullptr});
+      f.cache = path;
+      return f;
+    }
+    std::error_code ec;
+    if (fs::exists(path, ec)) {
+      try {
+        learning::FeatureTable t = learning::loadFeatureTable(path);
+        if (t.blocks == full.blocks && t.spec == full.spec)
+          if (auto rows = cachedRows(t, views_)) {
+            t.rows = std::move(*rows);
+            f.table = std::move(t);
+            f.cache = path;
+            return f;
+          }
+      } catch (const Error&) {
+        // An unreadable cache is described again, as evaluate does; it is left as it is.
+      }
+    }
+    std::vector<std::string> unique;
+    for (const auto& b : f.blocks)
+      if (std::find(unique.begin(), unique.end(), b) == unique.end()) unique.push_back(b);
+    f.table = learning::featureLayout(unique, options);
+    f.table.rows = learning::describeViews(views_, options, f.table, jobs, nullptr);
     return f;
   }
 
@@ -68,6 +116,98 @@ py::list column(const learning::FeatureTable& t, F f) {
   py::list l;
   for (const auto& r : t.rows) l.append(f(r));
   return l;
+}
+
+std::vector<std::string> blockList(const py::object& blocks) {
+  std::vector<std::string> out;
+  if (py::isinstance<py::str>(blocks)) return learning::featureSetBlocks(blocks.cast<std::string>());
+  for (const auto& b : blocks) out.push_back(py::str(b));
+  return out;
+}
+
+// Views described one by one into a table of these blocks, labelled: what Dataset.features gives
+// for a dataset, for views from anywhere (files, clouds, Open3D, arrays).
+Features featuresOf(const py::sequence& views, const py::sequence& labels, const py::object& blocks,
+                    const py::object& ids, const std::string& kind, const py::kwargs& kwargs) {
+  const DescriptorOptions options = optionsFrom(kwargs, "features_of");
+  if (views.size() != labels.size())
+    throw py::value_error("features_of: " + std::to_string(views.size()) + " views but " +
+                          std::to_string(labels.size()) + " labels");
+  if (!ids.is_none() && py::len(ids) != views.size())
+    throw py::value_error("features_of: ids must have one entry per view");
+  Features f;
+  try {
+    f.blocks = blockList(blocks);
+    std::vector<std::string> unique;
+    for (const auto& b : f.blocks)
+      if (std::find(unique.begin(), unique.end(), b) == unique.end()) unique.push_back(b);
+    f.table = learning::featureLayout(unique, options);
+  } catch (const Error& e) {
+    throw py::value_error(std::string("features_of: ") + e.what());
+  }
+  const InputForm form = inputForm(kind, py::none(), "features_of");
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    std::string name;
+    const Cloud cloud = cloudFrom(views[i], "features_of", &name, form);
+    learning::FeatureRow row;
+    {
+      py::gil_scoped_release release;
+      row = learning::describeCloud(cloud, options, f.table);
+    }
+    row.id = ids.is_none() ? (name == "points" ? "view" + std::to_string(i) : name) : std::string(py::str(ids[py::int_(i)]));
+    row.cls = row.instance = py::str(labels[i]);
+    f.table.rows.push_back(std::move(row));
+  }
+  return f;
+}
+
+py::object train(const Features& f, const py::object& blocks, const py::object& rows, const std::string& classifier,
+                 const std::string& label, std::uint64_t seed, const py::object& rounds, const py::object& epochs) {
+  learning::ClassifierParams params;
+  params.kind = classifier;
+  params.seed = seed;
+  if (classifier != "xgboost" && classifier != "mlp")
+    throw py::value_error("train: classifier must be 'xgboost' or 'mlp', not '" + classifier + "'");
+  if (!rounds.is_none()) params.xgboost.rounds = rounds.cast<int>();
+  if (!epochs.is_none()) params.mlp.epochs = epochs.cast<int>();
+  if (params.xgboost.rounds < 1 || params.mlp.epochs < 1) throw py::value_error("train: rounds and epochs must be >= 1");
+  learning::LabelKind kind = learning::LabelKind::Instance;
+  std::vector<std::string> use = f.blocks;
+  try {
+    kind = learning::parseLabelKind(label);
+    if (!blocks.is_none()) {
+      use.clear();
+      use = blockList(blocks);
+      f.table.select(use, {});
+    }
+  } catch (const Error& e) {
+    throw py::value_error(std::string("train: ") + e.what());
+  }
+  learning::FeatureTable table = f.table;
+  if (!rows.is_none()) {
+    py::array picked = py::module_::import("numpy").attr("asarray")(rows);
+    if (picked.dtype().kind() == 'b') {
+      if (static_cast<std::size_t>(picked.size()) != f.table.rows.size())
+        throw py::value_error("train: a boolean rows mask needs one value per view (" +
+                              std::to_string(f.table.rows.size()) + ")");
+      picked = py::module_::import("numpy").attr("flatnonzero")(picked);
+    }
+    table.rows.clear();
+    const auto n = static_cast<long long>(f.table.rows.size());
+    for (const auto& r : picked.attr("tolist")().cast<std::vector<long long>>()) {
+      if (r < -n || r >= n) throw py::index_error("train: row " + std::to_string(r) + " of " + std::to_string(n));
+      table.rows.push_back(f.table.rows[static_cast<std::size_t>(r < 0 ? r + n : r)]);
+    }
+  }
+  if (table.rows.empty()) throw py::value_error("train: no views to train on");
+  learning::Model model;
+  try {
+    py::gil_scoped_release release;
+    model = learning::trainModel(table, use, kind, params);
+  } catch (const Error& e) {
+    throw py::value_error(std::string("train: ") + e.what());
+  }
+  return wrapModel(std::move(model), "<model trained on " + std::to_string(table.rows.size()) + " views>");
 }
 
 }  // namespace
@@ -124,14 +264,33 @@ void bindDataset(py::module_& m) {
       }, "why a view lacks a block ('' when it lacks none)")
       .def_property_readonly("spec", [](const Features& f) { return f.table.spec; },
                              "the feature specification the cache was made with")
-      .def_readonly("cache", &Features::cache, "the cache file (DATASET/.keyturn/features-HASH.csv)")
+      .def_readonly("cache", &Features::cache,
+                    "the cache file read or written (DATASET/.keyturn/features-HASH.csv); None when described in memory")
       .def("__len__", [](const Features& f) { return f.table.rows.size(); });
+
+  m.def("features_of", &featuresOf, py::arg("views"), py::arg("labels"), py::arg("blocks") = "kpd2+gkpd2",
+        py::kw_only(), py::arg("ids") = py::none(), py::arg("kind") = "auto",
+        "features_of(views, labels, blocks='kpd2+gkpd2', *, ids=None, kind='auto', **parameters) -> Features\n\n"
+        "Views from anywhere (paths, keyturn.Cloud, Open3D clouds, arrays) described one by one into Features, each "
+        "row labelled (cls and instance) with its label: what Dataset.features gives for a dataset, for keyturn.train. "
+        "ids name the rows (default: the file, or viewI). kind as for describe.");
+  m.def("train", &train, py::arg("features"), py::arg("blocks") = py::none(), py::kw_only(),
+        py::arg("rows") = py::none(), py::arg("classifier") = "xgboost", py::arg("label") = "instance", py::arg("seed") = 7,
+        py::arg("rounds") = py::none(), py::arg("epochs") = py::none(),
+        "train(features, blocks=None, *, rows=None, classifier='xgboost', label='instance', seed=7, rounds=None, "
+        "epochs=None) -> Model\n\n"
+        "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
+        "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
+        "default 30) or the libtorch network (epochs, default 30). Model.save writes it; Model.classify applies it "
+        "with the features' parameters. GIL released while it trains.");
 
   py::class_<PyDataset>(m, "Dataset", "A keyturn dataset folder (docs/dataset-format.md)")
       .def(py::init([](const py::object& path) {
              return PyDataset(py::str(py::module_::import("os").attr("fspath")(path)));
            }),
-           py::arg("path"), "Reads the manifest; raises keyturn.Error for a folder that is not a dataset")
+           py::arg("path"),
+           "Reads the manifest; raises FileNotFoundError for a missing folder, keyturn.Error for a folder that is not "
+           "a dataset")
       .def_property_readonly("root", &PyDataset::root)
       .def_property_readonly("views", [](const PyDataset& d) {
         py::list l;
@@ -140,14 +299,24 @@ void bindDataset(py::module_& m) {
       }, "the views, manifest order")
       .def_property_readonly("skipped_rows", &PyDataset::skipped, "malformed manifest rows that were skipped")
       .def("__len__", &PyDataset::size)
-      .def("__getitem__", [](const PyDataset& d, std::size_t i) {
-        if (i >= d.size()) throw py::index_error("Dataset: view " + std::to_string(i) + " of " + std::to_string(d.size()));
-        return d.view(i);
+      .def("__getitem__", [](const PyDataset& d, long long i) {
+        const auto n = static_cast<long long>(d.size());
+        if (i < -n || i >= n)
+          throw py::index_error("Dataset: view " + std::to_string(i) + " of " + std::to_string(n));
+        return d.view(static_cast<std::size_t>(i < 0 ? i + n : i));
       })
-      .def("features", &PyDataset::features, py::arg("blocks") = "kpd2+gkpd2", py::arg("jobs") = 0,
-           ("features(blocks='kpd2+gkpd2', jobs=0, **parameters) -> Features\n\n"
-            "The dataset's feature cache for these parameters (keyturn.parameters(); the library's defaults), as "
-            "evaluate and train read it: read when present, else described (all cores, GIL released) and written. "
+      .def("__iter__", [](const PyDataset& d) {
+        py::list l;
+        for (std::size_t i = 0; i < d.size(); ++i) l.append(d.view(i));
+        return py::iter(l);
+      })
+      .def("features", &PyDataset::features, py::arg("blocks") = "kpd2+gkpd2", py::arg("jobs") = 0, py::kw_only(),
+           py::arg("cache") = false,
+           ("features(blocks='kpd2+gkpd2', jobs=0, *, cache=False, **parameters) -> Features\n\n"
+            "The dataset's features for these parameters (keyturn.parameters(); the library's defaults), as "
+            "evaluate and train compute them: read from the dataset's feature cache when it holds every view, else "
+            "described in memory (all cores, GIL released) and nothing written. cache=True fills the cache "
+            "(DATASET/.keyturn/features-HASH.csv, as `keyturn describe DATASET --cache`) when it lacks views. "
             "blocks: 'kpd2+gkpd2' or a list; any cache block: kpd2 … gkpcd2, d2, d3, a3, u_kpd2 … (random keypoints), "
             "s_kpd2 … s_d3 (lengths in RMS radii), size, esf, vfh, ourcvfh.\n\nParameters:\n" +
             parametersDoc())

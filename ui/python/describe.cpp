@@ -65,7 +65,7 @@ py::dict workingReport(const ViewDescriptor& d) {
 }
 
 Description describeSource(const py::object& source, const py::object& features, bool explain,
-                           const py::kwargs& kwargs) {
+                           const std::string& kind, const py::object& shape, const py::kwargs& kwargs) {
   DescriptorOptions o = optionsFrom(kwargs, "describe");
   if (!features.is_none()) {
     std::string list;
@@ -79,7 +79,7 @@ Description describeSource(const py::object& source, const py::object& features,
     }
   }
   std::string name;
-  const Cloud cloud = cloudFrom(source, "describe", &name);
+  const Cloud cloud = cloudFrom(source, "describe", &name, inputForm(kind, shape, "describe"));
   Description r;
   try {
     py::gil_scoped_release release;
@@ -152,16 +152,21 @@ void bindDescribe(py::module_& m) {
       });
 
   const std::string doc =
-      "describe(view, features=None, explain=False, **parameters) -> Description\n\n"
-      "Describes one view as `keyturn describe` does, with the same numbers. view: a PCD/PLY path, a keyturn.Cloud "
-      "or an N × 3 / H × W × 3 array (metres, NaN for no point). features: names or a comma-separated list "
+      "describe(view, features=None, explain=False, *, kind='auto', shape=None, **parameters) -> Description\n\n"
+      "Describes one view as `keyturn describe` does, with the same numbers. view: a PCD/PLY path, a keyturn.Cloud, "
+      "an Open3D point cloud (o3d.geometry.PointCloud or o3d.t.geometry.PointCloud) or an N × 3 / H × W × 3 array "
+      "(metres, NaN for no point). features: names or a comma-separated list "
       "(default: kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2; also d1–d4, a3). explain=True writes, and keeps in "
-      ".explanation, what each filter step did. Releases the GIL while it computes. Raises keyturn.Error "
-      "with keyturn's one-line message for a view it cannot describe.\n\n"
+      ".explanation, what each filter step did. kind: 'auto' (H × W × 3 is a frame, N × 3 a segmented cloud; "
+      "N × 3 points that look like a frame whose grid was lost warn with keyturn.OrganizedShapeLostWarning), "
+      "'frame' (refused without its grid) or 'segmented' (described as one object, any grid dropped). "
+      "shape=(H, W) puts N × 3 points back on their pixel grid (row-major). Releases the GIL while it computes. "
+      "Raises FileNotFoundError for a missing file, keyturn.Error with keyturn's one-line message for a view it "
+      "cannot describe.\n\n"
       "Parameters (keyword, the library's defaults; keyturn.parameters() lists them):\n" +
       parametersDoc();
   m.def("describe", &describeSource, py::arg("view"), py::arg("features") = py::none(), py::arg("explain") = false,
-        doc.c_str());
+        py::kw_only(), py::arg("kind") = "auto", py::arg("shape") = py::none(), doc.c_str());
 }
 
 }  // namespace keyturn::python

@@ -22,15 +22,30 @@ struct Classification {
 class PyModel {
  public:
   explicit PyModel(std::string dir) : source_(std::move(dir)) {
+    requireFile(source_);
     py::gil_scoped_release release;
     model_ = learning::loadModel(source_);
     layout_ = learning::modelLayout(model_, source_);
     options_ = learning::modelOptions(model_, source_);
   }
+  // A model just trained (keyturn.train); `source` names it in messages until it is saved.
+  PyModel(learning::Model model, std::string source) : source_(std::move(source)), model_(std::move(model)) {
+    layout_ = learning::modelLayout(model_, source_);
+    options_ = learning::modelOptions(model_, source_);
+  }
 
-  Classification classify(const py::object& view) {
+  void save(const std::string& dir) {
+    {
+      py::gil_scoped_release release;
+      std::lock_guard<std::mutex> lock(predict_mutex_);
+      learning::saveModel(dir, model_);
+    }
+    source_ = dir;
+  }
+
+  Classification classify(const py::object& view, const std::string& kind, const py::object& shape) {
     std::string name;
-    const Cloud cloud = cloudFrom(view, "classify", &name);
+    const Cloud cloud = cloudFrom(view, "classify", &name, inputForm(kind, shape, "classify"));
     learning::FeatureTable t = layout_;
     std::vector<learning::Prediction> p;
     {
@@ -63,6 +78,10 @@ class PyModel {
 
 }  // namespace
 
+py::object wrapModel(learning::Model model, const std::string& source) {
+  return py::cast(std::make_unique<PyModel>(std::move(model), source));
+}
+
 void bindModel(py::module_& m) {
   py::class_<Classification>(m, "Classification", "A view's class and probabilities (keyturn classify --json)")
       .def_readonly("cls", &Classification::cls, "the most probable class")
@@ -74,6 +93,24 @@ void bindModel(py::module_& m) {
       }, "class → probability, the model's class order")
       .def_readonly("keypoints", &Classification::keypoints, "K")
       .def_readonly("problem", &Classification::problem, "what was thin or missing ('' when nothing)")
+      .def(py::pickle(
+          [](const Classification& c) {
+            return py::make_tuple(c.cls, c.probability, c.probabilities, c.keypoints, c.problem);
+          },
+          [](const py::tuple& t) {
+            if (t.size() != 5) throw py::value_error("Classification: not a pickled keyturn.Classification");
+            Classification c;
+            c.cls = t[0].cast<std::string>();
+            c.probability = t[1].cast<double>();
+            c.probabilities = t[2].cast<std::vector<std::pair<std::string, double>>>();
+            c.keypoints = t[3].cast<int>();
+            c.problem = t[4].cast<std::string>();
+            return c;
+          }))
+      .def("__eq__", [](const Classification& a, const Classification& b) {
+        return a.cls == b.cls && a.probability == b.probability && a.probabilities == b.probabilities &&
+               a.keypoints == b.keypoints && a.problem == b.problem;
+      })
       .def("__repr__", [](const Classification& c) {
         return "<keyturn.Classification " + c.cls + " " + std::to_string(c.probability) + ">";
       });
@@ -82,10 +119,18 @@ void bindModel(py::module_& m) {
       .def(py::init([](const py::object& path) {
              return std::make_unique<PyModel>(py::str(py::module_::import("os").attr("fspath")(path)));
            }),
-           py::arg("path"), "Loads the model; raises keyturn.Error naming the file when it is missing or corrupt")
-      .def("classify", &PyModel::classify, py::arg("view"),
-           "classify(view) -> Classification\n\nview: a PCD/PLY path, a keyturn.Cloud or an N × 3 / H × W × 3 array. "
-           "Described with the model's own parameters, as keyturn classify does (GIL released).")
+           py::arg("path"),
+           "Loads the model; raises FileNotFoundError for a missing folder, keyturn.Error naming the file when it is "
+           "corrupt")
+      .def("classify", &PyModel::classify, py::arg("view"), py::kw_only(), py::arg("kind") = "auto",
+           py::arg("shape") = py::none(),
+           "classify(view, *, kind='auto', shape=None) -> Classification\n\nview: a PCD/PLY path, a keyturn.Cloud, an "
+           "Open3D point cloud or an N × 3 / H × W × 3 array (kind and shape as for describe). Described with the "
+           "model's own parameters, as keyturn classify does (GIL released).")
+      .def("save", [](PyModel& p, const py::object& path) { p.save(py::str(py::module_::import("os").attr("fspath")(path))); },
+           py::arg("path"),
+           "save(path)\n\nWrites the model folder (model.json and the classifier's file), as keyturn train does; "
+           "keyturn classify and keyturn.Model read it.")
       .def_property_readonly("classes", [](const PyModel& p) { return p.info().classes; })
       .def_property_readonly("blocks", [](const PyModel& p) { return p.info().blocks; }, "feature blocks, in order")
       .def_property_readonly("inputs", [](const PyModel& p) { return p.info().inputs; })

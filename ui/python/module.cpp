@@ -3,7 +3,7 @@
 #include "bindings.h"
 #include "keyturn/core/error.h"
 
-PYBIND11_MODULE(keyturn, m) {
+PYBIND11_MODULE(_keyturn, m) {
   namespace py = pybind11;
   m.doc() = "keyturn: ISS keypoint-distribution shape descriptors, datasets and models (docs/python.md)";
   m.attr("__version__") = KEYTURN_VERSION;
