@@ -133,7 +133,8 @@ void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& 
         const Eigen::Vector3f nan = Eigen::Vector3f::Constant(std::nanf(""));
         std::vector<Eigen::Vector3f> mean_at(cloud.size(), nan);
         for (const auto& [k, v] : voxels)
-          mean_at[static_cast<std::size_t>(valid[v.best])] =
+          if (v.best >= 0)  // none when every distance overflowed (points near float's limit)
+            mean_at[static_cast<std::size_t>(valid[v.best])] =
               (frame.axes * (v.sum / v.count) + frame.origin).cast<float>();
         for (int i : valid) cloud.points[i] = mean_at[static_cast<std::size_t>(i)];
         r.subsampled = true;
@@ -147,7 +148,8 @@ void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& 
       // for an organized view), as a sensor at spacing s would sample the surface.
       std::vector<int> reps;  // positions in `valid`
       reps.reserve(voxels.size());
-      for (const auto& [k, v] : voxels) reps.push_back(v.best);
+      for (const auto& [k, v] : voxels)
+        if (v.best >= 0) reps.push_back(v.best);
       std::sort(reps.begin(), reps.end());
       std::unordered_map<std::uint64_t, std::vector<int>> kept_in;
       kept_in.reserve(reps.size());
