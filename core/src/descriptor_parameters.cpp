@@ -199,6 +199,12 @@ std::map<std::string, std::string> parameterSpec(const DescriptorOptions& option
   return spec;
 }
 
+std::map<std::string, std::string> completedParameterSpec(std::map<std::string, std::string> spec) {
+  for (const auto& p : descriptorParameters())
+    if (!p.key.empty() && !p.absent_means.empty()) spec.emplace(p.key, p.absent_means);
+  return spec;
+}
+
 DescriptorOptions optionsFromParameterSpec(const std::map<std::string, std::string>& spec, const std::string& source) {
   DescriptorOptions o;
   for (const auto& p : descriptorParameters()) {

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/error.h"
 #include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_spec.h"
@@ -27,7 +28,8 @@ FeatureTable describeForModel(const Model& model, const std::vector<LabelledView
 }
 
 std::vector<Prediction> predictRows(const Model& model, const FeatureTable& t, const std::string& source) {
-  const auto diff = specDifferences(model.info.spec, t.spec);
+  // A model or table written before a parameter existed was made the way its absence means.
+  const auto diff = specDifferences(completedParameterSpec(model.info.spec), completedParameterSpec(t.spec));
   if (!diff.empty()) {
     std::string msg = source + ": the model was trained on features computed another way (";
     for (std::size_t i = 0; i < diff.size(); ++i) msg += (i ? "; " : "") + diff[i];

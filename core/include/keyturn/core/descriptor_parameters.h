@@ -43,6 +43,9 @@ const DescriptorParameter& descriptorParameter(const std::string& flag);
 
 // The parameters' specification entries (the rows with a key).
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options);
+// The specification with every row added since it was written filled in with what its absence
+// means (DescriptorParameter::absent_means): how an old cache's or model's features were made.
+std::map<std::string, std::string> completedParameterSpec(std::map<std::string, std::string> spec);
 // Sets every keyed parameter from a specification; throws keyturn::Error naming `source`
 // and the key for a missing or bad entry. Parameters without a key keep their defaults.
 DescriptorOptions optionsFromParameterSpec(const std::map<std::string, std::string>& spec, const std::string& source);
