@@ -1,10 +1,15 @@
 #include "dataset_features.h"
 
+#include <filesystem>
 #include <iostream>
 
 #include "keyturn/rig/dataset_views.h"
 
 namespace keyturn::app {
+
+bool isDataset(const std::string& path) {
+  return std::filesystem::is_regular_file(std::filesystem::path(path) / "manifest.csv");
+}
 
 std::vector<learning::LabelledView> datasetViews(const std::string& root) {
   std::vector<std::string> bad;

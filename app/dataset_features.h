@@ -11,6 +11,9 @@
 
 namespace keyturn::app {
 
+// A keyturn dataset folder: one holding manifest.csv.
+bool isDataset(const std::string& path);
+
 // Throws keyturn::Error for a folder without a manifest or views; skipped rows are reported.
 std::vector<learning::LabelledView> datasetViews(const std::string& dataset);
 

@@ -30,10 +30,6 @@ struct DescribeArgs {
   DepthImageFlags depth;
 };
 
-bool isDataset(const std::string& path) {
-  return std::filesystem::is_regular_file(std::filesystem::path(path) / "manifest.csv");
-}
-
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
   const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : learning::parseShard(a.shard);

@@ -40,10 +40,6 @@ std::string groupOf(const std::string& file, const std::string& rule) {
   throw Error("--group-by must be file or folder, not '" + rule + "'");
 }
 
-bool isDataset(const std::string& path) {
-  return std::filesystem::is_regular_file(std::filesystem::path(path) / "manifest.csv");
-}
-
 std::vector<StabilityView> loadViews(const StabilityArgs& a) {
   std::vector<StabilityView> views;
   if (a.builtin) views.push_back({"builtin:mug", "builtin:mug", sim::builtinBenchmarkView()});

@@ -67,6 +67,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   }
   if (!o.filter) subsampleToWorkingResolution(cloud, o.working, &v.working);
   v.points = PointSet::fromCloud(cloud);
+  if (v.working.off_pixel_rays) v.points.forgetPixels();
   v.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return v;
 }
@@ -160,9 +161,9 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
       }
       GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which, kp_weight);
       for (std::size_t f = 0; f < o.features.size(); ++f) {
-        if (o.features[f] == Feature::GKPD1) values[f] = geo.gkpd1, weights[f] = geo.gkpd1_weight;
-        if (o.features[f] == Feature::GKPD2) values[f] = geo.gkpd2, weights[f] = geo.gkpd2_weight;
-        if (o.features[f] == Feature::GKPCD2) values[f] = geo.gkpcd2, weights[f] = geo.gkpcd2_weight;
+        if (o.features[f] == Feature::GKPD1) values[f] = std::move(geo.gkpd1), weights[f] = std::move(geo.gkpd1_weight);
+        if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2), weights[f] = std::move(geo.gkpd2_weight);
+        if (o.features[f] == Feature::GKPCD2) values[f] = std::move(geo.gkpcd2), weights[f] = std::move(geo.gkpcd2_weight);
       }
       if (geo_out) *geo_out = std::move(geo);
       out.times.geodesic += clock.lap();

@@ -142,6 +142,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
       WorkingResolutionReport w;
       subsampleToWorkingResolution(c, o.working, &w);
       data[i].working_set = PointSet::fromCloud(c);
+      if (w.off_pixel_rays) data[i].working_set.forgetPixels();
       data[i].working_res = std::max(cloudResolution(data[i].working_set), w.subsampled ? w.spacing : 0.0);
     }
     st.mean_resolution_m += data[i].res / views.size();

@@ -344,7 +344,7 @@ ReportPlots stabilityPlots(const StabilityStudy& s) {
     c.file = file;
     c.title = title;
     c.x_label = "perturbation";
-    c.y_label = "median L1 (perturbed vs original) ÷ median L1 between views";
+    c.y_label = "PDF change ÷ distance between views";
     c.log_y = true;
     c.y_min = 1e-4;
     c.width = 1200;

@@ -17,14 +17,6 @@ Eigen::Vector3d randomDirection(std::mt19937_64& rng) {
   return d.normalized();
 }
 
-Eigen::Vector3d centroidOf(const Cloud& c) {
-  Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-  std::size_t n = 0;
-  for (const auto& p : c.points)
-    if (Cloud::isValid(p)) sum += p.cast<double>(), ++n;
-  return n ? Eigen::Vector3d(sum / static_cast<double>(n)) : sum;
-}
-
 // Applies x ↦ R (x − pivot) + pivot + t to every valid point, in double.
 void moveRigidly(Cloud& c, const Eigen::Matrix3d& R, const Eigen::Vector3d& pivot, const Eigen::Vector3d& t) {
   for (auto& p : c.points)
@@ -107,7 +99,8 @@ std::optional<Cloud> perturbView(const Cloud& view, const Perturbation& pt, std:
     case PerturbationKind::RotateAboutCamera: {
       const Eigen::Matrix3d R = Eigen::AngleAxisd(pt.magnitude * kDeg, randomDirection(rng)).toRotationMatrix();
       const Eigen::Vector3d pivot =
-          pt.kind == PerturbationKind::RotateAboutCentroid ? centroidOf(c) : Eigen::Vector3d::Zero();
+          pt.kind == PerturbationKind::RotateAboutCentroid ? Eigen::Vector3d(PointSet::fromCloud(c).centroid().cast<double>())
+                                                          : Eigen::Vector3d::Zero();
       moveRigidly(c, R, pivot, Eigen::Vector3d::Zero());
       break;
     }

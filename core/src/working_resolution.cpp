@@ -138,6 +138,7 @@ void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& 
               (frame.axes * (v.sum / v.count) + frame.origin).cast<float>();
         for (int i : valid) cloud.points[i] = mean_at[static_cast<std::size_t>(i)];
         r.subsampled = true;
+        r.off_pixel_rays = cloud.organized();
         r.after = voxels.size();
         if (report) *report = r;
         return;

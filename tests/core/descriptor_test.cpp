@@ -242,10 +242,10 @@ TEST(WorkingResolution, ThinnedPointsAreAtLeastTheSpacingApartAndCoverTheSurface
   EXPECT_LT(per_s2, 0.8);
 }
 
-// With voxel means (the default), the plane's points are the means of 1.25 s voxels of the
-// object's own grid: on the plane, covering it (every measured point within a voxel's diagonal of
-// a mean), one per voxel the plane crosses — in the object's frame the plane lies in one layer, so
-// about (1/1.25)² = 0.64 per s².
+// With voxel means (the default), the plane's points are the means of the object grid's voxels
+// (side v = mean_voxel · s): on the plane, covering it (every measured point within a voxel's
+// diagonal of a mean), one per voxel the plane crosses — in the object's frame the plane lies in one
+// layer, so about (s/v)² per s².
 TEST(WorkingResolution, VoxelMeansLieOnTheSurfaceAndCoverIt) {
   const Cloud plane = denseTiltedPlane();
   Cloud means = plane;
@@ -265,11 +265,12 @@ TEST(WorkingResolution, VoxelMeansLieOnTheSurfaceAndCoverIt) {
     for (const auto& k : kept) d = std::min(d, (plane.points[i] - k).norm());
     farthest = std::max(farthest, d);
   }
-  EXPECT_LE(farthest, static_cast<float>(std::sqrt(3.0) * 1.25 * s));
+  const double v = WorkingResolutionOptions().mean_voxel;
+  EXPECT_LE(farthest, static_cast<float>(std::sqrt(3.0) * v * s));
   const double area = 0.2 * 0.2 * std::sqrt(1 + 0.4 * 0.4 + 0.3 * 0.3);
   const double per_s2 = static_cast<double>(kept.size()) * s * s / area;
-  EXPECT_GT(per_s2, 0.55);
-  EXPECT_LT(per_s2, 0.8);
+  EXPECT_GT(per_s2, 0.85 / (v * v));
+  EXPECT_LT(per_s2, 1.25 / (v * v));
 }
 
 // The working resolution: the mug seen by the SR4000 at 0.35, 0.5 and 0.7 m (pixel spacing

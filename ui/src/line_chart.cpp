@@ -62,7 +62,7 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
     cat->setLabelsPosition(QtCharts::QCategoryAxis::AxisLabelsPositionOnValue);
     for (std::size_t i = 0; i < c.x_categories.size(); ++i)
       cat->append(QString::fromStdString(c.x_categories[i]), static_cast<double>(i));
-    cat->setLabelsAngle(-35);
+    cat->setLabelsAngle(-60);  // long names side by side would be elided
     cat->setTitleText(QString::fromStdString(c.x_label));
     ax = cat;
   }

@@ -30,6 +30,8 @@ struct PointSet {
   std::uint32_t height = 1;
 
   static PointSet fromCloud(const Cloud& cloud);
+  // Searched as an unorganized set from now on (its points no longer lie on their pixels' rays).
+  void forgetPixels() { pixel.clear(), pixel_to_point.clear(); }
   bool organized() const { return !pixel.empty(); }
   std::size_t size() const { return points.size(); }
   Eigen::Vector3f centroid() const;

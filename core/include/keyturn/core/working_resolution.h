@@ -43,7 +43,7 @@ struct WorkingResolutionOptions {
   VoxelPoints points = VoxelPoints::Means;
   // Means: the voxel's side in multiples of s (larger than s: unthinned means lie closer together
   // than thinned points, and this keeps the number of points, and the chain's cost, about the same).
-  double mean_voxel = 1.25;
+  double mean_voxel = 1.5;
 };
 
 struct WorkingResolutionReport {
@@ -51,6 +51,9 @@ struct WorkingResolutionReport {
   double spacing = 0;  // s, metres
   bool subsampled = false;
   std::size_t before = 0, after = 0;
+  // The points are voxel means: each sits at its nearest measured point's pixel but off that pixel's
+  // ray, so the pixel grid is no index of them (PointSet::forgetPixels before searching).
+  bool off_pixel_rays = false;
 };
 
 // Brings a view denser than the working spacing s to about s (VoxelPoints says how). The layout is
