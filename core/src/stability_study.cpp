@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <numeric>
 #include <optional>
+#include <utility>
 
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/core/error.h"
@@ -336,6 +337,19 @@ std::string stabilityJson(const StabilityStudy& s, const std::string& input) {
   return j.dump(2);
 }
 
+namespace {
+// A perturbation's name short enough for an axis label ("rotate-centroid-10deg" → "centroid 10°").
+std::string shortLabel(std::string name) {
+  for (const auto& [from, to] : {std::pair<std::string, std::string>{"rotate-centroid-", "centroid "},
+                                 {"rotate-camera-", "camera "}, {"deg", "°"}, {"depth-round-", "round "},
+                                 {"translate-", "move "}}) {
+    const auto at = name.find(from);
+    if (at != std::string::npos) name.replace(at, from.size(), to);
+  }
+  return name;
+}
+}  // namespace
+
 ReportPlots stabilityPlots(const StabilityStudy& s) {
   // Two charts of at most eight lines: the keypoint functions, then the scaled twins and Osada's
   // functions, each beside PCL's ESF and VFH.
@@ -349,7 +363,7 @@ ReportPlots stabilityPlots(const StabilityStudy& s) {
     c.y_min = 1e-4;
     c.width = 1200;
     c.height = 720;
-    for (const auto& p : s.perturbations) c.x_categories.push_back(p.name);
+    for (const auto& p : s.perturbations) c.x_categories.push_back(shortLabel(p.name));
     for (const auto& f : s.functions) {
       if (!wanted(f)) continue;
       CurveSeries line;
