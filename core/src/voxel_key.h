@@ -14,9 +14,10 @@ inline std::uint64_t voxelKey(std::int64_t x, std::int64_t y, std::int64_t z) {
 }
 
 // Bounded before the cast (a cell index past int64 is undefined behaviour): a point that far, or a
-// side that small, shares the last cell, and the callers' distance checks decide.
-inline std::int64_t voxelCell(double coordinate, double inverse_side) {
-  const double c = std::floor(coordinate * inverse_side);
+// side that small, shares the last cell, and the callers' distance checks decide. `offset` (in
+// cells) shifts the grid's faces.
+inline std::int64_t voxelCell(double coordinate, double inverse_side, double offset = 0.0) {
+  const double c = std::floor(coordinate * inverse_side + offset);
   if (!(c > -4.0e18)) return static_cast<std::int64_t>(-4.0e18);  // NaN too
   if (c > 4.0e18) return static_cast<std::int64_t>(4.0e18);
   return static_cast<std::int64_t>(c);

@@ -87,9 +87,8 @@ void subsampleToWorkingResolution(Cloud& cloud, const WorkingResolutionOptions& 
     // plane through the centroid lies inside one layer of voxels, not on a face between two.
     const double offset = o.anchor == VoxelAnchor::ObjectGrid ? 0.5 : 0.0;
     auto cellAt = [offset](const Eigen::Vector3d& p, double inv) {
-      return Cell(static_cast<std::int64_t>(std::floor(p.x() * inv + offset)),
-                  static_cast<std::int64_t>(std::floor(p.y() * inv + offset)),
-                  static_cast<std::int64_t>(std::floor(p.z() * inv + offset)));
+      return Cell(detail::voxelCell(p.x(), inv, offset), detail::voxelCell(p.y(), inv, offset),
+                  detail::voxelCell(p.z(), inv, offset));
     };
     auto cellOf = [&](const Eigen::Vector3d& p) { return cellAt(p, inv_s); };
     auto keyOf = [](const Cell& cell) { return detail::voxelKey(cell.x(), cell.y(), cell.z()); };
