@@ -3,8 +3,12 @@
 // ISSKeypoint3D, ESF and VFH timed on the same filtered cloud in the same run.
 // A view that cannot be read or described is named on stderr (and as an "error"
 // entry in --json); the others are still timed, and the exit status is then 1.
-// --scaling times the chain against input size instead (keyturn/bench/scaling.h).
+// --scaling times the chain against input size instead (keyturn/bench/scaling.h); --startup
+// times the tool's own start-up (keyturn/bench/startup_timing.h).
+#include <unistd.h>
+
 #include <cstdio>
+#include <filesystem>
 #include <iostream>
 #include <nlohmann/json.hpp>
 
@@ -12,6 +16,7 @@
 #include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/bench/scaling.h"
+#include "keyturn/bench/startup_timing.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/sim/tof_view.h"
@@ -34,6 +39,7 @@ struct BenchArgs {
   bool json = false;
   bool no_builtin = false;
   bool scaling = false;
+  bool startup = false;
   std::vector<std::size_t> sizes = bench::defaultScalingSizes();
   std::string plot;
   DescriptorFlags flags;
@@ -94,6 +100,54 @@ int runScalingCommand(const BenchArgs& a) {
   return out["failed"].get<int>() ? 1 : 0;
 }
 
+// `keyturn --help` and a one-view describe, each as a whole process: what a user waits for
+// before a one-off command prints anything.
+int runStartupCommand(const BenchArgs& a) {
+  namespace fs = std::filesystem;
+  if (a.files.size() > 1) throw Error("bench --startup takes one view (or none: the built-in SR4000 view)");
+  std::error_code ec;
+  const fs::path self = fs::read_symlink("/proc/self/exe", ec);
+  if (ec) throw Error("bench --startup: cannot find this program (/proc/self/exe: " + ec.message() + ")");
+  const fs::path scratch = fs::temp_directory_path() / ("keyturn-startup-" + std::to_string(getpid()));
+  std::string view = a.files.empty() ? "" : a.files[0];
+  if (view.empty()) {
+    fs::create_directories(scratch);
+    view = (scratch / "sr4000_view.pcd").string();
+    saveCloud(view, sim::builtinBenchmarkView());
+  }
+  std::vector<bench::ProcessTiming> timings;
+  try {
+    const std::vector<std::pair<std::string, std::vector<std::string>>> commands = {
+        {"keyturn --help", {self.string(), "--help"}},
+        {"keyturn describe " + std::string(a.files.empty() ? "<SR4000 view>" : "VIEW"), {self.string(), "describe", view}}};
+    std::unique_ptr<Progress> bar;
+    if (!a.json) bar = std::make_unique<Progress>("bench --startup", commands.size(), true);
+    for (const auto& [label, argv] : commands) {
+      timings.push_back(bench::timeProcess(label, argv, a.runs.repetitions));
+      if (bar) bar->advance();
+    }
+    if (bar) bar->finish();
+  } catch (...) {
+    fs::remove_all(scratch, ec);
+    throw;
+  }
+  fs::remove_all(scratch, ec);
+  int failed = 0;
+  nlohmann::json out = {{"timings", nlohmann::json::array()}};
+  for (const auto& t : timings) {
+    out["timings"].push_back(bench::timingJson(t));
+    for (int code : t.exit_codes)
+      if (code != 0) {
+        std::cerr << "keyturn bench --startup: '" << t.label << "' exited with " << code << "\n";
+        ++failed;
+        break;
+      }
+  }
+  if (a.json) std::cout << out.dump(2) << "\n";
+  else std::fputs(bench::startupTable(timings).c_str(), stdout);
+  return failed ? 1 : 0;
+}
+
 }  // namespace
 
 Command addBenchCommand(CLI::App& app) {
@@ -116,9 +170,18 @@ Command addBenchCommand(CLI::App& app) {
       ->delimiter(',')->needs(scaling)->check(CLI::Range(std::size_t{1}, std::size_t{100000000}));
   cmd->add_option("--plot", args->plot, "With --scaling: also write a log-log PNG of time against size")
       ->needs(scaling);
+  cmd->add_flag("--startup", args->startup,
+                "Time this tool's start-up as whole processes: `keyturn --help` and a one-view describe (of the "
+                "built-in SR4000 view, or the one view given), wall time and peak memory; -n runs each (10 unless "
+                "given)")
+      ->excludes(scaling);
   args->flags.add(*cmd);
   args->depth.add(*cmd);
   return {cmd, [args, reps, pcl_reps] {
+            if (args->startup) {
+              if (reps->count() == 0) args->runs.repetitions = 10;
+              return runStartupCommand(*args);
+            }
             if (!args->scaling) return runBench(*args);
             if (reps->count() == 0) args->runs.repetitions = 5;
             if (pcl_reps->count() == 0) args->runs.pcl_repetitions = 3;

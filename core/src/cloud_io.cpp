@@ -1,12 +1,11 @@
-// PCL-backed point cloud I/O. PCL's own console messages are silenced: every
-// failure becomes one keyturn::Error line naming the file and the problem.
+// PCL-backed point cloud I/O (PCL's reader and writers in the plugin "pcl_io", src/pcl_io_plugin.h).
+// PCL's own console messages are silenced: every failure becomes one keyturn::Error line naming
+// the file and the problem.
 #include "keyturn/core/cloud_io.h"
 
 #include <fcntl.h>
 #include <pcl/PCLPointCloud2.h>
 #include <pcl/console/print.h>
-#include <pcl/io/pcd_io.h>
-#include <pcl/io/ply_io.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -19,11 +18,21 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/ply_reader.h"
+#include "keyturn/core/plugin.h"
 #include "keyturn/core/radius_search.h"
+#include "pcl_io_plugin.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn {
+
+namespace detail {
+const PclIo& pclIo() {
+  static const PclIo* table = pluginFunction<PclIoFunction>("pcl_io", "keyturn_pcl_io")();
+  return *table;
+}
+}  // namespace detail
+
 namespace {
 
 // A point keyturn can work with: finite, and within kMaxCoordinate of the origin (farther, float
@@ -240,17 +249,10 @@ void checkPcdPayload(const std::string& path, const PcdPromise& p, std::uintmax_
 
 Cloud loadPcd(const std::string& path, std::uintmax_t file_size) {
   checkPcdPayload(path, readPcdPromise(path), file_size);
-  pcl::PCDReader reader;
   pcl::PCLPointCloud2 blob;
-  Eigen::Vector4f origin;
-  Eigen::Quaternionf orientation;
-  int version = 0;
-  int read = -1;
-  try {
-    read = reader.read(path, blob, origin, orientation, version);
-  } catch (const std::exception& e) {  // PCL's header parser indexes tokens with .at()
-    fail(path, std::string("corrupt PCD: PCL's reader failed (") + e.what() + ")");
-  }
+  std::string error;
+  const int read = detail::pclIo().read_pcd(path, blob, error);
+  if (!error.empty()) fail(path, "corrupt PCD: PCL's reader failed (" + error + ")");
   if (read < 0) fail(path, "corrupt PCD: PCL could not read the point data");
   if (blob.fields.empty()) fail(path, "not a valid PCD file (no fields)");
   return cloudFromPclBlob(path, blob);
@@ -369,17 +371,8 @@ void saveCloud(const std::string& path, const Cloud& cloud, PcdEncoding encoding
   if (target.has_parent_path()) fs::create_directories(target.parent_path());
   const std::string tmp = path + ".tmp";
   int rc = 0;
-  if (lowerExtension(path) == ".ply") {
-    pcl::PLYWriter writer;
-    rc = writer.write(tmp, blob, Eigen::Vector4f::Zero(), Eigen::Quaternionf::Identity(), true, false);
-  } else {
-    pcl::PCDWriter writer;
-    switch (encoding) {
-      case PcdEncoding::Ascii: rc = writer.writeASCII(tmp, blob); break;
-      case PcdEncoding::Binary: rc = writer.writeBinary(tmp, blob); break;
-      case PcdEncoding::BinaryCompressed: rc = writer.writeBinaryCompressed(tmp, blob); break;
-    }
-  }
+  if (lowerExtension(path) == ".ply") rc = detail::pclIo().write_ply(tmp, blob);
+  else rc = detail::pclIo().write_pcd(tmp, blob, static_cast<int>(encoding));
   if (rc < 0) {
     std::error_code ec;
     fs::remove(tmp, ec);

@@ -6,12 +6,11 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
-#include <opencv2/core.hpp>
-#include <opencv2/imgcodecs.hpp>
 #include <sstream>
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "png_codec.h"
 
 namespace fs = std::filesystem;
 
@@ -96,8 +95,8 @@ void checkPngChunks(const std::string& path, const std::string& bytes) {
   }
 }
 
-// Decodes a PNG whose structure has been checked (OpenCV picks the decoder from the bytes).
-cv::Mat readPng(const std::string& path, const char* what) {
+// Decodes a PNG whose structure has been checked.
+detail::DecodedImage readPng(const std::string& path, const char* what) {
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file");
   if (fs::is_directory(path, ec)) fail(path, std::string("is a directory, expected a ") + what + " PNG");
@@ -106,14 +105,8 @@ cv::Mat readPng(const std::string& path, const char* what) {
   static const char kSignature[] = "\x89PNG\r\n\x1a\n";
   if (bytes.size() < 8 || bytes.compare(0, 8, kSignature, 8) != 0) fail(path, "not a PNG file (no PNG signature)");
   checkPngChunks(path, bytes);
-  cv::Mat m;
-  try {
-    m = cv::imdecode(cv::Mat(1, static_cast<int>(bytes.size()), CV_8UC1, const_cast<char*>(bytes.data())),
-                     cv::IMREAD_UNCHANGED);
-  } catch (const cv::Exception&) {
-    m.release();
-  }
-  if (m.empty()) fail(path, "corrupt PNG (cannot be decoded)");
+  detail::DecodedImage m;
+  if (!detail::decodePng(bytes, m) || m.samples.empty()) fail(path, "corrupt PNG (cannot be decoded)");
   return m;
 }
 
@@ -124,18 +117,18 @@ std::string withSuffixReplaced(const std::string& path, const std::string& from,
 }
 
 std::vector<std::uint8_t> readMask(const std::string& path, int width, int height, const std::string& depth_png) {
-  const cv::Mat m = readPng(path, "mask");
-  if (m.channels() != 1 || (m.depth() != CV_8U && m.depth() != CV_16U))
-    fail(path, "a mask must be a single-channel 8- or 16-bit image (this one has " + std::to_string(m.channels()) +
+  const detail::DecodedImage m = readPng(path, "mask");
+  if (m.channels != 1)
+    fail(path, "a mask must be a single-channel 8- or 16-bit image (this one has " + std::to_string(m.channels) +
                    " channels)");
-  if (m.cols != width || m.rows != height)
-    fail(path, "mask is " + std::to_string(m.cols) + " × " + std::to_string(m.rows) + ", its depth image " + depth_png +
+  if (m.width != width || m.height != height)
+    fail(path, "mask is " + std::to_string(m.width) + " × " + std::to_string(m.height) + ", its depth image " + depth_png +
                    " is " + std::to_string(width) + " × " + std::to_string(height));
   std::vector<std::uint8_t> out(static_cast<std::size_t>(width) * height);
   for (int v = 0; v < height; ++v)
     for (int u = 0; u < width; ++u)
       out[static_cast<std::size_t>(v) * width + u] =
-          (m.depth() == CV_8U ? m.at<std::uint8_t>(v, u) != 0 : m.at<std::uint16_t>(v, u) != 0) ? 1 : 0;
+          (m.bits == 8 ? m.at8(v, u) != 0 : m.at16(v, u) != 0) ? 1 : 0;
   return out;
 }
 
@@ -233,21 +226,21 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
   if (!o.intrinsics)
     fail(png, "a depth image needs the camera's intrinsics (--camera FILE, or --fx --fy --cx --cy)");
-  const cv::Mat m = readPng(png, "16-bit depth");
-  if (m.channels() != 1) fail(png, std::to_string(m.channels()) + "-channel image; a depth image has one channel");
-  if (m.depth() != CV_16U)
-    fail(png, std::string(m.depth() == CV_8U ? "8-bit" : "non-16-bit") +
+  const detail::DecodedImage m = readPng(png, "16-bit depth");
+  if (m.channels != 1) fail(png, std::to_string(m.channels) + "-channel image; a depth image has one channel");
+  if (m.bits != 16)
+    fail(png, std::string(m.bits == 8 ? "8-bit" : "non-16-bit") +
                   " image; a depth image is 16-bit (an 8-bit PNG holds no usable depth)");
-  const auto w = static_cast<std::uint32_t>(m.cols), h = static_cast<std::uint32_t>(m.rows);
+  const auto w = static_cast<std::uint32_t>(m.width), h = static_cast<std::uint32_t>(m.height);
   std::vector<std::uint16_t> depth(static_cast<std::size_t>(w) * h);
-  for (int v = 0; v < m.rows; ++v)
-    for (int u = 0; u < m.cols; ++u) depth[static_cast<std::size_t>(v) * w + u] = m.at<std::uint16_t>(v, u);
+  for (int v = 0; v < m.height; ++v)
+    for (int u = 0; u < m.width; ++u) depth[static_cast<std::size_t>(v) * w + u] = m.at16(v, u);
 
   std::error_code ec;
   std::string mask_file = o.mask;
   if (mask_file.empty() && !companionMask(png).empty() && fs::exists(companionMask(png), ec)) mask_file = companionMask(png);
   const std::vector<std::uint8_t> mask =
-      mask_file.empty() ? std::vector<std::uint8_t>{} : readMask(mask_file, m.cols, m.rows, png);
+      mask_file.empty() ? std::vector<std::uint8_t>{} : readMask(mask_file, m.width, m.height, png);
   CropOffset crop;
   if (o.crop) crop = *o.crop;
   else if (!companionCropFile(png).empty() && fs::exists(companionCropFile(png), ec)) crop = readCropFile(companionCropFile(png));
@@ -255,14 +248,13 @@ Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
 }
 
 std::vector<std::uint16_t> loadPng16(const std::string& path, std::uint32_t width, std::uint32_t height) {
-  const cv::Mat m = readPng(path, "16-bit");
-  if (m.type() != CV_16UC1) fail(path, "not a 16-bit grey PNG");
-  if (static_cast<std::uint32_t>(m.cols) != width || static_cast<std::uint32_t>(m.rows) != height)
-    fail(path, std::to_string(m.cols) + " × " + std::to_string(m.rows) + " pixels, expected " + std::to_string(width) +
+  const detail::DecodedImage m = readPng(path, "16-bit");
+  if (m.bits != 16 || m.channels != 1) fail(path, "not a 16-bit grey PNG");
+  if (static_cast<std::uint32_t>(m.width) != width || static_cast<std::uint32_t>(m.height) != height)
+    fail(path, std::to_string(m.width) + " × " + std::to_string(m.height) + " pixels, expected " + std::to_string(width) +
                    " × " + std::to_string(height));
   std::vector<std::uint16_t> out(static_cast<std::size_t>(width) * height);
-  for (int r = 0; r < m.rows; ++r)
-    std::copy(m.ptr<std::uint16_t>(r), m.ptr<std::uint16_t>(r) + m.cols, out.begin() + static_cast<std::ptrdiff_t>(r) * m.cols);
+  std::copy_n(reinterpret_cast<const std::uint16_t*>(m.samples.data()), out.size(), out.begin());
   return out;
 }
 
@@ -270,16 +262,10 @@ void savePng16(const std::string& path, const std::vector<std::uint16_t>& img, s
                std::uint32_t height) {
   if (img.size() != static_cast<std::size_t>(width) * height || img.empty())
     fail(path, "image data does not match its size");
-  // OpenCV picks the encoder from the extension, so the temporary name keeps ".png".
+  // The encoder is chosen from the extension, so the temporary name keeps ".png".
   const std::string tmp = path.substr(0, path.size() - 4) + ".tmp.png";
-  const cv::Mat m(static_cast<int>(height), static_cast<int>(width), CV_16UC1, const_cast<std::uint16_t*>(img.data()));
-  bool ok = false;
-  try {
-    ok = cv::imwrite(tmp, m);
-  } catch (const cv::Exception& e) {
-    fail(path, std::string("PNG encoder failed: ") + e.what());
-  }
-  if (!ok) fail(path, "could not write PNG");
+  std::string why;
+  if (!detail::writePng16(tmp, img.data(), static_cast<int>(width), static_cast<int>(height), why)) fail(path, why);
   commitFile(tmp, path);
 }
 

@@ -1,12 +1,10 @@
 #include "keyturn/core/filter.h"
 
-#include <pcl/ModelCoefficients.h>
 #include <pcl/filters/statistical_outlier_removal.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/sample_consensus/method_types.h>
-#include <pcl/sample_consensus/model_types.h>
-#include <pcl/segmentation/sac_segmentation.h>
+#include <pcl/sample_consensus/ransac.h>
+#include <pcl/sample_consensus/sac_model_plane.h>
 
 #include <algorithm>
 #include <cmath>
@@ -132,18 +130,21 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
     const double step = static_cast<double>(pts->size()) / static_cast<double>(cap);
     for (std::size_t k = 0; k < cap; ++k) sample->push_back((*pts)[static_cast<std::size_t>(k * step)]);
   }
-  pcl::SACSegmentation<pcl::PointXYZ> seg(false);  // fixed seed: same cloud, same plane
-  seg.setOptimizeCoefficients(true);
-  seg.setModelType(pcl::SACMODEL_PLANE);
-  seg.setMethodType(pcl::SAC_RANSAC);
-  seg.setDistanceThreshold(options.plane_distance);
-  seg.setMaxIterations(options.plane_iterations);
-  seg.setInputCloud(sample);
-  pcl::PointIndices inliers;
-  pcl::ModelCoefficients coeff;
-  seg.segment(inliers, coeff);
-  if (coeff.values.size() != 4) return say("no plane found");
-  Eigen::Vector4f pl(coeff.values[0], coeff.values[1], coeff.values[2], coeff.values[3]);
+  // RANSAC, then a least-squares fit to its inliers: what pcl::SACSegmentation (with optimised
+  // coefficients) does, called from libpcl_sample_consensus directly, since libpcl_segmentation
+  // would load PCL's features library at every start of the tool.
+  pcl::SampleConsensusModelPlane<pcl::PointXYZ>::Ptr model(
+      new pcl::SampleConsensusModelPlane<pcl::PointXYZ>(sample, false));  // fixed seed: same cloud, same plane
+  pcl::RandomSampleConsensus<pcl::PointXYZ> ransac(model, options.plane_distance);
+  ransac.setMaxIterations(options.plane_iterations);
+  if (!ransac.computeModel(0)) return say("no plane found");
+  pcl::Indices inliers;
+  ransac.getInliers(inliers);
+  Eigen::VectorXf coeff, refined;
+  ransac.getModelCoefficients(coeff);
+  model->optimizeModelCoefficients(inliers, coeff, refined);
+  if (refined.size() != 4) return say("no plane found");
+  Eigen::Vector4f pl = refined.head<4>();
   pl /= pl.head<3>().norm();
   if (pl[3] < 0) pl = -pl;  // the camera (origin) on the positive side
 

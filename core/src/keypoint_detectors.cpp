@@ -1,19 +1,15 @@
-// The PCL detectors keyturn compares against; their templates are not
-// precompiled in Debian's PCL, so this is the one translation unit that
-// instantiates them.
+// The detectors keyturn compares against: its own ISS, PCL's uniform sampling, and PCL's Harris3D
+// and SIFT3D (in the plugin "pcl_features", src/pcl_features_plugin.h).
 #include "keyturn/core/keypoint_detectors.h"
 
-#include <pcl/features/normal_3d.h>
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/filters/uniform_sampling.h>
-#include <pcl/keypoints/harris_3d.h>
-#include <pcl/keypoints/sift_keypoint.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/radius_search.h"
+#include "pcl_features_plugin.h"
 
 #include <algorithm>
 #include <cmath>
@@ -53,38 +49,24 @@ pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const PointSet& set) {
 
 // Harris's response at every point (no suppression), in the set's order.
 std::vector<double> harrisResponse(const PointSet& set, double res, const DetectorOptions& o) {
-  auto cloud = toPcl(set);
-  pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI> h(pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI>::HARRIS);
-  h.setInputCloud(cloud);
-  h.setRadius(o.harris_radius * res);
-  h.setNonMaxSupression(false);
-  h.setRefine(false);
-  h.setNumberOfThreads(1);
-  pcl::PointCloud<pcl::PointXYZI> all;
-  h.compute(all);
+  const auto all = detail::pclFeatures().harris(set, o.harris_radius * res, false);
   std::vector<double> out(set.size(), 0.0);
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(cloud);
+  tree.setInputCloud(toPcl(set));
   pcl::Indices idx(1);
   std::vector<float> d2(1);
-  for (const auto& p : all)
-    if (std::isfinite(p.x) && std::isfinite(p.intensity) && tree.nearestKSearch(pcl::PointXYZ(p.x, p.y, p.z), 1, idx, d2) == 1)
-      out[static_cast<std::size_t>(idx[0])] = p.intensity;
+  for (const auto& [p, response] : all)
+    if (p.allFinite() && std::isfinite(response) &&
+        tree.nearestKSearch(pcl::PointXYZ(p.x(), p.y(), p.z()), 1, idx, d2) == 1)
+      out[static_cast<std::size_t>(idx[0])] = response;
   return out;
 }
 
 // |curvature| at every point, from the normals SIFT's scale space is built on.
 std::vector<double> curvature(const PointSet& set, double res) {
-  auto cloud = toPcl(set);
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
-  ne.setInputCloud(cloud);
-  ne.setSearchMethod(pcl::search::KdTree<pcl::PointXYZ>::Ptr(new pcl::search::KdTree<pcl::PointXYZ>));
-  ne.setRadiusSearch(3.5 * res);
-  pcl::PointCloud<pcl::Normal> n;
-  ne.compute(n);
+  const std::vector<float> n = detail::pclFeatures().curvature(set, 3.5 * res);
   std::vector<double> out(set.size(), 0.0);
-  for (std::size_t i = 0; i < n.size() && i < out.size(); ++i)
-    out[i] = std::isfinite(n[i].curvature) ? std::abs(n[i].curvature) : 0.0;
+  for (std::size_t i = 0; i < n.size() && i < out.size(); ++i) out[i] = std::isfinite(n[i]) ? std::abs(n[i]) : 0.0;
   return out;
 }
 
@@ -134,46 +116,14 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
       for (int i : detectIssKeypoints(set, search, res, o.iss).keypoints) out.push_back(set.points[i]);
       break;
     }
-    case Detector::Harris3d: {
-      auto cloud = toPcl(set);
-      pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI> h(pcl::HarrisKeypoint3D<pcl::PointXYZ, pcl::PointXYZI>::HARRIS);
-      h.setInputCloud(cloud);
-      h.setRadius(o.harris_radius * res);
-      h.setNonMaxSupression(true);
-      h.setRefine(false);
-      h.setNumberOfThreads(1);
-      pcl::PointCloud<pcl::PointXYZI> kp;
-      h.compute(kp);
-      for (const auto& p : kp)
-        if (std::isfinite(p.x)) out.emplace_back(p.x, p.y, p.z);
+    case Detector::Harris3d:
+      for (const auto& [p, response] : detail::pclFeatures().harris(set, o.harris_radius * res, true))
+        if (std::isfinite(p.x())) out.push_back(p);
       break;
-    }
-    case Detector::Sift3d: {
-      // SIFT on the surface curvature (PCL's PointNormal field selector picks it).
-      auto cloud = toPcl(set);
-      pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-      pcl::NormalEstimation<pcl::PointXYZ, pcl::PointNormal> ne;
-      ne.setInputCloud(cloud);
-      ne.setSearchMethod(tree);
-      ne.setRadiusSearch(3.5 * res);
-      pcl::PointCloud<pcl::PointNormal>::Ptr pn(new pcl::PointCloud<pcl::PointNormal>);
-      ne.compute(*pn);
-      for (std::size_t i = 0; i < pn->size(); ++i) {
-        (*pn)[i].x = (*cloud)[i].x;
-        (*pn)[i].y = (*cloud)[i].y;
-        (*pn)[i].z = (*cloud)[i].z;
-      }
-      pcl::SIFTKeypoint<pcl::PointNormal, pcl::PointWithScale> sift;
-      pcl::search::KdTree<pcl::PointNormal>::Ptr tree2(new pcl::search::KdTree<pcl::PointNormal>);
-      sift.setSearchMethod(tree2);
-      sift.setScales(static_cast<float>(o.sift_min_scale * res), o.sift_octaves, o.sift_scales_per_octave);
-      sift.setMinimumContrast(static_cast<float>(o.sift_min_contrast));
-      sift.setInputCloud(pn);
-      pcl::PointCloud<pcl::PointWithScale> kp;
-      sift.compute(kp);
-      for (const auto& p : kp) out.emplace_back(p.x, p.y, p.z);
+    case Detector::Sift3d:
+      out = detail::pclFeatures().sift(set, 3.5 * res, static_cast<float>(o.sift_min_scale * res), o.sift_octaves,
+                                       o.sift_scales_per_octave, static_cast<float>(o.sift_min_contrast));
       break;
-    }
     case Detector::Uniform: {
       auto cloud = toPcl(set);
       pcl::UniformSampling<pcl::PointXYZ> us;

@@ -1,129 +1,41 @@
 #include "keyturn/core/pcl_baselines.h"
 
-#include <cmath>
-
-#include <pcl/features/esf.h>
-#include <pcl/features/normal_3d.h>
-#include <pcl/features/our_cvfh.h>
-#include <pcl/features/vfh.h>
-#include <pcl/keypoints/iss_3d.h>
-#include <pcl/point_cloud.h>
-#include <pcl/point_types.h>
-#include <pcl/search/kdtree.h>
-
-#include "keyturn/core/error.h"
+#include "keyturn/core/plugin.h"
 #include "keyturn/core/worker_process.h"
+#include "pcl_features_plugin.h"
 
 namespace keyturn {
-namespace {
-pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const PointSet& set) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
-  c->reserve(set.size());
-  for (const auto& p : set.points) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  return c;
+
+namespace detail {
+const PclFeatures& pclFeatures() {
+  static const PclFeatures* table = pluginFunction<PclFeaturesFunction>("pcl_features", "keyturn_pcl_features")();
+  return *table;
 }
-pcl::PointCloud<pcl::Normal>::Ptr normalsOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
-                                            const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree, double radius) {
-  pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;
-  ne.setInputCloud(cloud);
-  ne.setSearchMethod(tree);
-  ne.setRadiusSearch(radius);
-  pcl::PointCloud<pcl::Normal>::Ptr normals(new pcl::PointCloud<pcl::Normal>);
-  ne.compute(*normals);
-  return normals;
+}  // namespace detail
+
+std::vector<Eigen::Vector3f> pclIssKeypoints(const PointSet& set, double frame_radius, double nms_radius,
+                                             double gamma21, double gamma32, int min_neighbors) {
+  return detail::pclFeatures().iss_keypoints(set, frame_radius, nms_radius, gamma21, gamma32, min_neighbors);
 }
 
-}  // namespace
+std::vector<float> pclEsf(const PointSet& set) { return detail::pclFeatures().esf(set); }
 
-std::vector<Eigen::Vector3f> pclIssKeypoints(const PointSet& set, double frame_radius,
-                                             double nms_radius, double gamma21, double gamma32,
-                                             int min_neighbors) {
-  auto cloud = toPcl(set);
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  pcl::ISSKeypoint3D<pcl::PointXYZ, pcl::PointXYZ> iss;
-  iss.setSearchMethod(tree);
-  iss.setSalientRadius(frame_radius);
-  iss.setNonMaxRadius(nms_radius);
-  iss.setThreshold21(gamma21);
-  iss.setThreshold32(gamma32);
-  iss.setMinNeighbors(min_neighbors);
-  iss.setNumberOfThreads(1);
-  iss.setInputCloud(cloud);
-  pcl::PointCloud<pcl::PointXYZ> kp;
-  iss.compute(kp);
-  std::vector<Eigen::Vector3f> out;
-  for (const auto& p : kp) out.emplace_back(p.x, p.y, p.z);
-  return out;
-}
-
-std::vector<float> pclEsf(const PointSet& set) {
-  auto cloud = toPcl(set);
-  pcl::ESFEstimation<pcl::PointXYZ, pcl::ESFSignature640> esf;
-  esf.setInputCloud(cloud);
-  pcl::PointCloud<pcl::ESFSignature640> out;
-  esf.compute(out);
-  if (out.empty()) return {};
-  return std::vector<float>(out[0].histogram, out[0].histogram + 640);
+std::vector<float> pclEsfSeeded(const PointSet& set, unsigned seed) {
+  return detail::pclFeatures().esf_seeded(set, seed);
 }
 
 std::vector<float> pclVfh(const PointSet& set, double normal_radius) {
-  auto cloud = toPcl(set);
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  auto normals = normalsOf(cloud, tree, normal_radius);
-  pcl::VFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> vfh;
-  vfh.setInputCloud(cloud);
-  vfh.setInputNormals(normals);
-  vfh.setSearchMethod(tree);
-  pcl::PointCloud<pcl::VFHSignature308> out;
-  vfh.compute(out);
-  if (out.empty()) return {};
-  return std::vector<float>(out[0].histogram, out[0].histogram + 308);
-}
-
-static std::vector<float> ourCvfhInProcess(const PointSet& set, double normal_radius) {
-  auto cloud = toPcl(set);
-  pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
-  auto normals = normalsOf(cloud, tree, normal_radius);
-  // Points with too few neighbours get NaN normals; PCL's OUR-CVFH then builds a
-  // NaN reference frame and indexes its histogram out of bounds (an assertion in
-  // Debian's build). Keep only points with a finite normal.
-  pcl::PointCloud<pcl::PointXYZ>::Ptr kept(new pcl::PointCloud<pcl::PointXYZ>);
-  pcl::PointCloud<pcl::Normal>::Ptr kept_normals(new pcl::PointCloud<pcl::Normal>);
-  for (std::size_t i = 0; i < normals->size(); ++i) {
-    const auto& n = (*normals)[i];
-    if (!std::isfinite(n.normal_x) || !std::isfinite(n.normal_y) || !std::isfinite(n.normal_z) ||
-        !std::isfinite(n.curvature))
-      continue;
-    kept->push_back((*cloud)[i]);
-    kept_normals->push_back(n);
-  }
-  if (kept->size() < 50) return {};
-  cloud = kept;
-  normals = kept_normals;
-  tree->setInputCloud(cloud);
-  pcl::OURCVFHEstimation<pcl::PointXYZ, pcl::Normal, pcl::VFHSignature308> cvfh;
-  cvfh.setInputCloud(cloud);
-  cvfh.setInputNormals(normals);
-  cvfh.setSearchMethod(tree);
-  // PCL's recommended region growing: 5° normal deviation, curvature ≤ 1, ≥ 50 points.
-  cvfh.setEPSAngleThreshold(5.0f / 180.0f * static_cast<float>(M_PI));
-  cvfh.setCurvatureThreshold(1.0f);
-  cvfh.setNormalizeBins(false);
-  cvfh.setClusterTolerance(static_cast<float>(3 * normal_radius));
-  cvfh.setMinPoints(50);
-  cvfh.setAxisRatio(0.8f);
-  pcl::PointCloud<pcl::VFHSignature308> out;
-  cvfh.compute(out);
-  if (out.empty()) return {};
-  return std::vector<float>(out[0].histogram, out[0].histogram + 308);
+  return detail::pclFeatures().vfh(set, normal_radius);
 }
 
 // PCL 1.13's OUR-CVFH aborts on some views (an out-of-range histogram index in
 // computeRFAndShapeDistribution: an assertion in Debian's build, a stray write
 // without one) and no input check we can make predicts it. It runs in a forked
 // child (worker_process.h): the histogram comes back, a crash becomes an error.
+// The plugin is loaded here, before the fork, so the parent keeps it.
 std::vector<float> pclOurCvfh(const PointSet& set, double normal_radius) {
-  return inWorkerProcess([&] { return ourCvfhInProcess(set, normal_radius); }, "OUR-CVFH",
+  const detail::PclFeatures& pcl = detail::pclFeatures();
+  return inWorkerProcess([&] { return pcl.our_cvfh(set, normal_radius); }, "OUR-CVFH",
                          "PCL's OUR-CVFH crashed on this view", "PCL 1.13 computeRFAndShapeDistribution");
 }
 

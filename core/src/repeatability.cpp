@@ -3,10 +3,11 @@
 #include <pcl/kdtree/kdtree_flann.h>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
-#include <pcl/registration/icp.h>
 
 #include <algorithm>
 #include <cmath>
+
+#include "pcl_features_plugin.h"
 
 namespace keyturn {
 namespace {
@@ -69,22 +70,10 @@ double overlapFraction(const PointSet& a, const PointSet& b, const Eigen::Matrix
   return static_cast<double>(near) / static_cast<double>(tried);
 }
 
+// PCL's ICP (libpcl_registration) is in the plugin "pcl_features".
 IcpRefinement refineByIcp(const PointSet& model, const PointSet& scene, const Eigen::Matrix4d& initial,
                           double max_distance, int iterations) {
-  pcl::IterativeClosestPoint<pcl::PointXYZ, pcl::PointXYZ> icp;
-  icp.setInputSource(toPcl(model.points));
-  icp.setInputTarget(toPcl(scene.points));
-  icp.setMaxCorrespondenceDistance(max_distance);
-  icp.setMaximumIterations(iterations);
-  icp.setTransformationEpsilon(1e-10);
-  icp.setEuclideanFitnessEpsilon(1e-12);
-  pcl::PointCloud<pcl::PointXYZ> aligned;
-  icp.align(aligned, initial.cast<float>());
-  IcpRefinement r;
-  r.converged = icp.hasConverged();
-  r.scene_from_model = icp.getFinalTransformation().cast<double>();
-  r.rms_m = std::sqrt(icp.getFitnessScore(max_distance));
-  return r;
+  return detail::pclFeatures().icp(model.points, scene.points, initial, max_distance, iterations);
 }
 
 }  // namespace keyturn

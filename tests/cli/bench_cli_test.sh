@@ -69,4 +69,25 @@ check "scaling: PNG written" test "$(head -c 8 "$work/scaling.png" | od -An -tx1
 check "scaling: nothing fits exits 1" test $? -eq 1
 check "scaling: the left-out size is named" grep -q "no 400000-point input" "$work/big.err"
 
+# Start-up: the heavy libraries stay out of a process that does not use them (the plugins of
+# core/plugin.h), and `bench --startup` times the two commands as whole processes.
+LD_DEBUG=files "$KT" --help > /dev/null 2> "$work/help.ld"
+check "--help opens no plugin" bash -c "! grep -q 'libkeyturn_' '$work/help.ld'"
+for heavy in libtorch libQt5 libopencv_imgcodecs libpcl_io libpcl_features libvtk; do
+  check "--help does not load $heavy" bash -c "! grep -q 'file=[^ ]*$heavy' '$work/help.ld'"
+done
+LD_DEBUG=files "$KT" describe "$work/views/good.pcd" > /dev/null 2> "$work/describe.ld"
+check "describe of a PCD loads the pcl_io plugin" grep -q 'file=[^ ]*libkeyturn_pcl_io.so' "$work/describe.ld"
+for heavy in libtorch libQt5 libopencv_imgcodecs libpcl_features libkeyturn_png libkeyturn_mlp; do
+  check "describe of a PCD does not load $heavy" bash -c "! grep -q 'file=[^ ]*$heavy' '$work/describe.ld'"
+done
+"$KT" bench --startup -n 2 --json > "$work/startup.json" 2> "$work/startup.err"
+check "bench --startup exits 0" test $? -eq 0
+check "startup: two commands, two runs each, all exit 0" test "$(jq -r '[.timings[] | "\(.runs):\(.exit_codes | map(tostring) | join("+"))"] | join(",")' "$work/startup.json")" = "2:0+0,2:0+0"
+check "startup: --help and a describe" test "$(jq -r '[.timings[].command | split(" ")[1]] | join(",")' "$work/startup.json")" = "--help,describe"
+check "startup: times and memory measured" test "$(jq -r '[.timings[] | (.wall_s.min > 0 and .wall_s.min <= .wall_s.median and .wall_s.median <= .wall_s.max and .peak_mib.median > 1)] | all' "$work/startup.json")" = true
+"$KT" bench --startup -n 1 "$work/views/bad.pcd" > /dev/null 2> "$work/startup_bad.err"
+check "startup: a describe that fails exits 1" test $? -eq 1
+check "startup: and says which" grep -q "keyturn describe VIEW' exited with 1" "$work/startup_bad.err"
+
 finish

@@ -1,10 +1,17 @@
 #include "keyturn/learning/classifier.h"
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/plugin.h"
 #include "mlp_classifier.h"
 #include "xgboost_classifier.h"
 
 namespace keyturn::learning {
+
+// libtorch (0.45 s and 160 MB to load) lives in the plugin "mlp", loaded when a network is made.
+std::unique_ptr<Classifier> makeMlpClassifier(const ClassifierParams& params) {
+  static auto* make = pluginFunction<MakeMlpClassifierFunction>("mlp", "keyturn_mlp_make_classifier");
+  return std::unique_ptr<Classifier>(make(params));
+}
 
 std::unique_ptr<Classifier> makeClassifier(const ClassifierParams& params) {
   if (params.kind == "xgboost") return makeXgboostClassifier(params);

@@ -7,6 +7,7 @@
 #include <mutex>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/plugin.h"
 
 namespace keyturn::learning {
 
@@ -149,8 +150,9 @@ class MlpClassifier : public Classifier {
 
 }  // namespace
 
-std::unique_ptr<Classifier> makeMlpClassifier(const ClassifierParams& params) {
-  return std::make_unique<MlpClassifier>(params);
-}
-
 }  // namespace keyturn::learning
+
+KEYTURN_PLUGIN_EXPORT keyturn::learning::Classifier* keyturn_mlp_make_classifier(
+    const keyturn::learning::ClassifierParams& params) {
+  return new keyturn::learning::MlpClassifier(params);
+}

@@ -5,6 +5,8 @@
 
 namespace keyturn::learning {
 
+// Made by the plugin "mlp" (this file's .cpp with libtorch, built as a module).
 std::unique_ptr<Classifier> makeMlpClassifier(const ClassifierParams& params);
+using MakeMlpClassifierFunction = Classifier*(const ClassifierParams& params);
 
 }  // namespace keyturn::learning

@@ -1,6 +1,7 @@
 #pragma once
 // The plots a report links to (core/report_plots.h) drawn as PNG files in
 // the report's folder (sub-folders made as needed; dir "" for files named as they are).
+// Drawn with Qt Charts in the plugin "plots", loaded on the first call.
 #include <string>
 
 #include "keyturn/core/report_plots.h"

@@ -19,7 +19,7 @@
 #include <mutex>
 #include <vector>
 
-#include "keyturn/core/pcl_baselines.h"
+#include "pcl_plugin_parts.h"
 
 namespace keyturn::esf_detail {
 std::time_t seed = 7;
@@ -42,7 +42,7 @@ POINT_CLOUD_REGISTER_POINT_STRUCT(keyturn::esf_detail::EsfPoint, (float, x, x)(f
 
 namespace keyturn {
 
-std::vector<float> pclEsfSeeded(const PointSet& set, unsigned seed) {
+std::vector<float> pcl_plugin::esfSeeded(const PointSet& set, unsigned seed) {
   // rand() is process-wide state: one ESF at a time.
   static std::mutex mutex;
   std::lock_guard<std::mutex> lock(mutex);

@@ -1,0 +1,28 @@
+#pragma once
+// Plugins: the heavy libraries (libtorch for the network, Qt for report plots, OpenCV's image
+// codecs) sit in shared modules loaded on first use, so a process loads only what its work needs:
+// `keyturn --help` or a describe of a PCD view loads none of them (docs/benchmarks.md, start-up).
+//
+// A plugin NAME is the module libkeyturn_NAME.so, looked for in this order:
+//   1. the folders in KEYTURN_PLUGIN_PATH (colon-separated), when set;
+//   2. the folder of the program or module that holds this code (a Python package keeps its
+//      plugins beside its extension), and its ../lib/keyturn (an install: bin/ and lib/keyturn/);
+//   3. the build tree's lib/keyturn (for programs run from the build, such as the tests).
+// Loaded once per process and never unloaded; thread-safe.
+#include <string>
+
+namespace keyturn {
+
+// The address of `symbol` in plugin `name`. Throws keyturn::Error naming the plugin, the folders
+// searched and the loader's reason when the module or the symbol cannot be found.
+void* pluginSymbol(const std::string& name, const char* symbol);
+
+template <class Function>
+Function* pluginFunction(const std::string& name, const char* symbol) {
+  return reinterpret_cast<Function*>(pluginSymbol(name, symbol));
+}
+
+}  // namespace keyturn
+
+// Marks a plugin's entry points (the modules are built with hidden visibility).
+#define KEYTURN_PLUGIN_EXPORT extern "C" __attribute__((visibility("default")))
