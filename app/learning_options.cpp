@@ -25,8 +25,8 @@ void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
 void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* method) {
   if (method)
     cmd.add_option("--open-set", *method,
-                   "Open-set answers: max-probability, knn (distance to the chosen class's nearest training views), "
-                   "none (closed-set: every view gets a class) or auto (" + std::string(learning::defaultOpenSetMethod()) +
+                   "Open-set answers: none (closed-set: every view gets a class), knn (distance to the chosen class's "
+                   "nearest training views), max-probability, or auto (" + std::string(learning::defaultOpenSetMethod()) +
                    " when the data has at least 3 categories, else closed-set)")
         ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,

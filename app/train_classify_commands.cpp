@@ -26,7 +26,7 @@ struct TrainArgs {
   DescriptorFlags flags;
   learning::ClassifierParams params;
   learning::OpenSetOptions open_set;
-  std::string open_set_method = "auto";
+  std::string open_set_method = "none";  // closed-set unless asked (docs/results.md, "Open-set answers")
 };
 
 int runTrain(const TrainArgs& a) {

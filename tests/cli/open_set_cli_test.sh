@@ -43,14 +43,16 @@ check "the table shows no object" grep -q "two_points.pcd	no object	-	K=-1	" "$w
 check "an old model answers a class, with no open-set test" \
   test "$(jq -r '.[0] | "\(.answer) \(.open_set) \(.score) \(.threshold)"' "$work/old.json")" = "class null null null"
 
-# Two categories cannot be calibrated: asked for, an error; by default (auto), a closed-set model.
+# Two categories cannot be calibrated: asked for, an error; with auto, a closed-set model.
 "$KT" simulate --objects "$data/objects-two-categories.csv" --elevations 30 --step 90 -q --out "$work/two"
 "$KT" train "$work/two" --features kpd2 --open-set knn $fast -q --out "$work/m2" 2> "$work/m2.err"
 check "train --open-set knn on two categories fails" test $? -ne 0
 check "  naming why" grep -q "it needs at least 3 categories, the training views have 2" "$work/m2.err"
-"$KT" train "$work/two" --features kpd2 $fast --out "$work/m3" 2> "$work/m3.err"
-check "train (auto) on two categories gives a closed-set model" grep -q "closed-set (open-set calibration leaves categories out: it needs at least 3 categories)" "$work/m3.err"
+"$KT" train "$work/two" --features kpd2 --open-set auto $fast --out "$work/m3" 2> "$work/m3.err"
+check "train --open-set auto on two categories gives a closed-set model" grep -q "closed-set (open-set calibration leaves categories out: it needs at least 3 categories)" "$work/m3.err"
 check "  without open_set in its sidecar" test "$(jq '.open_set' "$work/m3/model.json")" = null
+"$KT" train "$work/ds" --features kpd2 $fast -q --out "$work/m5"
+check "train without --open-set is closed-set (the default)" test "$(jq '.open_set' "$work/m5/model.json")" = null
 "$KT" train "$work/ds" --features kpd2 --open-set entropy --out "$work/m4" 2> "$work/m4.err"
 check "an unknown method is named" grep -q -- "--open-set: open-set method 'entropy' is not one of auto, max-probability, knn, none" "$work/m4.err"
 
@@ -60,7 +62,7 @@ check "an unknown method is named" grep -q -- "--open-set: open-set method 'entr
 check "evaluate --protocol open-set4 exits 0" test $? -eq 0
 check "the report has the open-set section" grep -q "^## Open-set answers: open-set4, 32 bins" "$work/report/report.md"
 for c in xgboost mlp; do
-  check "a ROC curve for $c" test -s "$work/report/roc/open-set4_32bins_$c.png"
+  check "a ROC curve for $c" test -s "$work/report/roc/open-set4_32bins_${c}_kpd2_kpa3.png"
 done
 check "each row reports both methods" \
   test "$(jq '[.rows[] | .open_set.methods | map(.method)] | unique' -c "$work/report.json")" = '[["max-probability","knn"]]'

@@ -281,16 +281,17 @@ void bindDataset(py::module_& m) {
         "ids name the rows (default: the file, or viewI). kind as for describe.");
   m.def("train", &train, py::arg("features"), py::arg("blocks") = py::none(), py::kw_only(),
         py::arg("rows") = py::none(), py::arg("classifier") = "xgboost", py::arg("label") = "instance", py::arg("seed") = 7,
-        py::arg("rounds") = py::none(), py::arg("epochs") = py::none(), py::arg("open_set") = "auto",
+        py::arg("rounds") = py::none(), py::arg("epochs") = py::none(), py::arg("open_set") = "none",
         py::arg("false_accept") = 0.05,
         "train(features, blocks=None, *, rows=None, classifier='xgboost', label='instance', seed=7, rounds=None, "
-        "epochs=None, open_set='auto', false_accept=0.05) -> Model\n\n"
+        "epochs=None, open_set='none', false_accept=0.05) -> Model\n\n"
         "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
         "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
         "default 30) or the libtorch network (epochs, default 30). Model.save writes it; Model.classify applies it "
-        "with the features' parameters. open_set: 'auto' (the default method, calibrated for false_accept on "
-        "categories left out in turn, where the views have at least 3 categories; else closed-set), "
-        "'max-probability', 'knn' or 'none' (Model.open_set). GIL released while it trains.");
+        "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn' or 'max-probability' "
+        "(a threshold calibrated for false_accept on categories left out in turn; needs at least 3 categories) or "
+        "'auto' (knn where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "
+        "trains.");
 
   py::class_<PyDataset>(m, "Dataset", "A keyturn dataset folder (docs/dataset-format.md)")
       .def(py::init([](const py::object& path) {

@@ -63,39 +63,36 @@ std::string openSetMarkdown(const EvaluationRun& run, ReportPlots& plots) {
          << "unknowns) and testing the known categories' held-out views (" << p.labels.kindName()
          << " labels). Each method's threshold was calibrated on the fold's training views alone for a false-accept "
             "rate of "
-         << pct(run.plan.open_set.false_accept) << " % (categories left out in turn, at most "
-         << run.plan.open_set.groups << " trainings). AUROC: known against unknown views, mean ± sd over folds; "
+         << pct(run.plan.open_set.false_accept) << " % (its categories dealt into at most "
+         << run.plan.open_set.groups << " groups, each left out of one training). AUROC: known against unknown views, mean ± sd over folds; "
             "false accepts: unknown views given a class; known accuracy: known views accepted with their true class, "
             "against closed-set (every view given a class).\n\n"
          << "| features | classifier | method | AUROC | false accepts % | known accuracy % (open) | closed-set % | "
             "known rejected % |\n|---|---|---|---|---|---|---|---|\n";
-      for (const auto& c : run.plan.classifiers) {
-        CurvePlot chart;
-        chart.file = "roc/" + fileSafeName(pn + "_" + std::to_string(bins) + "bins_" + c) + ".png";
-        chart.title = "Known vs unknown, " + c + ", " + pn + " (" + std::to_string(bins) + " bins)";
-        chart.x_label = "unknown views accepted %";
-        chart.y_label = "known views accepted %";
-        chart.y_min = 0, chart.y_max = 100;
+      std::vector<std::string> files;
+      for (const auto& c : run.plan.classifiers)
         for (const EvaluationRow* r : rows) {
           if (r->classifier != c) continue;
+          CurvePlot chart;  // one per classifier and feature set: the methods side by side
+          chart.file = "roc/" + fileSafeName(pn + "_" + std::to_string(bins) + "bins_" + c + "_" + r->features) + ".png";
+          chart.title = "Known vs unknown views: " + r->features + ", " + c + ", " + pn;
+          chart.x_label = "unknown views accepted %";
+          chart.y_label = "known views accepted %";
+          chart.y_min = 0, chart.y_max = 100;
+          std::string set;
+          for (char ch : r->features) set += ch == '|' ? std::string("\\|") : std::string(1, ch);
           for (const auto& s : summariseOpenSet(r->ev.folds)) {
-            std::string set;
-            for (char ch : r->features) set += ch == '|' ? std::string("\\|") : std::string(1, ch);
             md << "| " << set << " | " << c << " | " << s.method << " | " << std::fixed << std::setprecision(3)
                << s.auroc_mean << " ± " << s.auroc_sd << " | " << pct(s.false_accept) << " | "
                << pct(s.known_accuracy_open) << " | " << pct(s.known_accuracy_closed) << " | " << pct(s.known_rejected)
                << " |\n";
-            chart.series.push_back(rocSeries(r->features + " " + s.method, s));
+            chart.series.push_back(rocSeries(s.method, s));
           }
+          files.push_back(chart.file);
+          plots.curves.push_back(chart);
         }
-        if (chart.series.empty()) continue;
-        plots.curves.push_back(chart);
-      }
-      md << "\nROC curves (all folds pooled):";
-      for (const auto& c : run.plan.classifiers)
-        for (const auto& chart : plots.curves)
-          if (chart.file == "roc/" + fileSafeName(pn + "_" + std::to_string(bins) + "bins_" + c) + ".png")
-            md << " [" << c << "](" << chart.file << ")";
+      md << "\nROC curves (all folds pooled, one per classifier and feature set):";
+      for (const auto& f : files) md << " [" << f.substr(4, f.size() - 8) << "](" << f << ")";
       md << "\n\n";
     }
   return md.str();

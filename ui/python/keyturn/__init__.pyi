@@ -246,6 +246,6 @@ def train(
     seed: int = 7,
     rounds: Optional[int] = None,
     epochs: Optional[int] = None,
-    open_set: Literal["auto", "max-probability", "knn", "none"] = "auto",
+    open_set: Literal["none", "knn", "max-probability", "auto"] = "none",
     false_accept: float = 0.05,
 ) -> Model: ...

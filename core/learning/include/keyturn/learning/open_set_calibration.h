@@ -13,8 +13,8 @@
 
 namespace keyturn::learning {
 
-// The method models get unless told otherwise: the better of the two on the training folds
-// (docs/results.md, "Open-set answers").
+// The method `auto` picks: the better of the two on the open-set protocol's folds (docs/results.md,
+// "Open-set answers"). Models are closed-set unless train is asked for open-set answers.
 inline const char* defaultOpenSetMethod() { return "knn"; }
 
 struct OpenSetOptions {
