@@ -36,6 +36,7 @@ struct EvaluateArgs {
   std::vector<std::string> train_extra;
   DescriptorFlags flags;
   learning::ClassifierParams params;
+  learning::OpenSetOptions open_set{learning::openSetMethods()};
 };
 
 int runEvaluate(const EvaluateArgs& a) {
@@ -64,6 +65,7 @@ int runEvaluate(const EvaluateArgs& a) {
   plan.inner_folds = a.inner_folds;
   if (!a.label.empty()) plan.label = learning::parseLabelKind(a.label);
   plan.train_extra = a.train_extra;
+  plan.open_set = a.open_set;
   const auto describe = [&a](const std::string& dataset, int bins) {
     DescriptorOptions options = a.flags.options;
     options.histogram.bins = bins;
@@ -116,7 +118,9 @@ Command addEvaluateCommand(CLI::App& app) {
                   "'A|B' chooses A or B per fold by nested validation on the training views")
       ->capture_default_str();
   cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
-  cmd->add_option("--protocol", a->protocols, "kfoldN, leave-elevation, leave-instance, fixed:FILE")
+  cmd->add_option("--protocol", a->protocols,
+                  "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
+                  "default 5), fixed:FILE")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
   cmd->add_option("--inner-folds", a->inner_folds,
@@ -144,6 +148,7 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->remove_option(cmd->get_option("--bins"));
   cmd->add_option("--bins", a->bins, "Histogram bins; a list sweeps them, e.g. 16,32,64")->default_str("32");
   addClassifierOptions(*cmd, a->params);
+  addOpenSetOptions(*cmd, a->open_set);
   return {cmd, [a] { return runEvaluate(*a); }};
 }
 

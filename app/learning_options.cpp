@@ -1,5 +1,7 @@
 #include "learning_options.h"
 
+#include "keyturn/core/error.h"
+
 namespace keyturn::app {
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
@@ -18,6 +20,31 @@ void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
   cmd.add_option("--batch", p.mlp.batch, "Network: mini-batch size")->capture_default_str();
   cmd.add_flag("--sigmoid-output", p.mlp.sigmoid_output,
                "Network: the paper's sigmoid output layer (default: softmax with cross-entropy)");
+}
+
+void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* method) {
+  if (method)
+    cmd.add_option("--open-set", *method,
+                   "Open-set answers: none (closed-set: every view gets a class), knn (distance to the chosen class's "
+                   "nearest training views), max-probability, or auto (" + std::string(learning::defaultOpenSetMethod()) +
+                   " when the data has at least 3 categories, else closed-set)")
+        ->capture_default_str();
+  cmd.add_option("--false-accept", o.false_accept,
+                 "Open-set: the rate of unknown views given a class that the threshold is calibrated for")
+      ->check(CLI::Range(0.0, 0.99))
+      ->capture_default_str();
+  cmd.add_option("--open-set-groups", o.groups,
+                 "Open-set: groups of categories left out in turn to calibrate the threshold (trainings)")
+      ->check(CLI::Range(2, 1000))
+      ->capture_default_str();
+}
+
+void setOpenSetFlag(learning::OpenSetOptions& o, const std::string& method) {
+  try {
+    learning::setOpenSetMethod(o, method);
+  } catch (const Error& e) {
+    throw Error(std::string("--open-set: ") + e.what());
+  }
 }
 
 std::vector<std::string> splitList(const std::string& list) {

@@ -3,10 +3,18 @@
 #include <CLI/CLI.hpp>
 
 #include "keyturn/learning/classifier.h"
+#include "keyturn/learning/open_set_calibration.h"
 
 namespace keyturn::app {
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p);
+
+// The open-set calibration's options (--false-accept, --open-set-groups); `method`, when given,
+// adds train's --open-set auto|METHOD|none, put into the options by setOpenSetFlag.
+void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* method = nullptr);
+// auto: the default method when the data allows (o.required false); none: closed-set; else the
+// method, checked (keyturn::Error naming --open-set).
+void setOpenSetFlag(learning::OpenSetOptions& o, const std::string& method);
 
 // Splits on spaces and commas: "kpd2 kpd2+kpa3,esf" → three sets.
 std::vector<std::string> splitList(const std::string& list);

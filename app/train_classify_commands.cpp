@@ -1,6 +1,7 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
 #include <nlohmann/json.hpp>
@@ -12,6 +13,7 @@
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
 #include "learning_options.h"
+#include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
 
 namespace keyturn::app {
@@ -23,20 +25,56 @@ struct TrainArgs {
   bool quiet = false;
   DescriptorFlags flags;
   learning::ClassifierParams params;
+  learning::OpenSetOptions open_set;
+  std::string open_set_method = "none";  // closed-set unless asked (docs/results.md, "Open-set answers")
 };
 
 int runTrain(const TrainArgs& a) {
   const learning::LabelKind kind = learning::parseLabelKind(a.label);
+  learning::OpenSetOptions open_set = a.open_set;
+  setOpenSetFlag(open_set, a.open_set_method);  // before describing: a wrong name fails at once
   const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
   learning::ClassifierParams params = a.params;
   params.kind = a.classifier;
   double s = 0;
-  const learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s);
+  const learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
   learning::saveModel(a.out, m);
-  if (!a.quiet)
+  if (!a.quiet) {
     std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views, "
-              << m.info.classes.size() << " classes, " << std::fixed << std::setprecision(1) << s << " s → " << a.out << "\n";
+              << m.info.classes.size() << " classes, " << std::fixed << std::setprecision(1) << s << " s";
+    const learning::OpenSet& os = m.info.open_set;
+    if (os.enabled())
+      std::cerr << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
+                << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
+                << " views of left-out categories, " << os.calibration_groups << " trainings)";
+    else if (!open_set.methods.empty())
+      std::cerr << "; closed-set (open-set calibration leaves categories out: it needs at least "
+                << learning::kOpenSetMinCategories << " categories)";
+    std::cerr << " → " << a.out << "\n";
+  }
   return 0;
+}
+
+// One view's answer as classify --json gives it: "class" is the answer's label (a class, "unknown"
+// or "no object"), "best" the most probable class; "score" and "threshold" the open-set test (null
+// for a closed-set model).
+nlohmann::json predictionJson(const learning::ModelInfo& m, const learning::Prediction& p, const learning::FeatureRow& row) {
+  nlohmann::json probs = nlohmann::json::object();
+  for (std::size_t c = 0; c < p.probabilities.size() && c < m.classes.size(); ++c) probs[m.classes[c]] = p.probabilities[c];
+  const bool described = p.best >= 0;
+  const bool open = m.open_set.enabled() && described;
+  nlohmann::json j = {{"view", row.id},
+                      {"class", learning::answerLabel(m, p)},
+                      {"answer", learning::answerName(p.answer)},
+                      {"best", described ? nlohmann::json(m.classes.at(static_cast<std::size_t>(p.best))) : nullptr},
+                      {"probability", described ? nlohmann::json(p.probabilities[static_cast<std::size_t>(p.best)]) : nullptr},
+                      {"open_set", m.open_set.enabled() ? nlohmann::json(m.open_set.method) : nullptr},
+                      {"score", open && std::isfinite(p.score) ? nlohmann::json(p.score) : nullptr},
+                      {"threshold", m.open_set.enabled() ? nlohmann::json(m.open_set.threshold) : nullptr},
+                      {"keypoints", row.keypoints},
+                      {"probabilities", probs}};
+  if (p.answer == learning::Answer::NoObject) j["problem"] = row.problem;
+  return j;
 }
 
 struct ClassifyArgs {
@@ -61,20 +99,25 @@ int runClassify(const ClassifyArgs& a) {
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?", depth});
     DescribeProgressLine progress(a.quiet || views.size() < 2);
     t = learning::describeForModel(m, views, a.jobs, &progress, a.model);
-    for (const auto& row : t.rows)
-      if (row.keypoints < 0 && !row.problem.empty()) errors.push_back(row.id + ": " + row.problem);
+    for (const auto& row : t.rows)  // a view too empty to describe is answered "no object" instead
+      if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) errors.push_back(row.id + ": " + row.problem);
   }
   nlohmann::json js = nlohmann::json::array();
+  const learning::OpenSet& os = m.info.open_set;
   for (const auto& p : learning::predictRows(m, t, a.model)) {
     const auto& row = t.rows[p.row];
-    const auto best = static_cast<std::size_t>(p.best);
-    nlohmann::json probs;
-    for (std::size_t c = 0; c < m.info.classes.size(); ++c) probs[m.info.classes[c]] = p.probabilities[c];
-    js.push_back({{"view", row.id}, {"class", m.info.classes[best]}, {"probability", p.probabilities[best]},
-                  {"keypoints", row.keypoints}, {"probabilities", probs}});
-    if (!a.json)
-      std::cout << row.id << "\t" << m.info.classes[best] << "\t" << std::fixed << std::setprecision(3)
-                << p.probabilities[best] << "\tK=" << row.keypoints << "\n";
+    js.push_back(predictionJson(m.info, p, row));
+    if (a.json) continue;
+    std::cout << row.id << "\t" << learning::answerLabel(m.info, p) << "\t" << std::fixed << std::setprecision(3);
+    if (p.best >= 0) std::cout << p.probabilities[static_cast<std::size_t>(p.best)];
+    else std::cout << "-";
+    std::cout << "\tK=" << row.keypoints;
+    if (os.enabled() && p.answer != learning::Answer::NoObject)
+      std::cout << "\t" << os.method << " " << std::setprecision(4) << p.score
+                << (p.answer == learning::Answer::Class ? " >= " : " < ") << os.threshold << " ("
+                << m.info.classes.at(static_cast<std::size_t>(p.best)) << ")";
+    if (p.answer == learning::Answer::NoObject) std::cout << "\t" << row.problem;
+    std::cout << "\n";
   }
   if (a.json) std::cout << js.dump(2) << "\n";
   for (const auto& e : errors) std::cerr << "keyturn classify: " << e << "\n";
@@ -95,6 +138,7 @@ Command addTrainCommand(CLI::App& app) {
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
   a->flags.add(*cmd, false);
   addClassifierOptions(*cmd, a->params);
+  addOpenSetOptions(*cmd, a->open_set, &a->open_set_method);
   return {cmd, [a] { return runTrain(*a); }};
 }
 
@@ -104,7 +148,8 @@ Command addClassifyCommand(CLI::App& app) {
   cmd->add_option("model", a->model, "Model folder (from keyturn train)")->required();
   cmd->add_option("views", a->inputs, "PCD/PLY files, depth PNGs or folders, or one feature cache .csv")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views");
-  cmd->add_flag("--json", a->json, "Class and probabilities per view as JSON");
+  cmd->add_flag("--json", a->json,
+                "Answer (a class, unknown or no object), probabilities and open-set score per view as JSON");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
   a->depth.add(*cmd);
   return {cmd, [a] { return runClassify(*a); }};

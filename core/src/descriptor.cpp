@@ -6,6 +6,7 @@
 #include <numeric>
 #include <random>
 
+#include "keyturn/core/empty_view.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/histogram.h"
 #include "keyturn/core/keypoint_functions.h"
@@ -51,17 +52,17 @@ std::vector<double> ViewDescriptor::featureVector() const {
 
 PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   const auto start = std::chrono::steady_clock::now();
-  if (input.points.empty()) throw Error("empty point cloud");
+  if (input.points.empty()) throw EmptyViewError("empty point cloud");
   PreparedView v;
   v.input_points = input.validCount();
-  if (v.input_points == 0) throw Error("no valid points (all NaN or infinite)");
+  if (v.input_points == 0) throw EmptyViewError("no valid points (all NaN or infinite)");
   Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working) : input;
   const std::size_t filtered = cloud.validCount();
   if (filtered < 3) {
     std::string why;
     for (const auto& s : v.filter.steps)
       if (s.removed() > 0) why += (why.empty() ? "" : ", ") + s.name + " −" + std::to_string(s.removed());
-    throw Error("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +
+    throw EmptyViewError("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +
                 " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
                 (why.empty() ? "nothing removed" : why) + "; --explain shows each step)");
   }
@@ -94,7 +95,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   StageClock clock;
   out.input_points = set.size();
   out.points = set.size();
-  if (set.size() < 3) throw Error("only " + std::to_string(set.size()) + " points left after filtering");
+  if (set.size() < 3) throw EmptyViewError("only " + std::to_string(set.size()) + " points left after filtering");
 
   RadiusSearch search(set);
   out.resolution = std::max(cloudResolution(set, search), min_resolution);
@@ -113,7 +114,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     out.keypoint_index = keypoints;
     out.times.iss = clock.lap();
     if (out.keypointCount() < o.min_keypoints)
-      throw Error("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +
+      throw EmptyViewError("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +
                   std::to_string(set.size()) + " points (need at least " +
                   std::to_string(o.min_keypoints) + "; move the camera closer or lower the radii)");
     out.low_keypoints = out.keypointCount() < o.low_keypoints;

@@ -115,7 +115,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       } else {
         kl::FeatureTable t = kl::modelLayout(model, "fuzz");
         t.rows.push_back(kl::describeCloud(cloud, kl::modelOptions(model, "fuzz"), t));
-        for (const auto& p : kl::predictRows(model, t, "fuzz")) checkProbabilities(p.probabilities, p.best, classes);
+        for (const auto& p : kl::predictRows(model, t, "fuzz"))
+          if (p.answer != kl::Answer::NoObject) checkProbabilities(p.probabilities, p.best, classes);
       }
       return 0;
     }
@@ -135,6 +136,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const auto predictions = kl::predictRows(model, t, "fuzz");
     for (const auto& p : predictions) {
       check(p.row < t.rows.size(), "a prediction for a row that is not there");
+      check(p.answer != kl::Answer::NoObject, "no object for a row that was not described as empty");
       checkProbabilities(p.probabilities, p.best, classes);
     }
   } catch (const keyturn::Error&) {

@@ -10,6 +10,7 @@ import io
 import json
 import math
 import os
+import pickle
 import shutil
 import subprocess
 import threading
@@ -223,6 +224,45 @@ class Classify(unittest.TestCase):
         self.assertTrue(view.exists(), view)
         self.assert_classifies_as_cli(model, view)
         self.assertEqual(sorted(keyturn.Model(model).classes), ["ycb_006_mustard_bottle", "ycb_025_mug"])
+
+
+    def test_open_set_answers_as_the_cli(self):
+        """Issue 34: an open-set model's answer, best class, score and threshold are the CLI's; a view
+        too empty to describe is "no object", not an exception."""
+        Fixture.make()
+        objects = WORK / "objects3.csv"
+        objects.write_text("class,instance,mesh\n"
+                           f"mug,ycb_025_mug,{SOURCE}/data/objects/mug__ycb_025_mug.ply\n"
+                           f"bottle,ycb_006_mustard_bottle,{SOURCE}/data/objects/bottle__ycb_006_mustard_bottle.ply\n"
+                           f"box,ycb_004_sugar_box,{SOURCE}/data/objects/box__ycb_004_sugar_box.ply\n")
+        cli("simulate", "--objects", objects, "--elevations", "30", "--step", "90", "-q", "--out", WORK / "ds3")
+        model = WORK / "open-model"
+        cli("train", WORK / "ds3", "--features", "kpd2+kpa3", "--rounds", "10", "--open-set", "knn", "-q", "--out", model)
+        m = keyturn.Model(model)
+        self.assertEqual(m.open_set["method"], "knn")
+        self.assertEqual(m.open_set["false_accept"], 0.05)
+        for view in (WORK / "ds3/box/ycb_004_sugar_box/e30/a90.0.pcd", WORK / "mug.pcd", FRAME):
+            theirs = json.loads(cli("classify", model, view, "--json", "-q").stdout)[0]
+            ours = m.classify(view)
+            self.assertEqual(ours.cls, theirs["class"], view)
+            self.assertEqual(ours.answer, theirs["answer"], view)
+            self.assertEqual(ours.best, theirs["best"], view)
+            self.assertEqual(ours.score, theirs["score"], view)
+            self.assertEqual(ours.threshold, theirs["threshold"], view)
+            self.assertEqual(ours.answer == "class", ours.score >= ours.threshold, view)
+            self.assertEqual(pickle.loads(pickle.dumps(ours)), ours)
+        self.assertEqual(m.classify(WORK / "ds3/box/ycb_004_sugar_box/e30/a90.0.pcd").cls, "ycb_004_sugar_box")
+        empty = m.classify(np.array([[0, 0, 0.5], [0.01, 0, 0.5]], np.float32))
+        self.assertEqual((empty.cls, empty.answer, empty.best, empty.score), ("no object", "no object", "", None))
+        self.assertIn("points left after filtering", empty.problem)
+        old = keyturn.Model(MODEL).classify(WORK / "mug.pcd")  # written before issue 34: closed-set
+        self.assertEqual((old.answer, old.score, old.threshold), ("class", None, None))
+        self.assertIsNone(keyturn.Model(MODEL).open_set)
+        trained = keyturn.train(keyturn.Dataset(WORK / "ds3").features("kpd2+kpa3"), rounds=10, open_set="max-probability")
+        self.assertEqual(trained.open_set["method"], "max-probability")
+        with self.assertRaises(ValueError) as e:
+            keyturn.train(keyturn.Dataset(WORK / "ds3").features("kpd2+kpa3"), rounds=10, open_set="entropy")
+        self.assertIn("open-set method 'entropy'", str(e.exception))
 
 
 class DatasetTest(unittest.TestCase):

@@ -162,7 +162,8 @@ Features featuresOf(const py::sequence& views, const py::sequence& labels, const
 }
 
 py::object train(const Features& f, const py::object& blocks, const py::object& rows, const std::string& classifier,
-                 const std::string& label, std::uint64_t seed, const py::object& rounds, const py::object& epochs) {
+                 const std::string& label, std::uint64_t seed, const py::object& rounds, const py::object& epochs,
+                 const std::string& open_set, double false_accept) {
   learning::ClassifierParams params;
   params.kind = classifier;
   params.seed = seed;
@@ -173,7 +174,11 @@ py::object train(const Features& f, const py::object& blocks, const py::object& 
   if (params.xgboost.rounds < 1 || params.mlp.epochs < 1) throw py::value_error("train: rounds and epochs must be >= 1");
   learning::LabelKind kind = learning::LabelKind::Instance;
   std::vector<std::string> use = f.blocks;
+  learning::OpenSetOptions open;
+  open.false_accept = false_accept;
+  if (!(false_accept >= 0 && false_accept < 1)) throw py::value_error("train: false_accept must be within [0, 1)");
   try {
+    learning::setOpenSetMethod(open, open_set);
     kind = learning::parseLabelKind(label);
     if (!blocks.is_none()) {
       use.clear();
@@ -203,7 +208,7 @@ py::object train(const Features& f, const py::object& blocks, const py::object& 
   learning::Model model;
   try {
     py::gil_scoped_release release;
-    model = learning::trainModel(table, use, kind, params);
+    model = learning::trainModel(table, use, kind, params, nullptr, open);
   } catch (const Error& e) {
     throw py::value_error(std::string("train: ") + e.what());
   }
@@ -276,13 +281,17 @@ void bindDataset(py::module_& m) {
         "ids name the rows (default: the file, or viewI). kind as for describe.");
   m.def("train", &train, py::arg("features"), py::arg("blocks") = py::none(), py::kw_only(),
         py::arg("rows") = py::none(), py::arg("classifier") = "xgboost", py::arg("label") = "instance", py::arg("seed") = 7,
-        py::arg("rounds") = py::none(), py::arg("epochs") = py::none(),
+        py::arg("rounds") = py::none(), py::arg("epochs") = py::none(), py::arg("open_set") = "none",
+        py::arg("false_accept") = 0.05,
         "train(features, blocks=None, *, rows=None, classifier='xgboost', label='instance', seed=7, rounds=None, "
-        "epochs=None) -> Model\n\n"
+        "epochs=None, open_set='none', false_accept=0.05) -> Model\n\n"
         "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
         "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
         "default 30) or the libtorch network (epochs, default 30). Model.save writes it; Model.classify applies it "
-        "with the features' parameters. GIL released while it trains.");
+        "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn' or 'max-probability' "
+        "(a threshold calibrated for false_accept on categories left out in turn; needs at least 3 categories) or "
+        "'auto' (knn where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "
+        "trains.");
 
   py::class_<PyDataset>(m, "Dataset", "A keyturn dataset folder (docs/dataset-format.md)")
       .def(py::init([](const py::object& path) {

@@ -64,19 +64,27 @@ FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::strin
   return out;
 }
 
-FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
-                                 const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
-                                 std::size_t fold, int max_inner, const ClassifierParams& params,
-                                 const TwinRows& twins) {
+std::size_t chooseFeatureSet(const FeatureTable& table, const std::vector<std::string>& candidates,
+                             const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                             std::size_t fold, int max_inner, const ClassifierParams& params, const TwinRows& twins,
+                             std::vector<double>& score) {
   const std::vector<Fold> inner = innerFolds(folds, fold, max_inner);
   if (inner.empty()) throw Error("a choice among feature sets needs a protocol with at least two folds");
-  std::vector<double> score;
+  score.clear();
   for (const auto& c : candidates) {
     double sum = 0;
     for (const auto& f : inner) sum += evaluateFold(table, featureSetBlocks(c), labels, classes, f, params, twins).accuracy();
     score.push_back(sum / static_cast<double>(inner.size()));
   }
-  const auto best = static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
+  return static_cast<std::size_t>(std::max_element(score.begin(), score.end()) - score.begin());
+}
+
+FoldOutcome evaluateFoldChoosing(const FeatureTable& table, const std::vector<std::string>& candidates,
+                                 const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                                 std::size_t fold, int max_inner, const ClassifierParams& params,
+                                 const TwinRows& twins) {
+  std::vector<double> score;
+  const std::size_t best = chooseFeatureSet(table, candidates, labels, classes, folds, fold, max_inner, params, twins, score);
   FoldOutcome out =
       evaluateFold(table, featureSetBlocks(candidates[best]), labels, classes, folds[fold], params, twins);
   out.chosen = candidates[best];

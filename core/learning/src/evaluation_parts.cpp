@@ -42,7 +42,10 @@ json planKey(const EvaluationRun& run) {
           {"tables", tables},               {"trainings", run.totalFolds()}, {"inner_folds", p.inner_folds},
           {"train_extra", p.train_extra},
           // --label: parts judged by other labels are another run
-          {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"}};
+          {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"},
+          // the open-set protocol's calibration: parts calibrated otherwise are another run
+          {"open_set", {{"methods", p.open_set.methods}, {"false_accept", p.open_set.false_accept},
+                        {"groups", p.open_set.groups}, {"neighbours", p.open_set.neighbours}}}};
 }
 
 std::string differences(const json& theirs, const json& mine) {
@@ -107,6 +110,23 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
         o.chosen = f.at("chosen").get<std::string>();
         o.inner_accuracy = f.at("inner_accuracy").get<std::vector<double>>();
       }
+      if (f.contains("open_set")) {
+        const auto& os = f.at("open_set");
+        o.unknown_views = jsonInteger(os, "unknown_views", std::size_t{0}, most, path);
+        for (const auto& m : os.at("methods")) {
+          OpenSetFoldOutcome mo;
+          mo.method = m.at("method").get<std::string>();
+          mo.threshold = m.at("threshold").get<double>();
+          mo.known_accepted = jsonInteger(m, "known_accepted", std::size_t{0}, o.test_views, path);
+          mo.known_correct = jsonInteger(m, "known_correct", std::size_t{0}, mo.known_accepted, path);
+          mo.unknown_accepted = jsonInteger(m, "unknown_accepted", std::size_t{0}, o.unknown_views, path);
+          mo.known_scores = m.at("known_scores").get<std::vector<double>>();
+          mo.unknown_scores = m.at("unknown_scores").get<std::vector<double>>();
+          if (mo.known_scores.size() != o.test_views || mo.unknown_scores.size() != o.unknown_views)
+            throw Error(path + ": fold '" + name + "': open-set scores for another number of views");
+          o.open_set.push_back(std::move(mo));
+        }
+      }
       row.ev.folds[k] = o;
       seen[r][k] = true;
     }
@@ -134,6 +154,14 @@ std::string evaluationPartJson(const EvaluationRun& run, int shard, int shards) 
                      {"train_ms", o.train_ms},   {"predict_ms", o.predict_ms}, {"confusion", cells}});
     if (!o.chosen.empty()) folds.back()["chosen"] = o.chosen, folds.back()["inner_accuracy"] = o.inner_accuracy;
     if (o.twin_views) folds.back()["twin_views"] = o.twin_views;
+    if (!o.open_set.empty()) {
+      json methods = json::array();
+      for (const auto& m : o.open_set)
+        methods.push_back({{"method", m.method}, {"threshold", m.threshold}, {"known_accepted", m.known_accepted},
+                           {"known_correct", m.known_correct}, {"unknown_accepted", m.unknown_accepted},
+                           {"known_scores", m.known_scores}, {"unknown_scores", m.unknown_scores}});
+      folds.back()["open_set"] = {{"unknown_views", o.unknown_views}, {"methods", methods}};
+    }
   }
   const json j{{"format", kFormat}, {"version", kVersion}, {"shard", shard + 1}, {"shards", shards},
                {"plan", planKey(run)},  {"seconds", run.total_s}, {"folds", folds}};

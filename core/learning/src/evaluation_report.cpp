@@ -9,6 +9,8 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
+#include "keyturn/learning/open_set_evaluation.h"
+#include "open_set_report.h"
 
 namespace keyturn::learning {
 namespace {
@@ -214,12 +216,25 @@ void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, in
     params.xgboost.threads = 1;  // parallel over folds instead
     const std::vector<std::string> choices = featureSetChoices(r.features);
     const int classes = static_cast<int>(r.proto->labels.names.size());
-    r.ev.folds[jobs[i].fold] =
-        choices.size() > 1
-            ? evaluateFoldChoosing(tables.at(r.bins), choices, r.proto->labels.of_row, classes, r.proto->folds,
-                                   jobs[i].fold, run.plan.inner_folds, params, run.twins.at(r.bins))
-            : evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row, classes,
-                           r.proto->folds[jobs[i].fold], params, run.twins.at(r.bins));
+    const Fold& fold = r.proto->folds[jobs[i].fold];
+    if (!fold.unknown.empty()) {  // open-set: the choice (if any) on inner closed-set folds, as below
+      std::vector<double> inner;
+      const std::size_t pick = choices.size() > 1 ? chooseFeatureSet(tables.at(r.bins), choices, r.proto->labels.of_row,
+                                                                     classes, r.proto->folds, jobs[i].fold,
+                                                                     run.plan.inner_folds, params, run.twins.at(r.bins), inner)
+                                                  : 0;
+      FoldOutcome o = evaluateOpenSetFold(tables.at(r.bins), featureSetBlocks(choices[pick]), r.proto->labels.of_row,
+                                          fold, params, run.plan.open_set, run.twins.at(r.bins));
+      if (choices.size() > 1) o.chosen = choices[pick], o.inner_accuracy = std::move(inner);
+      r.ev.folds[jobs[i].fold] = std::move(o);
+    } else {
+      r.ev.folds[jobs[i].fold] =
+          choices.size() > 1
+              ? evaluateFoldChoosing(tables.at(r.bins), choices, r.proto->labels.of_row, classes, r.proto->folds,
+                                     jobs[i].fold, run.plan.inner_folds, params, run.twins.at(r.bins))
+              : evaluateFold(tables.at(r.bins), featureSetBlocks(r.features), r.proto->labels.of_row, classes, fold,
+                             params, run.twins.at(r.bins));
+    }
     std::lock_guard<std::mutex> lock(mutex);
     if (fold_done) fold_done();
   });
@@ -257,6 +272,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
                           {"features", r.features}, {"classifier", r.classifier}, {"accuracy_mean", r.ev.mean()},
                           {"accuracy_std", r.ev.stddev()}, {"train_ms_per_view", r.ev.trainMsPerView()},
                           {"predict_ms_per_view", r.ev.predictMsPerView()}, {"folds", folds}});
+    if (const nlohmann::json open = openSetRowJson(run, r); !open.is_null()) js["rows"].back()["open_set"] = open;
   }
   report.csv = csv.str();
   report.json = js.dump(2) + "\n";
@@ -300,6 +316,7 @@ EvaluationReport evaluationReport(const EvaluationRun& run) {
     }
     md << "\n";
   }
+  md << openSetMarkdown(run, report.plots);
   md << nestedChoicesInWords(run);
   md << "Train time per training view (mean over rows): ";
   for (const auto& c : a.classifiers) {

@@ -12,6 +12,7 @@
 #include <thread>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/empty_view.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/fnv1a.h"
 #include "keyturn/core/parallel_for.h"
@@ -86,6 +87,9 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
       }
       put(row, layout, kSize, d.size.block());
       if (d.low_keypoints) note(row, "only " + std::to_string(row.keypoints) + " keypoints");
+    } catch (const EmptyViewError& e) {
+      row.no_object = true;
+      note(row, e.what());
     } catch (const Error& e) {
       note(row, e.what());
     }

@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 
 #include "classifier_params_json.h"
+#include "open_set_json.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
@@ -34,6 +35,7 @@ json toJson(const ModelInfo& m) {
             {"feature_spec", m.spec},
             {"weights", weightsName(m.params.kind)},
             {"class_means", m.class_means}});
+  if (m.open_set.enabled()) j["open_set"] = openSetJson(m.open_set);
   return j;
 }
 
@@ -91,6 +93,8 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
   if (mp.hidden <= 0 || mp.hidden > 1 << 16 || mp.layers <= 0 || mp.layers > 16 || mp.dropout < 0 || mp.dropout >= 1)
     throw Error(source + ": bad network shape (hidden " + std::to_string(mp.hidden) + ", layers " +
                 std::to_string(mp.layers) + ")");
+  if (j.contains("open_set") && !j.at("open_set").is_null())
+    m.open_set = parseOpenSetJson(j.at("open_set"), m.inputs, static_cast<int>(m.classes.size()), source);
   return m;
 }
 

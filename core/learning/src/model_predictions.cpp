@@ -36,18 +36,48 @@ std::vector<Prediction> predictRows(const Model& model, const FeatureTable& t, c
     throw Error(msg + "): describe the views with the model's parameters");
   }
   std::vector<std::size_t> usable;
-  for (std::size_t i = 0; i < t.rows.size(); ++i)
-    if (t.rows[i].keypoints >= 0 || t.rows[i].problem.empty()) usable.push_back(i);
   std::vector<Prediction> out;
-  if (usable.empty()) return out;
-  const Matrix p = model.classifier->predictProba(t.select(model.info.blocks, usable));
-  for (std::size_t k = 0; k < usable.size(); ++k) {
-    const auto r = static_cast<Eigen::Index>(k);
-    Eigen::Index best = 0;
-    p.row(r).maxCoeff(&best);
-    out.push_back({usable[k], static_cast<int>(best), std::vector<float>(p.row(r).data(), p.row(r).data() + p.cols())});
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    if (t.rows[i].no_object) out.push_back({i, -1, {}, Answer::NoObject});
+    else if (t.rows[i].keypoints >= 0 || t.rows[i].problem.empty()) usable.push_back(i);
   }
+  if (!usable.empty()) {
+    const Matrix x = t.select(model.info.blocks, usable);
+    const Matrix p = model.classifier->predictProba(x);
+    const std::vector<double> scores =
+        model.info.open_set.enabled() ? openSetScores(model.info.open_set, x, p) : std::vector<double>();
+    for (std::size_t k = 0; k < usable.size(); ++k) {
+      const auto r = static_cast<Eigen::Index>(k);
+      Prediction pr{usable[k], -1, std::vector<float>(p.row(r).data(), p.row(r).data() + p.cols())};
+      if (p.cols() > 0) {
+        Eigen::Index best = 0;
+        p.row(r).maxCoeff(&best);
+        pr.best = static_cast<int>(best);
+      }
+      if (!scores.empty()) pr.score = scores[k], pr.answer = model.info.open_set.answerFor(pr.score);
+      out.push_back(std::move(pr));
+    }
+  }
+  std::sort(out.begin(), out.end(), [](const Prediction& a, const Prediction& b) { return a.row < b.row; });
   return out;
+}
+
+std::string answerLabel(const ModelInfo& m, const Prediction& p) {
+  if (p.answer != Answer::Class || p.best < 0) return answerName(p.answer == Answer::Class ? Answer::Unknown : p.answer);
+  return m.classes.at(static_cast<std::size_t>(p.best));
+}
+
+Prediction predictionOf(const ModelInfo& m, const Matrix& x, const Matrix& p) {
+  Prediction pr;
+  if (p.rows() != 1) throw Error("one view's probabilities expected, got " + std::to_string(p.rows()) + " rows");
+  pr.probabilities.assign(p.data(), p.data() + p.cols());
+  Eigen::Index best = 0;
+  if (p.cols() > 0) p.row(0).maxCoeff(&best), pr.best = static_cast<int>(best);
+  if (m.open_set.enabled()) {
+    pr.score = openSetScores(m.open_set, x, p).at(0);
+    pr.answer = m.open_set.answerFor(pr.score);
+  }
+  return pr;
 }
 
 }  // namespace keyturn::learning

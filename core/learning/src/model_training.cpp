@@ -1,11 +1,12 @@
 #include "keyturn/learning/model_training.h"
 
 #include <chrono>
+#include <set>
 
 namespace keyturn::learning {
 
 Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, LabelKind kind,
-                 const ClassifierParams& params, double* fit_s) {
+                 const ClassifierParams& params, double* fit_s, const std::optional<OpenSetOptions>& open_set) {
   const Labels labels = labelRows(t, kind);
   Model m;
   m.info.params = params;
@@ -22,6 +23,15 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
   const auto t0 = std::chrono::steady_clock::now();
   m.classifier->fit(x, y, static_cast<int>(m.info.classes.size()));
   if (fit_s) *fit_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  if (open_set && !open_set->methods.empty()) {
+    OpenSetOptions o = *open_set;
+    o.methods.resize(1);
+    std::vector<std::string> categories;
+    for (const auto& row : t.rows) categories.push_back(row.cls);
+    const std::set<std::string> distinct(categories.begin(), categories.end());
+    if (o.required || distinct.size() >= kOpenSetMinCategories)
+      m.info.open_set = calibrateOpenSets(x, y, categories, params, o).front();
+  }
   return m;
 }
 

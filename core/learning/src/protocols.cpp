@@ -78,10 +78,18 @@ Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint6
     p.folds = leaveOneInstanceOut(categories, instances);
     kind = LabelKind::Category;
     label.reset();  // an instance never trained on can only be judged by its category
+  } else if (name.rfind("open-set", 0) == 0) {
+    int groups = 5;
+    if (name.size() > 8) try {
+        groups = std::stoi(name.substr(8));
+      } catch (const std::exception&) {
+        throw Error("protocol '" + name + "': expected open-set or open-setN, e.g. open-set5");
+      }
+    p.folds = openSetFolds(categories, elevations, groups, seed);
   } else if (name.rfind("fixed:", 0) == 0) {
     p.folds = {fixedSplit(ids, testList(name.substr(6)))};
   } else {
-    throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, fixed:FILE)");
+    throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, open-set[N], fixed:FILE)");
   }
   p.labels = labelRows(t, label.value_or(kind));
   return p;

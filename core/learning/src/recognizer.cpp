@@ -4,10 +4,12 @@
 #include <chrono>
 #include <optional>
 
+#include "keyturn/core/empty_view.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/features.h"
 #include "keyturn/learning/feature_cache.h"
 #include "keyturn/learning/feature_spec.h"
+#include "keyturn/learning/model_predictions.h"
 
 namespace keyturn::learning {
 namespace {
@@ -69,7 +71,7 @@ Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) c
   Recognition r;
   // Prepare (filter, working resolution) here, then describe those points: they are what a
   // viewer shows, and the keypoint indices point into them.
-  if (cloud.validCount() == 0) throw Error("no valid points (empty, or all NaN or infinite)");
+  if (cloud.validCount() == 0) throw EmptyViewError("no valid points (empty, or all NaN or infinite)");
   PreparedView prepared = prepareView(cloud, options_);
   r.filtered = std::move(prepared.points);
   r.filter_ms = msSince(t0);
@@ -99,10 +101,11 @@ Recognition Recognizer::recognize(const Cloud& cloud, bool with_geodesic_paths) 
     std::lock_guard<std::mutex> lock(*classify_mutex_);
     p = model_.classifier->predictProba(x);
   }
-  r.probabilities.assign(p.data(), p.data() + p.cols());
-  Eigen::Index best = 0;
-  p.row(0).maxCoeff(&best);
-  r.best = static_cast<int>(best);
+  const Prediction answer = predictionOf(model_.info, x, p);
+  r.probabilities = answer.probabilities;
+  r.best = answer.best;
+  r.answer = answer.answer;
+  r.score = answer.score;
   r.classify_ms = msSince(t2);
   r.total_ms = msSince(t0);
   return r;

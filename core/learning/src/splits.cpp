@@ -106,4 +106,57 @@ std::vector<Fold> innerFolds(const std::vector<Fold>& outer, std::size_t i, int 
   return inner;
 }
 
+std::vector<int> categoryGroups(const std::vector<std::string>& distinct_categories, int groups, std::uint64_t seed) {
+  std::vector<std::size_t> order(distinct_categories.size());
+  for (std::size_t i = 0; i < order.size(); ++i) order[i] = i;
+  std::mt19937_64 rng(seed);
+  std::shuffle(order.begin(), order.end(), rng);
+  const std::size_t g = std::min<std::size_t>(static_cast<std::size_t>(std::max(1, groups)), order.size());
+  std::vector<int> group(order.size(), 0);
+  for (std::size_t p = 0; p < order.size(); ++p) group[order[p]] = static_cast<int>(p % g);
+  return group;
+}
+
+std::vector<Fold> openSetFolds(const std::vector<std::string>& categories, const std::vector<std::string>& elevations,
+                               int groups, std::uint64_t seed) {
+  const std::set<std::string> distinct_set(categories.begin(), categories.end());
+  const std::vector<std::string> distinct(distinct_set.begin(), distinct_set.end());
+  if (distinct.size() < 3)
+    throw Error("open-set folds leave categories out: they need at least 3 categories (the data has " +
+                std::to_string(distinct.size()) + ")");
+  if (groups < 2) throw Error("open-set folds need at least 2 groups of categories (got " + std::to_string(groups) + ")");
+  const std::vector<int> group_of = categoryGroups(distinct, groups, seed);
+  const int g_count = *std::max_element(group_of.begin(), group_of.end()) + 1;
+  const std::set<std::string> elevation_set(elevations.begin(), elevations.end());
+  const std::vector<std::string> elevation_list(elevation_set.begin(), elevation_set.end());
+  const bool by_elevation = elevation_list.size() >= 2 && elevations.size() == categories.size();
+  std::vector<int> part(categories.size(), 0);  // which fold tests the row, if known
+  if (by_elevation) {
+    for (std::size_t r = 0; r < categories.size(); ++r)
+      part[r] = static_cast<int>(std::lower_bound(elevation_list.begin(), elevation_list.end(), elevations[r]) -
+                                 elevation_list.begin());
+  } else {
+    std::vector<std::size_t> order(categories.size());
+    std::iota(order.begin(), order.end(), 0);
+    std::mt19937_64 rng(seed);
+    std::shuffle(order.begin(), order.end(), rng);
+    for (std::size_t p = 0; p < order.size(); ++p) part[order[p]] = static_cast<int>(p % static_cast<std::size_t>(g_count));
+  }
+  std::vector<Fold> folds(static_cast<std::size_t>(g_count));
+  for (int g = 0; g < g_count; ++g) {
+    Fold& f = folds[static_cast<std::size_t>(g)];
+    const int tested = by_elevation ? g % static_cast<int>(elevation_list.size()) : g;
+    std::string left_out;
+    for (std::size_t c = 0; c < distinct.size(); ++c)
+      if (group_of[c] == g) left_out += (left_out.empty() ? "" : "+") + distinct[c];
+    f.name = "unknown " + left_out + (by_elevation ? ", elevation " + elevation_list[static_cast<std::size_t>(tested)] : "");
+    for (std::size_t r = 0; r < categories.size(); ++r) {
+      const auto c = std::lower_bound(distinct.begin(), distinct.end(), categories[r]) - distinct.begin();
+      if (group_of[static_cast<std::size_t>(c)] == g) f.unknown.push_back(r);
+      else (part[r] == tested ? f.test : f.train).push_back(r);
+    }
+  }
+  return folds;
+}
+
 }  // namespace keyturn::learning

@@ -20,6 +20,7 @@ struct ViewResult {
   std::shared_ptr<const learning::Recognition> recognition;  // null when it failed
   std::shared_ptr<const learning::Recognizer> recognizer;    // the model it used
   std::string error;
+  bool no_object = false;  // the error is a view too empty to describe (EmptyViewError)
   std::vector<std::vector<Eigen::Vector3f>> geodesic_paths;  // when asked for
   double latency_ms = 0;  // frame timestamp → result
 };

@@ -28,6 +28,11 @@ namespace keyturn::studio {
 
 namespace {
 constexpr int kTop = 5;
+// Stability labels beside the class indices: an open-set model's "unknown" and a view too empty to
+// describe (issue 34), so the verdict can settle on either as on a class.
+constexpr int kUnknown = -2, kNoObject = -3;
+const char* kUnknownColour = "#8e44ad";
+const char* kNoObjectColour = "#7f8c8d";
 }
 
 RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
@@ -163,7 +168,22 @@ QString RecognitionPanel::modelPath() const { return model_path_->text(); }
 
 QString RecognitionPanel::stableClass() const {
   const int m = stability_.mode();
+  if (m == kUnknown) return QStringLiteral("unknown");
+  if (m == kNoObject) return QStringLiteral("no object");
   return m >= 0 && m < static_cast<int>(classes_.size()) ? QString::fromStdString(classes_[static_cast<std::size_t>(m)]) : QString();
+}
+
+void RecognitionPanel::showVerdict(const QString& detail) {
+  const double a = stability_.agreement();
+  const int m = stability_.mode();
+  const QString agree = a >= 0.8 ? "#27ae60" : a >= 0.5 ? "#d68910" : "#c0392b";
+  const QString colour = m == kUnknown ? kUnknownColour : m == kNoObject ? kNoObjectColour : agree;
+  stability_label_->setText(QString("<span style='color:%1'>●</span> %2 / %3 frames agree")
+                                .arg(agree)
+                                .arg(stability_.agreeing())
+                                .arg(stability_.frames()));
+  verdict_->setText(QString("<span style='color:%1'>%2</span><span style='color:%3;font-size:small'>%4</span>")
+                        .arg(colour, stableClass().toHtmlEscaped(), kNoObjectColour, detail.toHtmlEscaped()));
 }
 
 void RecognitionPanel::record(const ViewResultPtr& result) {
@@ -171,7 +191,10 @@ void RecognitionPanel::record(const ViewResultPtr& result) {
   latest_ = result;
   fresh_ = true;
   const auto* rec = result->recognition.get();
-  if (rec && !rec->probabilities.empty() && rec->probabilities.size() == classes_.size()) stability_.add(rec->best);
+  if (rec && !rec->probabilities.empty() && rec->probabilities.size() == classes_.size())
+    stability_.add(rec->answer == learning::Answer::Unknown ? kUnknown : rec->best);
+  else if (!rec && result->no_object && !classes_.empty())
+    stability_.add(kNoObject);
 }
 
 void RecognitionPanel::refresh() {
@@ -179,7 +202,10 @@ void RecognitionPanel::refresh() {
   fresh_ = false;
   const ViewResultPtr result = latest_;
   if (!result->recognition) {
-    keypoints_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(QString::fromStdString(result->error).toHtmlEscaped()));
+    const QString why = QString::fromStdString(result->error).toHtmlEscaped();
+    keypoints_->setText(result->no_object ? QString("<span style='color:%1'>no object: %2</span>").arg(kNoObjectColour, why)
+                                          : QString("<span style='color:#c0392b'>%1</span>").arg(why));
+    if (result->no_object && !classes_.empty()) showVerdict({});
     return;
   }
   const auto& rec = *result->recognition;
@@ -197,13 +223,15 @@ void RecognitionPanel::refresh() {
       bars_[i]->setValue(has ? static_cast<int>(1000 * rec.probabilities[order[i]]) : 0);
       bars_[i]->setFormat(has ? QString("%1 %").arg(100.0 * rec.probabilities[order[i]], 0, 'f', 1) : QString());
     }
-    const double a = stability_.agreement();
-    const QString colour = a >= 0.8 ? "#27ae60" : a >= 0.5 ? "#d68910" : "#c0392b";
-    stability_label_->setText(QString("<span style='color:%1'>●</span> %2 / %3 frames agree")
-                                  .arg(colour)
-                                  .arg(stability_.agreeing())
-                                  .arg(stability_.frames()));
-    verdict_->setText(QString("<span style='color:%1'>%2</span>").arg(colour, stableClass().toHtmlEscaped()));
+    // An open-set model's test of this view: its score against the threshold.
+    const learning::OpenSet& open = result->recognizer->info().open_set;
+    showVerdict(open.enabled() && std::isfinite(rec.score)
+                    ? QString("  %1 %2 %3 %4")
+                          .arg(QString::fromStdString(open.method))
+                          .arg(rec.score, 0, 'f', 2)
+                          .arg(rec.answer == learning::Answer::Class ? ">=" : "<")
+                          .arg(open.threshold, 0, 'f', 2)
+                    : QString());
   }
   // The chart at a few frames per second is enough for the eye.
   const qint64 now = QDateTime::currentMSecsSinceEpoch();

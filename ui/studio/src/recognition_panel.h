@@ -28,7 +28,8 @@ class RecognitionPanel : public QWidget {
   explicit RecognitionPanel(QWidget* parent = nullptr);
   void setModel(const QString& path, const learning::Recognizer* recognizer, const QString& error = {});
   QString modelPath() const;
-  // The class the last N frames agree on ("" before any), and that agreement.
+  // The class the last N frames agree on ("" before any; "unknown" for an open-set model's views
+  // unlike every class, "no object" for views too empty to describe), and that agreement.
   QString stableClass() const;
   double stableAgreement() const { return stability_.agreement(); }
 
@@ -42,6 +43,9 @@ class RecognitionPanel : public QWidget {
 
  private:
   void plot(const ViewResult& r);
+  // The stability line and the verdict (with `detail` after it, small), coloured by agreement,
+  // purple for unknown, grey for no object.
+  void showVerdict(const QString& detail);
 
   QLineEdit* model_path_;
   QLabel *model_info_, *keypoints_, *stability_label_, *verdict_;

@@ -2,6 +2,8 @@
 
 #include <chrono>
 
+#include "keyturn/core/empty_view.h"
+
 namespace keyturn::studio {
 
 RecognitionPool::RecognitionPool(int threads, QObject* parent) : QObject(parent) {
@@ -59,6 +61,9 @@ void RecognitionPool::work() {
         auto r = std::make_shared<learning::Recognition>(rec->recognize(frame->cloud, paths_));
         out->geodesic_paths = std::move(r->descriptor.geodesic_paths);
         out->recognition = std::move(r);
+      } catch (const EmptyViewError& e) {
+        out->error = e.what();
+        out->no_object = true;
       } catch (const std::exception& e) {
         out->error = e.what();
       }

@@ -17,6 +17,17 @@ struct ConfusionCell {
   int truth = 0, predicted = 0, count = 0;
 };
 
+// An open-set fold's result for one scoring method (open_set.h): the threshold calibrated on the
+// fold's training views and every test view's score.
+struct OpenSetFoldOutcome {
+  std::string method;
+  double threshold = 0;
+  std::size_t known_accepted = 0;   // known test views scoring >= threshold
+  std::size_t known_correct = 0;    // … and given their true class
+  std::size_t unknown_accepted = 0; // unknown views scoring >= threshold (false accepts)
+  std::vector<double> known_scores, unknown_scores;
+};
+
 struct FoldOutcome {
   std::string name;
   std::size_t train_views = 0, test_views = 0, correct = 0;
@@ -27,6 +38,10 @@ struct FoldOutcome {
   // and each candidate's mean accuracy over the inner folds; empty without a choice.
   std::string chosen;
   std::vector<double> inner_accuracy;
+  // Open-set folds (Fold::unknown): the views of the categories left out, and per method the
+  // calibrated threshold and scores; test_views and correct are then the known views, closed-set.
+  std::size_t unknown_views = 0;
+  std::vector<OpenSetFoldOutcome> open_set;
   double accuracy() const { return test_views ? static_cast<double>(correct) / static_cast<double>(test_views) : 0.0; }
 };
 
@@ -44,6 +59,12 @@ struct Evaluation {
 FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                          const std::vector<int>& labels, int classes, const Fold& fold,
                          const ClassifierParams& params, const TwinRows& twins = {});
+// The index of the candidate feature set nested validation chooses inside fold `fold` (below), and
+// each candidate's mean inner accuracy in `inner_accuracy`.
+std::size_t chooseFeatureSet(const FeatureTable& table, const std::vector<std::string>& candidates,
+                             const std::vector<int>& labels, int classes, const std::vector<Fold>& folds,
+                             std::size_t fold, int max_inner, const ClassifierParams& params, const TwinRows& twins,
+                             std::vector<double>& inner_accuracy);
 // Chooses among candidate feature sets inside fold `fold` of `folds` (innerFolds, at most
 // max_inner): the candidate with the best mean inner accuracy (ties: the first listed) is trained
 // on all the fold's training views and tested on its test views, which no choice has seen.

@@ -3,7 +3,7 @@
 // accuracy (mean ± spread over folds) per bin count, feature set, classifier and
 // protocol on one dataset's views, written as CSV, JSON and Markdown, with the
 // plots the Markdown links to (confusion matrices of the best rows, per-class
-// PDFs, the bin sweep).
+// PDFs, the bin sweep), and for the open-set protocol its figures and ROC curves.
 #include <cstdint>
 #include <functional>
 #include <map>
@@ -15,6 +15,7 @@
 #include "keyturn/learning/classifier.h"
 #include "keyturn/learning/evaluation.h"
 #include "keyturn/learning/feature_table.h"
+#include "keyturn/learning/open_set_calibration.h"
 #include "keyturn/learning/protocols.h"
 #include "keyturn/core/report_plots.h"
 
@@ -32,6 +33,8 @@ struct EvaluationPlan {
   std::optional<LabelKind> label;           // none: each protocol's own (makeProtocol)
   int inner_folds = 3;                      // per fold, for a feature set 'A|B' (evaluateFoldChoosing)
   std::vector<std::string> train_extra;     // datasets of twins to train on (training_twins.h)
+  // The open-set protocol's methods (all, measured side by side), stated false-accept rate and groups.
+  OpenSetOptions open_set = {openSetMethods()};
 };
 
 struct EvaluationRow {

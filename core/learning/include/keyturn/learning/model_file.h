@@ -2,13 +2,15 @@
 // A trained model on disk: a folder MODEL/ with model.json (the sidecar: which
 // classifier, its parameters, the class names and the feature specification)
 // and the classifier's own file (model.xgb.json for XGBoost, model.pt for the
-// libtorch network). Features computed another way are refused.
+// libtorch network). Features computed another way are refused. The sidecar's
+// optional "open_set" holds the open-set method and threshold (open_set.h).
 #include <map>
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "keyturn/learning/classifier.h"
+#include "keyturn/learning/open_set.h"
 
 namespace keyturn::learning {
 
@@ -21,6 +23,9 @@ struct ModelInfo {
   // Optional: each class's mean training feature vector (classes × inputs), so a
   // view's PDFs can be shown over those of the class it was taken for.
   std::vector<std::vector<float>> class_means;
+  // Optional: the open-set score and threshold (open_set.h). A model without one (every model
+  // written before issue 34) is closed-set: each view gets a class.
+  OpenSet open_set;
 };
 
 // The per-class mean of each column, ignoring NaN (a block a view lacks); 0 where a

@@ -2,6 +2,7 @@
 // A trained model applied as `keyturn classify` applies it (and the Python
 // module's Model.classify): views described with the model's own parameters and
 // only its blocks; a table of features computed another way is refused.
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -22,13 +23,22 @@ FeatureTable describeForModel(const Model& model, const std::vector<LabelledView
 
 struct Prediction {
   std::size_t row = 0;               // index into the table's rows
-  int best = -1;                     // class index
-  std::vector<float> probabilities;  // one per class, the model's order
+  int best = -1;                     // the most probable class (-1 for no object)
+  std::vector<float> probabilities;  // one per class, the model's order (empty for no object)
+  Answer answer = Answer::Class;
+  double score = std::nan("");       // the open-set score (NaN: closed-set model, or no object)
 };
 
-// Predictions for the table's usable rows, in order (a row that could not be described at all,
-// keypoints -1 with a problem, is left out). Throws keyturn::Error when the table's
-// specification differs from the model's.
+// The label a prediction answers: its class's name, "unknown" or "no object".
+std::string answerLabel(const ModelInfo& model, const Prediction& p);
+// The answer for one view's probabilities and features (x: one row, as the classifier saw it).
+Prediction predictionOf(const ModelInfo& model, const Matrix& x, const Matrix& probabilities);
+
+// Predictions for the table's usable rows, in order: a row too empty to describe
+// (FeatureRow::no_object) is answered "no object"; any other row that could not be described at
+// all (keypoints -1 with a problem) is left out. With an open-set model a view scoring below its
+// threshold is "unknown". Throws keyturn::Error when the table's specification differs from the
+// model's.
 std::vector<Prediction> predictRows(const Model& model, const FeatureTable& table, const std::string& source);
 
 }  // namespace keyturn::learning

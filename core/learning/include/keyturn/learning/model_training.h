@@ -1,18 +1,24 @@
 #pragma once
 // Training a model on a whole feature table (keyturn train); applying one is
 // model_predictions.h.
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/model_file.h"
+#include "keyturn/learning/open_set_calibration.h"
 #include "keyturn/learning/protocols.h"
 
 namespace keyturn::learning {
 
 // A classifier of params.kind on the blocks of every row, labelled by kind, with its sidecar
 // (the table's specification, the class names and means). fit_s: the training time.
+// open_set: calibrate the first of its methods on the table's categories (open_set_calibration.h)
+// and store it in the model; none: a closed-set model. Fewer than three categories cannot be
+// calibrated: an error, or a closed-set model when open_set->required is false.
 Model trainModel(const FeatureTable& table, const std::vector<std::string>& blocks, LabelKind kind,
-                 const ClassifierParams& params, double* fit_s = nullptr);
+                 const ClassifierParams& params, double* fit_s = nullptr,
+                 const std::optional<OpenSetOptions>& open_set = std::nullopt);
 
 }  // namespace keyturn::learning

@@ -3,6 +3,7 @@
 // parameters (its sidecar's spec) → filter → describe → classify. Keeps the
 // filtered points and keypoints so a viewer can show what was recognised.
 // recognize() may be called from several threads at once.
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <string>
@@ -22,6 +23,8 @@ struct Recognition {
   std::vector<float> features;          // what the classifier saw: the blocks concatenated
   std::vector<float> probabilities;     // one per class, the model's order
   int best = -1;
+  Answer answer = Answer::Class;        // Unknown: below an open-set model's threshold (score)
+  double score = std::nan("");          // the open-set score; NaN for a closed-set model
   double filter_ms = 0, describe_ms = 0, classify_ms = 0, total_ms = 0;
 };
 
@@ -39,8 +42,9 @@ class Recognizer {
   const std::string& source() const { return source_; }
   const DescriptorOptions& options() const { return options_; }
   std::vector<std::string> blockNames() const;  // Recognition::block_names
-  // Throws keyturn::Error for a cloud the chain cannot describe (too few
-  // points or keypoints): the caller shows it and goes on with the next frame.
+  // Throws keyturn::EmptyViewError for a cloud too empty to describe (too few points or
+  // keypoints: "no object", empty_view.h), keyturn::Error for other failures: the caller shows
+  // it and goes on with the next frame.
   // Without a model it only describes. with_geodesic_paths: the descriptor also hands back
   // its geodesic paths for display (ViewDescriptor::geodesic_paths).
   Recognition recognize(const Cloud& cloud, bool with_geodesic_paths = false) const;

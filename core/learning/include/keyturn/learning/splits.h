@@ -11,6 +11,8 @@ namespace keyturn::learning {
 struct Fold {
   std::string name;  // "fold 3", "elevation 45", "instance ycb_004_sugar_box"
   std::vector<std::size_t> train, test;
+  // Open-set folds only: views of the categories left out of training, tested as unknowns.
+  std::vector<std::size_t> unknown;
 };
 
 // k folds over n rows, shuffled with `seed` (the paper's protocol: k = 10, seed 7).
@@ -28,6 +30,19 @@ std::vector<Fold> leaveOneInstanceOut(const std::vector<std::string>& categories
 // A fixed split: rows whose id is listed in `test_ids` are tested, the rest trained on.
 // Throws keyturn::Error naming an id that matches no row.
 Fold fixedSplit(const std::vector<std::string>& ids, const std::vector<std::string>& test_ids);
+
+// Categories shuffled with `seed` and dealt into min(groups, categories) groups: each category's
+// group (distinct_categories' order).
+std::vector<int> categoryGroups(const std::vector<std::string>& distinct_categories, int groups, std::uint64_t seed);
+
+// Open-set folds: the categories dealt into `groups` groups (categoryGroups); fold g leaves group
+// g out of training entirely (its views are its unknowns) and tests the other categories' views of
+// one part: elevation g mod E when the rows have E >= 2 elevations (their neighbouring turntable
+// views at the same elevation are not trained on), else the g-th of `groups` shuffled parts. The
+// rest of the known categories' views are trained on. Throws keyturn::Error for fewer than three
+// categories (a fold must train on two) or fewer than two groups.
+std::vector<Fold> openSetFolds(const std::vector<std::string>& categories, const std::vector<std::string>& elevations,
+                               int groups, std::uint64_t seed);
 
 // Nested validation inside fold i: the protocol's other folds' test views that fold i trains on,
 // each tested against the rest of fold i's training views; at most max_inner of them, spread evenly

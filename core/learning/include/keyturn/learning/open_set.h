@@ -1,0 +1,69 @@
+#pragma once
+// Open-set answers (issue 34): a score per view saying how much it looks like the trained
+// classes, and the threshold below which the answer is "unknown" instead of a class.
+// Two scores (docs/results.md, "Open-set answers", measures them):
+// - max-probability: the classifier's own highest class probability;
+// - knn: 1 / (1 + d), d the RMS per-feature distance (features standardised by the training
+//   views' mean and spread, a missing value at the mean) from the view to the nearest
+//   `neighbours` training views of the class the classifier chose (their mean distance).
+// Higher is more like a trained class for both; a view is accepted when score >= threshold.
+// The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
+// views of categories the classifier never saw.
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/classifier.h"
+
+namespace keyturn::learning {
+
+// What a view is: one of the model's classes, "unknown" (unlike every trained class: its open-set
+// score is below the model's threshold) or "no object" (too little in view to describe).
+enum class Answer { Class, Unknown, NoObject };
+std::string answerName(Answer answer);  // "class", "unknown", "no object"
+
+// The methods a score can come from, in the order reports list them.
+const std::vector<std::string>& openSetMethods();
+// Throws keyturn::Error naming the method when it is not one of openSetMethods().
+void checkOpenSetMethod(const std::string& method);
+
+struct OpenSet {
+  std::string method;          // "" : closed-set (every view gets a class)
+  double threshold = 0;        // accepted when score >= threshold
+  double false_accept = 0;     // the stated rate the threshold was calibrated for
+  int calibration_views = 0;   // unknown views the threshold was set on
+  int calibration_groups = 0;  // trainings, each without one group of categories
+  // knn: the training views, standardised (rows), their class, and the standardisation.
+  int neighbours = 1;
+  std::vector<float> mean, scale;
+  Matrix references;
+  std::vector<int> reference_class;
+  bool enabled() const { return !method.empty(); }
+  // Class when score >= threshold (or closed-set), else Unknown (a NaN score too).
+  Answer answerFor(double score) const { return !enabled() || score >= threshold ? Answer::Class : Answer::Unknown; }
+};
+
+// A scorer for `method` fitted on training rows x (labels y: class indices): knn keeps the
+// standardised rows; max-probability keeps nothing. threshold and calibration are left at 0.
+OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1);
+
+// One score per row of x (probabilities: the classifier's rows for x). A row whose score
+// cannot be computed (non-finite probabilities, no reference of its class) scores 0.
+std::vector<double> openSetScores(const OpenSet& scorer, const Matrix& x, const Matrix& probabilities);
+
+// The threshold that accepts at most a fraction `false_accept` of these scores of unknown
+// views (score >= threshold): the smallest score above the highest rejected one. Throws
+// keyturn::Error when there are no scores or the rate is outside [0, 1).
+double thresholdForFalseAccept(std::vector<double> unknown_scores, double false_accept);
+
+// The area under the ROC curve of known (positive) against unknown scores, ties counted half;
+// NaN when either list is empty.
+double auroc(const std::vector<double>& known, const std::vector<double>& unknown);
+
+// The ROC curve: false-accept rate (unknowns accepted) against true-accept rate (knowns
+// accepted) at every distinct score, from (0, 0) to (1, 1).
+struct RocCurve {
+  std::vector<double> false_accept, true_accept;
+};
+RocCurve rocCurve(const std::vector<double>& known, const std::vector<double>& unknown);
+
+}  // namespace keyturn::learning

@@ -1,0 +1,50 @@
+#pragma once
+// Calibrating the open-set threshold on the training data's own folds: the training views'
+// categories are shuffled into groups; each group in turn is left out of a training of the
+// classifier (on the remaining views, their classes renumbered) and its views scored as
+// unknowns. The threshold accepts the stated fraction of those unknown scores; the scorer
+// itself (knn's references) is then fitted on all the training views.
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/classifier.h"
+#include "keyturn/learning/open_set.h"
+
+namespace keyturn::learning {
+
+// The method `auto` picks: the better of the two on the open-set protocol's folds (docs/results.md,
+// "Open-set answers"). Models are closed-set unless train is asked for open-set answers.
+inline const char* defaultOpenSetMethod() { return "knn"; }
+
+struct OpenSetOptions {
+  std::vector<std::string> methods = {defaultOpenSetMethod()};  // each calibrated on the same trainings
+  double false_accept = 0.05;                  // the stated rate on unknown views
+  int groups = 5;                              // at most; one training without each group
+  int neighbours = 1;                          // knn
+  std::uint64_t seed = 7;                      // the categories' shuffle
+  // false: data of fewer than three categories (nothing to leave out) gives a closed-set model
+  // instead of an error (trainModel).
+  bool required = true;
+};
+
+// train's choice by name: auto (the default method where the data has enough categories, else
+// closed-set: required false), none (closed-set), max-probability or knn. Throws keyturn::Error
+// for another name.
+void setOpenSetMethod(OpenSetOptions& options, const std::string& method);
+
+// Distinct categories needed to calibrate: one group left out, two classes still to train on.
+constexpr std::size_t kOpenSetMinCategories = 3;
+
+// One calibrated OpenSet per options.methods, in order. x, y: the training rows and their class
+// indices (0 .. classes - 1, every class present); categories: each row's category (the unit left out). Throws
+// keyturn::Error when fewer than three categories leave no group out with two classes to train on.
+std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
+                                       const std::vector<std::string>& categories, const ClassifierParams& params,
+                                       const OpenSetOptions& options);
+
+// Class indices made contiguous over the classes present: y's values mapped to 0 .. n - 1 in
+// increasing order; `present` (optional) receives the original index of each new one.
+std::vector<int> compactClasses(const std::vector<int>& y, std::vector<int>* present = nullptr);
+
+}  // namespace keyturn::learning

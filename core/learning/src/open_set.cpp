@@ -1,0 +1,147 @@
+#include "keyturn/learning/open_set.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+
+std::string answerName(Answer a) {
+  switch (a) {
+    case Answer::Class: return "class";
+    case Answer::Unknown: return "unknown";
+    case Answer::NoObject: return "no object";
+  }
+  return "?";
+}
+
+const std::vector<std::string>& openSetMethods() {
+  static const std::vector<std::string> methods = {"max-probability", "knn"};
+  return methods;
+}
+
+void checkOpenSetMethod(const std::string& method) {
+  const auto& m = openSetMethods();
+  if (std::find(m.begin(), m.end(), method) == m.end())
+    throw Error("open-set method '" + method + "' is not one of max-probability, knn");
+}
+
+OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours) {
+  checkOpenSetMethod(method);
+  OpenSet s;
+  s.method = method;
+  if (method != "knn") return s;
+  if (neighbours < 1) throw Error("knn open-set scores need at least one neighbour (not " + std::to_string(neighbours) + ")");
+  if (static_cast<std::size_t>(x.rows()) != y.size()) throw Error("knn open-set scores: rows and labels differ in number");
+  s.neighbours = neighbours;
+  const Eigen::Index cols = x.cols();
+  s.mean.assign(static_cast<std::size_t>(cols), 0.f);
+  s.scale.assign(static_cast<std::size_t>(cols), 1.f);
+  for (Eigen::Index k = 0; k < cols; ++k) {
+    double sum = 0, sq = 0;
+    int n = 0;
+    for (Eigen::Index r = 0; r < x.rows(); ++r)
+      if (std::isfinite(x(r, k))) sum += x(r, k), sq += static_cast<double>(x(r, k)) * x(r, k), ++n;
+    const double m = n ? sum / n : 0.0;
+    const double sd = n ? std::sqrt(std::max(0.0, sq / n - m * m)) : 0.0;
+    s.mean[static_cast<std::size_t>(k)] = static_cast<float>(m);
+    s.scale[static_cast<std::size_t>(k)] = sd > 1e-9 ? static_cast<float>(sd) : 1.f;  // a constant column adds nothing
+  }
+  s.references.resize(x.rows(), cols);
+  for (Eigen::Index r = 0; r < x.rows(); ++r)
+    for (Eigen::Index k = 0; k < cols; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      s.references(r, k) = std::isfinite(x(r, k)) ? (x(r, k) - s.mean[kk]) / s.scale[kk] : 0.f;
+    }
+  s.reference_class = y;
+  return s;
+}
+
+namespace {
+
+// Mean RMS distance from standardised row v to the `k` nearest references of class c; NaN without any.
+double nearestDistance(const OpenSet& s, const Eigen::RowVectorXf& v, int c) {
+  std::vector<double> d;
+  for (Eigen::Index r = 0; r < s.references.rows(); ++r)
+    if (s.reference_class[static_cast<std::size_t>(r)] == c) d.push_back((s.references.row(r) - v).squaredNorm());
+  if (d.empty()) return std::nan("");
+  const std::size_t k = std::min(d.size(), static_cast<std::size_t>(s.neighbours));
+  std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(k), d.end());
+  double sum = 0;
+  for (std::size_t i = 0; i < k; ++i) sum += std::sqrt(d[i] / static_cast<double>(std::max<Eigen::Index>(1, v.size())));
+  return sum / static_cast<double>(k);
+}
+
+}  // namespace
+
+std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matrix& p) {
+  checkOpenSetMethod(s.method);
+  if (p.rows() != x.rows()) throw Error("open-set scores: " + std::to_string(x.rows()) + " views but " +
+                                        std::to_string(p.rows()) + " rows of probabilities");
+  std::vector<double> out(static_cast<std::size_t>(x.rows()), 0.0);
+  for (Eigen::Index r = 0; r < x.rows(); ++r) {
+    if (p.cols() == 0 || !p.row(r).allFinite()) continue;  // scores 0: rejected by any calibrated threshold
+    Eigen::Index best = 0;
+    const double top = p.row(r).maxCoeff(&best);
+    if (s.method == "max-probability") {
+      out[static_cast<std::size_t>(r)] = top;
+      continue;
+    }
+    if (x.cols() != static_cast<Eigen::Index>(s.mean.size()))
+      throw Error("knn open-set scores: the model has " + std::to_string(s.mean.size()) + " features, the view " +
+                  std::to_string(x.cols()));
+    Eigen::RowVectorXf v(x.cols());
+    for (Eigen::Index k = 0; k < x.cols(); ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      v(k) = std::isfinite(x(r, k)) ? (x(r, k) - s.mean[kk]) / s.scale[kk] : 0.f;
+    }
+    const double d = nearestDistance(s, v, static_cast<int>(best));
+    out[static_cast<std::size_t>(r)] = std::isfinite(d) ? 1.0 / (1.0 + d) : 0.0;
+  }
+  return out;
+}
+
+double thresholdForFalseAccept(std::vector<double> u, double false_accept) {
+  if (u.empty()) throw Error("open-set calibration: no views of unknown categories to set the threshold on");
+  if (!(false_accept >= 0 && false_accept < 1))
+    throw Error("open-set false-accept rate must be within [0, 1), not " + std::to_string(false_accept));
+  std::sort(u.begin(), u.end(), std::greater<double>());
+  // At most m unknowns may score >= threshold: just above the (m + 1)-th highest score.
+  const auto m = static_cast<std::size_t>(std::floor(false_accept * static_cast<double>(u.size()) + 1e-9));
+  return std::nextafter(u[std::min(m, u.size() - 1)], std::numeric_limits<double>::infinity());
+}
+
+double auroc(const std::vector<double>& known, const std::vector<double>& unknown) {
+  if (known.empty() || unknown.empty()) return std::nan("");
+  std::vector<double> u = unknown;
+  std::sort(u.begin(), u.end());
+  double sum = 0;
+  for (double k : known) {
+    const auto lo = std::lower_bound(u.begin(), u.end(), k), hi = std::upper_bound(u.begin(), u.end(), k);
+    sum += static_cast<double>(lo - u.begin()) + 0.5 * static_cast<double>(hi - lo);
+  }
+  return sum / (static_cast<double>(known.size()) * static_cast<double>(u.size()));
+}
+
+RocCurve rocCurve(const std::vector<double>& known, const std::vector<double>& unknown) {
+  RocCurve c;
+  std::vector<std::pair<double, bool>> all;  // score, known
+  for (double k : known) all.push_back({k, true});
+  for (double u : unknown) all.push_back({u, false});
+  std::sort(all.begin(), all.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+  const double nk = std::max<std::size_t>(1, known.size()), nu = std::max<std::size_t>(1, unknown.size());
+  double tk = 0, fu = 0;
+  c.false_accept.push_back(0);
+  c.true_accept.push_back(0);
+  for (std::size_t i = 0; i < all.size(); ++i) {
+    (all[i].second ? tk : fu) += 1;
+    if (i + 1 < all.size() && all[i + 1].first == all[i].first) continue;  // one point per distinct score
+    c.false_accept.push_back(fu / nu);
+    c.true_accept.push_back(tk / nk);
+  }
+  return c;
+}
+
+}  // namespace keyturn::learning

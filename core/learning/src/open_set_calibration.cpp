@@ -1,0 +1,94 @@
+#include "keyturn/learning/open_set_calibration.h"
+
+#include <algorithm>
+#include <map>
+#include <set>
+
+#include "keyturn/core/error.h"
+#include "keyturn/learning/splits.h"
+
+namespace keyturn::learning {
+
+std::vector<int> compactClasses(const std::vector<int>& y, std::vector<int>* present) {
+  const std::set<int> distinct(y.begin(), y.end());
+  std::map<int, int> index;
+  for (int c : distinct) index.emplace(c, static_cast<int>(index.size()));
+  if (present) present->assign(distinct.begin(), distinct.end());
+  std::vector<int> out;
+  out.reserve(y.size());
+  for (int c : y) out.push_back(index.at(c));
+  return out;
+}
+
+void setOpenSetMethod(OpenSetOptions& o, const std::string& method) {
+  o.required = method != "auto";
+  o.methods.clear();
+  if (method == "none") return;
+  const std::string m = method == "auto" ? defaultOpenSetMethod() : method;
+  const auto& known = openSetMethods();
+  if (std::find(known.begin(), known.end(), m) == known.end())
+    throw Error("open-set method '" + method + "' is not one of auto, max-probability, knn, none");
+  o.methods.push_back(m);
+}
+
+namespace {
+
+Matrix rowsOf(const Matrix& x, const std::vector<std::size_t>& rows) {
+  Matrix out(static_cast<Eigen::Index>(rows.size()), x.cols());
+  for (std::size_t i = 0; i < rows.size(); ++i) out.row(static_cast<Eigen::Index>(i)) = x.row(static_cast<Eigen::Index>(rows[i]));
+  return out;
+}
+
+}  // namespace
+
+std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
+                                       const std::vector<std::string>& categories, const ClassifierParams& params,
+                                       const OpenSetOptions& o) {
+  if (o.methods.empty()) return {};
+  for (const auto& m : o.methods) checkOpenSetMethod(m);
+  if (static_cast<std::size_t>(x.rows()) != y.size() || y.size() != categories.size())
+    throw Error("open-set calibration: rows, labels and categories differ in number");
+  const std::vector<std::string> distinct = [&] {
+    const std::set<std::string> s(categories.begin(), categories.end());
+    return std::vector<std::string>(s.begin(), s.end());
+  }();
+  if (distinct.size() < kOpenSetMinCategories)
+    throw Error("open-set calibration leaves categories out of training: it needs at least 3 categories, the "
+                "training views have " + std::to_string(distinct.size()));
+  const std::vector<int> group_of = categoryGroups(distinct, o.groups, o.seed);
+  const int groups = *std::max_element(group_of.begin(), group_of.end()) + 1;
+  std::vector<std::vector<double>> unknown(o.methods.size());
+  for (int g = 0; g < groups; ++g) {
+    std::vector<std::size_t> train, held;
+    for (std::size_t r = 0; r < categories.size(); ++r) {
+      const auto at = std::lower_bound(distinct.begin(), distinct.end(), categories[r]) - distinct.begin();
+      (group_of[static_cast<std::size_t>(at)] == g ? held : train).push_back(r);
+    }
+    std::vector<int> ytrain;
+    for (auto r : train) ytrain.push_back(y[r]);
+    const std::vector<int> compact = compactClasses(ytrain);
+    const int inner_classes = compact.empty() ? 0 : *std::max_element(compact.begin(), compact.end()) + 1;
+    if (inner_classes < 2 || held.empty()) continue;  // nothing to learn or to score without this group
+    const Matrix xtrain = rowsOf(x, train), xheld = rowsOf(x, held);
+    auto clf = makeClassifier(params);
+    clf->fit(xtrain, compact, inner_classes);
+    const Matrix p = clf->predictProba(xheld);
+    for (std::size_t m = 0; m < o.methods.size(); ++m) {
+      const OpenSet scorer = fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours);
+      const std::vector<double> s = openSetScores(scorer, xheld, p);
+      unknown[m].insert(unknown[m].end(), s.begin(), s.end());
+    }
+  }
+  std::vector<OpenSet> out;
+  for (std::size_t m = 0; m < o.methods.size(); ++m) {
+    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours);
+    s.threshold = thresholdForFalseAccept(unknown[m], o.false_accept);
+    s.false_accept = o.false_accept;
+    s.calibration_views = static_cast<int>(unknown[m].size());
+    s.calibration_groups = groups;
+    out.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace keyturn::learning

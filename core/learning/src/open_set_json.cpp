@@ -1,0 +1,79 @@
+#include "open_set_json.h"
+
+#include <cmath>
+#include <limits>
+
+#include "keyturn/core/checked_integer.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/json_integer.h"
+
+namespace keyturn::learning {
+
+using nlohmann::json;
+
+json openSetJson(const OpenSet& s) {
+  json j = {{"method", s.method},
+            {"threshold", s.threshold},
+            {"false_accept", s.false_accept},
+            {"calibration", {{"unknown_views", s.calibration_views}, {"groups", s.calibration_groups}}}};
+  if (s.method != "knn") return j;
+  j["neighbours"] = s.neighbours;
+  j["mean"] = s.mean;
+  j["scale"] = s.scale;
+  json refs = json::array();
+  for (Eigen::Index r = 0; r < s.references.rows(); ++r) {
+    json row = json::array({s.reference_class[static_cast<std::size_t>(r)]});
+    // Standardised values to 4 decimals: the distances move by < 1e-4 and the file is half the size.
+    for (Eigen::Index k = 0; k < s.references.cols(); ++k) row.push_back(std::round(s.references(r, k) * 1e4f) / 1e4f);
+    refs.push_back(std::move(row));
+  }
+  j["references"] = std::move(refs);
+  return j;
+}
+
+OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::string& source) {
+  const std::string where = source + ": open_set";
+  OpenSet s;
+  try {
+    s.method = j.at("method").get<std::string>();
+    try {
+      checkOpenSetMethod(s.method);
+    } catch (const Error& e) {
+      throw Error(where + ": " + e.what());
+    }
+    s.threshold = j.at("threshold").get<double>();
+    s.false_accept = j.at("false_accept").get<double>();
+    if (!std::isfinite(s.threshold) || !(s.false_accept >= 0 && s.false_accept < 1))
+      throw Error(where + ": threshold must be finite and false_accept within [0, 1)");
+    if (j.contains("calibration")) {
+      const auto& c = j.at("calibration");
+      s.calibration_views = jsonInteger(c, "unknown_views", 0, std::numeric_limits<int>::max(), where);
+      s.calibration_groups = jsonInteger(c, "groups", 0, std::numeric_limits<int>::max(), where);
+    }
+    if (s.method != "knn") return s;
+    s.neighbours = jsonInteger(j, "neighbours", 1, 1 << 16, where);
+    s.mean = j.at("mean").get<std::vector<float>>();
+    s.scale = j.at("scale").get<std::vector<float>>();
+    const auto& refs = j.at("references");
+    if (s.mean.size() != static_cast<std::size_t>(inputs) || s.scale.size() != s.mean.size() || !refs.is_array() ||
+        refs.empty())
+      throw Error(where + ": knn needs mean and scale of " + std::to_string(inputs) + " values and references");
+    s.references.resize(static_cast<Eigen::Index>(refs.size()), inputs);
+    for (std::size_t r = 0; r < refs.size(); ++r) {
+      const auto& row = refs[r];
+      if (!row.is_array() || row.size() != static_cast<std::size_t>(inputs) + 1)
+        throw Error(where + ": reference " + std::to_string(r) + " is not [class, " + std::to_string(inputs) + " values]");
+      const auto c = row[0].is_number() ? integerIn(row[0].get<double>(), 0, classes - 1) : std::nullopt;
+      if (!c) throw Error(where + ": reference " + std::to_string(r) + " names no class 0.." + std::to_string(classes - 1));
+      s.reference_class.push_back(*c);
+      for (int k = 0; k < inputs; ++k) s.references(static_cast<Eigen::Index>(r), k) = row[static_cast<std::size_t>(k) + 1].get<float>();
+    }
+    for (float v : s.scale)
+      if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": scale values must be positive");
+  } catch (const json::exception& e) {
+    throw Error(where + ": " + std::string(e.what()).substr(0, 160));
+  }
+  return s;
+}
+
+}  // namespace keyturn::learning

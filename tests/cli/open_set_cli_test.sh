@@ -1,0 +1,76 @@
+#!/usr/bin/env bash
+# Open-set answers as a user meets them (issue 34): train --open-set, classify's "unknown" and
+# "no object" (table and --json), an old model staying closed-set, and evaluate's open-set
+# protocol with its ROC curve; on a small simulated set of four categories.
+set -u
+source "$(dirname "$0")/lib.sh"
+data="$(dirname "$0")/../data"
+
+"$KT" simulate --objects "$data/objects-four-categories.csv" --elevations 30,60 --step 45 -q --out "$work/ds" 2> "$work/sim.err"
+check "simulate exits 0" test $? -eq 0
+"$KT" simulate --objects "$data/objects-unknown-drill.csv" --elevations 45 --step 90 -q --out "$work/other"
+fast="--rounds 10 --epochs 15"
+
+"$KT" train "$work/ds" --features kpd2+kpa3 --open-set knn $fast --out "$work/model" 2> "$work/train.err"
+check "train --open-set knn exits 0" test $? -eq 0
+check "train says the threshold and what it was set on" \
+  grep -q "open-set knn threshold .* for 5.0 % false accepts (64 views of left-out categories, 4 trainings)" "$work/train.err"
+check "the sidecar holds method, threshold and rate" \
+  test "$(jq -r '.open_set | "\(.method) \(.false_accept) \(.threshold | type) \(.references | length)"' "$work/model/model.json")" = \
+       "knn 0.05 number 64"
+
+known="$work/ds/can/ycb_005_tomato_soup_can/e30/a0.0.pcd"
+drill=$(ls "$work"/other/drill/*/e45/*.pcd | head -1)
+printf 'VERSION .7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\nWIDTH 2\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2\nDATA ascii\n0 0 0.5\n0.01 0 0.5\n' > "$work/two_points.pcd"
+"$KT" classify "$work/model" "$known" "$drill" "$work/two_points.pcd" --json -q > "$work/classify.json" 2> "$work/classify.err"
+check "classify exits 0: no object is an answer, not an error" test $? -eq 0
+check "three answers" test "$(jq length "$work/classify.json")" -eq 3
+check "each view's answer follows its score and the threshold" \
+  test "$(jq '[.[] | select(.answer != "no object") | ((.score >= .threshold) == (.answer == "class"))] | all' "$work/classify.json")" = true
+check "an unknown view is labelled unknown and keeps its best class" \
+  test "$(jq '[.[] | select(.answer == "unknown") | (.class == "unknown" and (.best | type) == "string")] | all' "$work/classify.json")" = true
+check "the trained object's view is answered with its class" \
+  test "$(jq -r '.[0] | "\(.answer) \(.class)"' "$work/classify.json")" = "class ycb_005_tomato_soup_can"
+check "a two-point view is no object, with why" \
+  test "$(jq -r '.[2] | "\(.class) \(.answer) \(.best) \(.score)"' "$work/classify.json")" = "no object no object null null"
+check "  and its problem" jq -e '.[2].problem | test("points left after filtering|too few keypoints")' "$work/classify.json"
+"$KT" classify "$work/model" "$known" "$work/two_points.pcd" -q > "$work/classify.txt"
+check "the table shows the score against the threshold" grep -q "/can/ycb_005_tomato_soup_can/e30/a0.0.pcd	ycb_005_tomato_soup_can	.*	knn [0-9.]* >= [0-9.]* (ycb_005_tomato_soup_can)" "$work/classify.txt"
+check "the table shows no object" grep -q "two_points.pcd	no object	-	K=-1	" "$work/classify.txt"
+
+# A model from before open-set answers (the shipped one) stays closed-set.
+"$KT" classify "$(dirname "$0")/../../data/models/sim-objects" "$drill" --json -q > "$work/old.json"
+check "an old model answers a class, with no open-set test" \
+  test "$(jq -r '.[0] | "\(.answer) \(.open_set) \(.score) \(.threshold)"' "$work/old.json")" = "class null null null"
+
+# Two categories cannot be calibrated: asked for, an error; with auto, a closed-set model.
+"$KT" simulate --objects "$data/objects-two-categories.csv" --elevations 30 --step 90 -q --out "$work/two"
+"$KT" train "$work/two" --features kpd2 --open-set knn $fast -q --out "$work/m2" 2> "$work/m2.err"
+check "train --open-set knn on two categories fails" test $? -ne 0
+check "  naming why" grep -q "it needs at least 3 categories, the training views have 2" "$work/m2.err"
+"$KT" train "$work/two" --features kpd2 --open-set auto $fast --out "$work/m3" 2> "$work/m3.err"
+check "train --open-set auto on two categories gives a closed-set model" grep -q "closed-set (open-set calibration leaves categories out: it needs at least 3 categories)" "$work/m3.err"
+check "  without open_set in its sidecar" test "$(jq '.open_set' "$work/m3/model.json")" = null
+"$KT" train "$work/ds" --features kpd2 $fast -q --out "$work/m5"
+check "train without --open-set is closed-set (the default)" test "$(jq '.open_set' "$work/m5/model.json")" = null
+"$KT" train "$work/ds" --features kpd2 --open-set entropy --out "$work/m4" 2> "$work/m4.err"
+check "an unknown method is named" grep -q -- "--open-set: open-set method 'entropy' is not one of auto, max-probability, knn, none" "$work/m4.err"
+
+# evaluate's open-set protocol: whole categories held out, figures per method, ROC curves.
+"$KT" evaluate "$work/ds" --features kpd2+kpa3 --classifier xgboost,mlp --protocol open-set4 $fast -q \
+  --out "$work/report" --json > "$work/report.json"
+check "evaluate --protocol open-set4 exits 0" test $? -eq 0
+check "the report has the open-set section" grep -q "^## Open-set answers: open-set4, 32 bins" "$work/report/report.md"
+for c in xgboost mlp; do
+  check "a ROC curve for $c" test -s "$work/report/roc/open-set4_32bins_${c}_kpd2_kpa3.png"
+done
+check "each row reports both methods" \
+  test "$(jq '[.rows[] | .open_set.methods | map(.method)] | unique' -c "$work/report.json")" = '[["max-probability","knn"]]'
+check "AUROC and rates are fractions" \
+  test "$(jq '[.rows[].open_set.methods[] | (.auroc_mean, .false_accept, .known_accuracy_open, .known_rejected) | (. >= 0 and . <= 1)] | all' "$work/report.json")" = true
+check "every view is an unknown once" test "$(jq '[.rows[0].open_set.methods[0].unknown_views] | add' "$work/report.json")" -eq 64
+check "open-set accuracy never exceeds closed-set" \
+  test "$(jq '[.rows[].open_set.methods[] | .known_accuracy_open <= .known_accuracy_closed] | all' "$work/report.json")" = true
+"$KT" evaluate "$work/two" --features kpd2 --classifier xgboost --protocol open-set $fast -q --out "$work/r2" 2> "$work/r2.err"
+check "open-set on two categories is refused, naming why" grep -q "need at least 3 categories (the data has 2)" "$work/r2.err"
+finish

@@ -1,0 +1,341 @@
+// Open-set answers (issue 34): scores, calibration for a stated false-accept rate, the model
+// file's open_set, old models staying closed-set, and degenerate views and features.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <random>
+
+#include "keyturn/core/empty_view.h"
+#include "keyturn/core/error.h"
+#include "keyturn/learning/feature_cache.h"
+#include "keyturn/learning/feature_spec.h"
+#include "keyturn/learning/model_predictions.h"
+#include "keyturn/learning/model_training.h"
+#include "keyturn/learning/open_set_calibration.h"
+#include "keyturn/learning/open_set_evaluation.h"
+#include "keyturn/learning/protocols.h"
+#include "keyturn/learning/recognizer.h"
+#include "support/error_of.h"
+
+using namespace keyturn;
+using namespace keyturn::learning;
+using keyturn::test::errorOf;
+namespace fs = std::filesystem;
+
+namespace {
+
+// Gaussian clusters, one class per category: `per` views of each of `categories` categories
+// (numbered from `first`), unit spread around centres `spread` apart on the axes of `dims`
+// dimensions (category k at spread · e_k): every category is as far from every other, so a
+// category left out is as unlike the rest as any unseen one, and the rate on unseen categories
+// measures the calibration rather than which categories happened to be drawn.
+struct Clusters {
+  Matrix x;
+  std::vector<int> y;
+  std::vector<std::string> category;
+};
+
+Clusters clusters(int categories, int first, int per, int dims, std::uint64_t seed, float spread = 6.f) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<float> noise(0.f, 1.f);
+  Clusters c;
+  c.x.resize(categories * per, dims);
+  for (int k = 0; k < categories; ++k)
+    for (int i = 0; i < per; ++i) {
+      const Eigen::Index r = k * per + i;
+      for (int d = 0; d < dims; ++d) c.x(r, d) = (d == (first + k) % dims ? spread : 0.f) + noise(rng);
+      c.y.push_back(k);
+      c.category.push_back("c" + std::to_string(first + k));
+    }
+  return c;
+}
+
+ClassifierParams fastXgboost() {
+  ClassifierParams p;
+  p.xgboost.rounds = 10;
+  p.xgboost.threads = 1;
+  return p;
+}
+
+double acceptedFraction(const OpenSet& s, const std::vector<double>& scores) {
+  double n = 0;
+  for (double v : scores) n += s.answerFor(v) == Answer::Class;
+  return n / static_cast<double>(scores.size());
+}
+
+FeatureTable tableOf(const Clusters& c) {
+  FeatureTable t;
+  t.blocks = {"kpd2"};
+  t.sizes = {static_cast<int>(c.x.cols())};
+  DescriptorOptions o;
+  o.histogram.bins = static_cast<int>(c.x.cols());
+  t.spec = featureSpec(o);
+  for (Eigen::Index r = 0; r < c.x.rows(); ++r) {
+    FeatureRow row;
+    row.id = "v" + std::to_string(r);
+    row.cls = c.category[static_cast<std::size_t>(r)];
+    row.instance = row.cls + "_i";
+    row.elevation = r % 2 ? "30" : "60";
+    row.keypoints = 40;
+    for (Eigen::Index k = 0; k < c.x.cols(); ++k) row.values.push_back(c.x(r, k));
+    t.rows.push_back(row);
+  }
+  return t;
+}
+
+}  // namespace
+
+TEST(OpenSetScores, AurocThresholdAndRocCurveCountAsStated) {
+  EXPECT_DOUBLE_EQ(auroc({3, 4}, {1, 2}), 1.0);
+  EXPECT_DOUBLE_EQ(auroc({1, 2}, {3, 4}), 0.0);
+  EXPECT_DOUBLE_EQ(auroc({2}, {2}), 0.5);  // a tie counts half
+  EXPECT_DOUBLE_EQ(auroc({1, 3}, {2}), 0.5);
+  EXPECT_TRUE(std::isnan(auroc({}, {1})));
+  std::vector<double> u;
+  for (int i = 1; i <= 100; ++i) u.push_back(i);
+  const double t = thresholdForFalseAccept(u, 0.05);
+  int accepted = 0;
+  for (double v : u) accepted += v >= t;
+  EXPECT_EQ(accepted, 5);  // 96 … 100
+  EXPECT_GT(thresholdForFalseAccept(u, 0.0), 100.0);  // none accepted
+  EXPECT_EQ(errorOf([] { thresholdForFalseAccept({}, 0.05); }),
+            "open-set calibration: no views of unknown categories to set the threshold on");
+  const RocCurve c = rocCurve({3, 4}, {1, 4});
+  ASSERT_EQ(c.false_accept.size(), 4u);  // (0,0), score 4, score 3, score 1
+  EXPECT_DOUBLE_EQ(c.false_accept[1], 0.5);
+  EXPECT_DOUBLE_EQ(c.true_accept[1], 0.5);
+  EXPECT_DOUBLE_EQ(c.false_accept.back(), 1.0);
+  EXPECT_DOUBLE_EQ(c.true_accept.back(), 1.0);
+  EXPECT_EQ(errorOf([] { checkOpenSetMethod("entropy"); }), "open-set method 'entropy' is not one of max-probability, knn");
+}
+
+// The issue's calibration test: on a small simulated set, categories never trained on are accepted
+// at about the stated rate, and the known views lose little accuracy against closed-set.
+class OpenSetCalibration : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(OpenSetCalibration, UnseenCategoriesAreAcceptedAtAboutTheStatedRate) {
+  const int dims = 26;
+  const Clusters train = clusters(16, 0, 30, dims, 1);
+  const Clusters known = clusters(16, 0, 10, dims, 11);     // new views of the trained categories
+  const Clusters unknown = clusters(10, 16, 60, dims, 21);  // 10 categories never trained on
+  auto clf = makeClassifier(fastXgboost());
+  clf->fit(train.x, train.y, 16);
+  const Matrix pk = clf->predictProba(known.x), pu = clf->predictProba(unknown.x);
+  const std::vector<int> best = argmaxRows(pk);
+  // Binomial spread of the calibration's 480 and the test's 600 unknown views: ~1.4 points at 5 %,
+  // ~2.4 at 20 %; the tolerances are about twice that.
+  for (const auto& [stated, tolerance] : {std::pair{0.05, 0.03}, std::pair{0.20, 0.05}}) {
+    OpenSetOptions o;
+    o.methods = {GetParam()};
+    o.false_accept = stated;
+    const OpenSet s = calibrateOpenSets(train.x, train.y, train.category, fastXgboost(), o).front();
+    EXPECT_EQ(s.method, GetParam());
+    EXPECT_EQ(s.calibration_views, 16 * 30);  // every training category left out once
+    EXPECT_EQ(s.calibration_groups, 5);
+    const std::vector<double> ks = openSetScores(s, known.x, pk), us = openSetScores(s, unknown.x, pu);
+    if (GetParam() == "knn") {
+      EXPECT_NEAR(acceptedFraction(s, us), stated, tolerance) << "stated " << stated;
+    } else {  // XGBoost's probabilities saturate on separated classes: ties at the top, so it rejects more
+      EXPECT_LE(acceptedFraction(s, us), stated + tolerance) << "stated " << stated;
+    }
+    double closed = 0, open = 0;
+    for (std::size_t i = 0; i < best.size(); ++i) {
+      closed += best[i] == known.y[i];
+      open += best[i] == known.y[i] && s.answerFor(ks[i]) == Answer::Class;
+    }
+    closed /= static_cast<double>(best.size());
+    open /= static_cast<double>(best.size());
+    EXPECT_GT(closed, 0.9);
+    if (GetParam() == "knn") {  // the issue's target: within 2 points of closed-set
+      EXPECT_GT(open, closed - 0.02) << "stated " << stated;
+      EXPECT_GT(auroc(ks, us), 0.97);
+    }
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(Methods, OpenSetCalibration, ::testing::Values("knn", "max-probability"));
+
+TEST(OpenSetCalibration, NeedsThreeCategories) {
+  const Clusters two = clusters(2, 0, 10, 4, 1);
+  EXPECT_EQ(errorOf([&] { calibrateOpenSets(two.x, two.y, two.category, fastXgboost(), {}); }),
+            "open-set calibration leaves categories out of training: it needs at least 3 categories, the training "
+            "views have 2");
+  OpenSetOptions o;
+  setOpenSetMethod(o, "auto");  // auto: a closed-set model instead
+  const Model m = trainModel(tableOf(two), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+  EXPECT_FALSE(m.info.open_set.enabled());
+  EXPECT_EQ(errorOf([&] { setOpenSetMethod(o, "entropy"); }),
+            "open-set method 'entropy' is not one of auto, max-probability, knn, none");
+}
+
+TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
+  const Clusters train = clusters(6, 0, 30, 8, 1);
+  OpenSetOptions o;
+  o.methods = {"knn"};
+  const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+  ASSERT_TRUE(m.info.open_set.enabled());
+  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_model";
+  saveModel(dir.string(), m);
+  const Model back = loadModel(dir.string());
+  EXPECT_EQ(back.info.open_set.method, "knn");
+  EXPECT_DOUBLE_EQ(back.info.open_set.threshold, m.info.open_set.threshold);
+  EXPECT_DOUBLE_EQ(back.info.open_set.false_accept, 0.05);
+  EXPECT_EQ(back.info.open_set.references.rows(), 180);
+  EXPECT_EQ(back.info.open_set.reference_class, m.info.open_set.reference_class);
+  // A view of a trained category, one far from all of them, and one too empty to describe.
+  FeatureTable t = tableOf(clusters(6, 0, 1, 8, 5));
+  t.rows.resize(2);
+  for (auto& v : t.rows[1].values) v = 40.f;
+  FeatureRow empty;
+  empty.id = "empty";
+  empty.keypoints = -1;
+  empty.problem = "too few keypoints: ISS found 2 in 50 points";
+  empty.no_object = true;
+  empty.values.assign(8, std::nanf(""));
+  t.rows.push_back(empty);
+  const auto before = predictRows(m, t, "m"), after = predictRows(back, t, "m");
+  ASSERT_EQ(after.size(), 3u);
+  for (std::size_t i = 0; i < 2; ++i) EXPECT_NEAR(after[i].score, before[i].score, 1e-4);  // references kept to 4 decimals
+  EXPECT_EQ(after[0].answer, Answer::Class);
+  EXPECT_EQ(answerLabel(back.info, after[0]), "c0");
+  EXPECT_EQ(after[1].answer, Answer::Unknown);
+  EXPECT_EQ(answerLabel(back.info, after[1]), "unknown");
+  EXPECT_LT(after[1].score, back.info.open_set.threshold);
+  EXPECT_EQ(after[2].answer, Answer::NoObject);
+  EXPECT_EQ(answerLabel(back.info, after[2]), "no object");
+  fs::remove_all(dir);
+}
+
+TEST(OpenSetModel, AModelWithoutOpenSetStaysClosedSet) {
+  // The shipped studio model was written before issue 34.
+  const Model shipped = loadModel(std::string(KEYTURN_DATA_DIR) + "/models/sim-objects");
+  EXPECT_FALSE(shipped.info.open_set.enabled());
+  FeatureTable t = modelLayout(shipped, "shipped");
+  FeatureRow far;
+  far.id = "far";
+  far.keypoints = 30;
+  far.values.assign(static_cast<std::size_t>(t.width()), 1.f);  // like nothing it was trained on
+  t.rows.push_back(far);
+  const auto p = predictRows(shipped, t, "shipped");
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].answer, Answer::Class);  // closed-set: a class, whatever the view
+  EXPECT_TRUE(std::isnan(p[0].score));
+  EXPECT_EQ(answerLabel(shipped.info, p[0]), shipped.info.classes.at(static_cast<std::size_t>(p[0].best)));
+}
+
+TEST(OpenSetModel, ABadOpenSetInASidecarIsNamed) {
+  const Clusters train = clusters(4, 0, 10, 4, 1);
+  OpenSetOptions o;
+  o.methods = {"max-probability"};
+  const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_bad";
+  saveModel(dir.string(), m);
+  const std::string sidecar = (dir / "model.json").string();
+  std::ifstream in(sidecar);
+  std::string text((std::istreambuf_iterator<char>(in)), {});
+  const std::string method = "\"method\": \"max-probability\"";
+  ASSERT_NE(text.find(method), std::string::npos);
+  text.replace(text.find(method), method.size(), "\"method\": \"entropy\"");
+  EXPECT_EQ(errorOf([&] { parseModelSidecar(text, "m/model.json"); }),
+            "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn");
+  fs::remove_all(dir);
+}
+
+TEST(OpenSetModel, DegenerateFeaturesGetAClearAnswer) {
+  const Clusters train = clusters(5, 0, 20, 6, 1);
+  for (const std::string method : {"knn", "max-probability"}) {
+    OpenSetOptions o;
+    o.methods = {method};
+    const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+    FeatureTable t = tableOf(clusters(5, 0, 1, 6, 9));
+    t.rows.resize(2);
+    for (auto& v : t.rows[0].values) v = std::nanf("");  // every value missing
+    t.rows[1].values[2] = std::nanf("");                    // one missing
+    for (const auto& p : predictRows(m, t, "m")) {
+      EXPECT_NE(p.answer, Answer::NoObject);
+      EXPECT_TRUE(std::isfinite(p.score)) << method << " row " << p.row;
+      EXPECT_GE(p.best, 0);
+    }
+    // All probabilities NaN (a classifier that could not say): unknown, score 0.
+    Matrix x = Matrix::Zero(1, 6), nan_p = Matrix::Constant(1, 5, std::nanf(""));
+    const Prediction p = predictionOf(m.info, x, nan_p);
+    EXPECT_EQ(p.answer, Answer::Unknown) << method;
+    EXPECT_EQ(p.score, 0.0);
+  }
+}
+
+TEST(OpenSetModel, AViewTooEmptyToDescribeIsNoObject) {
+  Model m;
+  DescriptorOptions o;
+  m.info.spec = featureSpec(o);
+  m.info.blocks = {"kpd2"};
+  m.info.inputs = o.histogram.bins;
+  m.info.classes = {"a", "b"};
+  m.classifier = makeClassifier(m.info.params);
+  FeatureTable t = modelLayout(m, "m");
+  Cloud two;  // K < 3: two points
+  two.points = {{0.f, 0.f, 0.5f}, {0.01f, 0.f, 0.5f}};
+  two.width = 2;
+  t.rows.push_back(describeCloud(two, modelOptions(m, "m"), t));
+  EXPECT_TRUE(t.rows[0].no_object);
+  EXPECT_EQ(t.rows[0].keypoints, -1);
+  const auto p = predictRows(m, t, "m");
+  ASSERT_EQ(p.size(), 1u);
+  EXPECT_EQ(p[0].answer, Answer::NoObject);
+  EXPECT_EQ(p[0].best, -1);
+  Cloud none;
+  EXPECT_THROW(Recognizer(DescriptorOptions()).describe(none), EmptyViewError);
+}
+
+TEST(OpenSetProtocol, FoldsLeaveWholeCategoriesOutAndTestEachKnownElevation) {
+  const FeatureTable t = tableOf(clusters(7, 0, 6, 4, 1));
+  const Protocol p = makeProtocol("open-set3", t, 7);
+  ASSERT_EQ(p.folds.size(), 3u);
+  std::map<std::string, int> unknown_in;
+  for (const Fold& f : p.folds) {
+    std::set<std::string> left_out, trained;
+    for (auto r : f.unknown) left_out.insert(t.rows[r].cls);
+    for (auto r : f.train) {
+      trained.insert(t.rows[r].cls);
+      EXPECT_EQ(left_out.count(t.rows[r].cls), 0u);
+    }
+    for (auto r : f.test) {
+      EXPECT_EQ(left_out.count(t.rows[r].cls), 0u);
+      EXPECT_EQ(trained.count(t.rows[r].cls), 1u);
+    }
+    std::set<std::string> tested_elevations, trained_elevations;
+    for (auto r : f.test) tested_elevations.insert(t.rows[r].elevation);
+    for (auto r : f.train) trained_elevations.insert(t.rows[r].elevation);
+    EXPECT_EQ(tested_elevations.size(), 1u);
+    EXPECT_EQ(trained_elevations.count(*tested_elevations.begin()), 0u);
+    EXPECT_EQ(f.train.size() + f.test.size() + f.unknown.size(), t.rows.size());
+    for (const auto& c : left_out) ++unknown_in[c];
+  }
+  EXPECT_EQ(unknown_in.size(), 7u);  // every category is an unknown once
+  for (const auto& [c, n] : unknown_in) EXPECT_EQ(n, 1) << c;
+  EXPECT_EQ(errorOf([&] { makeProtocol("open-set", tableOf(clusters(2, 0, 4, 4, 1)), 7); }),
+            "open-set folds leave categories out: they need at least 3 categories (the data has 2)");
+}
+
+TEST(OpenSetProtocol, AFoldReportsFalseAcceptsAndKnownAccuracyBesideClosedSet) {
+  const FeatureTable t = tableOf(clusters(12, 0, 20, 12, 1));
+  const Protocol p = makeProtocol("open-set4", t, 7, LabelKind::Category);
+  OpenSetOptions o;
+  o.methods = openSetMethods();
+  std::vector<FoldOutcome> folds;
+  for (const Fold& f : p.folds) folds.push_back(evaluateOpenSetFold(t, {"kpd2"}, p.labels.of_row, f, fastXgboost(), o));
+  const auto s = summariseOpenSet(folds);
+  ASSERT_EQ(s.size(), 2u);
+  EXPECT_EQ(s[0].method, "max-probability");
+  EXPECT_EQ(s[1].method, "knn");
+  EXPECT_EQ(s[1].unknown_views, 240u);  // every view is an unknown in one fold
+  EXPECT_EQ(s[1].known_views, 360u);    // 4 folds × 9 known categories × the 10 views at its elevation
+  EXPECT_GT(s[1].auroc_mean, 0.95);
+  EXPECT_LT(s[1].false_accept, 0.15);
+  EXPECT_GT(s[1].known_accuracy_closed, 0.9);
+  EXPECT_LE(s[1].known_accuracy_open, s[1].known_accuracy_closed);
+  EXPECT_NEAR(s[1].known_accuracy_open, s[1].known_accuracy_closed, 0.1);
+  EXPECT_EQ(s[1].known_scores.size(), 360u);
+}
