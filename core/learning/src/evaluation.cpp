@@ -35,15 +35,20 @@ double Evaluation::predictMsPerView() const {
   return n ? ms / n : 0.0;
 }
 
-FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
-                         const std::vector<int>& labels, int classes, const Fold& fold,
-                         const ClassifierParams& params, const TwinRows& twins) {
+FoldOutcome startFoldOutcome(const Fold& fold, const std::vector<std::size_t>& train) {
   FoldOutcome out;
   out.name = fold.name;
-  const std::vector<std::size_t> train = withTwins(fold.train, twins);
   out.train_views = fold.train.size();
   out.twin_views = train.size() - fold.train.size();
   out.test_views = fold.test.size();
+  return out;
+}
+
+FoldOutcome evaluateFold(const FeatureTable& table, const std::vector<std::string>& blocks,
+                         const std::vector<int>& labels, int classes, const Fold& fold,
+                         const ClassifierParams& params, const TwinRows& twins) {
+  const std::vector<std::size_t> train = withTwins(fold.train, twins);
+  FoldOutcome out = startFoldOutcome(fold, train);
   std::vector<int> y;
   for (auto r : train) y.push_back(labels.at(r));
   const auto t0 = std::chrono::steady_clock::now();

@@ -12,12 +12,8 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
                                 const std::vector<int>& labels, const Fold& fold, const ClassifierParams& params,
                                 const OpenSetOptions& options, const TwinRows& twins) {
   if (fold.unknown.empty()) throw Error("fold '" + fold.name + "' has no unknown views (not an open-set fold)");
-  FoldOutcome out;
-  out.name = fold.name;
   const std::vector<std::size_t> train = withTwins(fold.train, twins);
-  out.train_views = fold.train.size();
-  out.twin_views = train.size() - fold.train.size();
-  out.test_views = fold.test.size();
+  FoldOutcome out = startFoldOutcome(fold, train);
   out.unknown_views = fold.unknown.size();
   std::vector<int> y, present;
   std::vector<std::string> categories;

@@ -45,6 +45,10 @@ struct FoldOutcome {
   double accuracy() const { return test_views ? static_cast<double>(correct) / static_cast<double>(test_views) : 0.0; }
 };
 
+// A fold's outcome before training: its name and view counts, `train` being the rows it trains on
+// (its training views with their twins: withTwins(fold.train, twins)).
+FoldOutcome startFoldOutcome(const Fold& fold, const std::vector<std::size_t>& train);
+
 struct Evaluation {
   std::vector<FoldOutcome> folds;
   std::vector<std::vector<int>> confusion;  // [true][predicted], summed over folds
