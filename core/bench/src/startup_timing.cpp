@@ -5,25 +5,14 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <algorithm>
 #include <chrono>
-#include <cstdio>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
+#include "spread.h"
 
 namespace keyturn::bench {
 namespace {
-
-struct Stats {
-  double min = 0, median = 0, max = 0;
-};
-
-Stats statsOf(std::vector<double> v) {
-  if (v.empty()) return {};
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return {v.front(), n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]), v.back()};
-}
 
 std::string joined(const std::vector<std::string>& argv) {
   std::string s;
@@ -72,7 +61,7 @@ ProcessTiming timeProcess(const std::string& label, const std::vector<std::strin
 }
 
 nlohmann::json timingJson(const ProcessTiming& t) {
-  const Stats w = statsOf(t.wall_s), m = statsOf(t.peak_mib);
+  const Spread w = spread(t.wall_s), m = spread(t.peak_mib);
   return {{"label", t.label},
           {"command", joined(t.argv)},
           {"runs", t.wall_s.size()},
@@ -83,12 +72,9 @@ nlohmann::json timingJson(const ProcessTiming& t) {
 
 std::string startupTable(const std::vector<ProcessTiming>& timings) {
   std::string out = "start-up (whole process, fork to exit)      wall s median (min-max)   peak MiB\n";
-  char line[256];
   for (const auto& t : timings) {
-    const Stats w = statsOf(t.wall_s), m = statsOf(t.peak_mib);
-    std::snprintf(line, sizeof line, "%-44s %6.3f (%.3f-%.3f)     %8.1f\n", t.label.c_str(), w.median, w.min, w.max,
-                  m.median);
-    out += line;
+    const Spread w = spread(t.wall_s), m = spread(t.peak_mib);
+    appendFormat(out, "%-44s %6.3f (%.3f-%.3f)     %8.1f\n", t.label.c_str(), w.median, w.min, w.max, m.median);
   }
   return out;
 }

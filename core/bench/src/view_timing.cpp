@@ -11,24 +11,10 @@
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/bench/speed_ratio.h"
 #include "keyturn/core/string_format.h"
+#include "spread.h"
 
 namespace keyturn::bench {
 namespace {
-
-struct Spread {
-  double median = 0, min = 0, max = 0;
-};
-
-Spread spread(std::vector<double> v) {
-  Spread s;
-  if (v.empty()) return s;
-  std::sort(v.begin(), v.end());
-  s.min = v.front();
-  s.max = v.back();
-  const std::size_t m = v.size() / 2;
-  s.median = v.size() % 2 ? v[m] : 0.5 * (v[m - 1] + v[m]);
-  return s;
-}
 
 // CPU time of the calling thread: on a shared, loaded machine the wall clock also counts
 // the time other processes held the core; this does not.
