@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "device_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
@@ -21,11 +22,11 @@ std::atomic<bool> g_stop{false};
 void onSignal(int) { g_stop = true; }
 
 struct CaptureArgs {
+  std::string camera = "sim", pose = "sim", profile = "keyturn-sim";  // read into devices' specs
   rig::CaptureDevices devices;  // the simulated camera's options included
   rig::CaptureOptions o;        // the sequence
   std::string out, calibration;
   bool quiet = false;
-  CaptureArgs() { devices.profile = "keyturn-sim"; }
 };
 
 // The calibration file, the pose source (and its profile) and the camera are opened before the
@@ -33,6 +34,8 @@ struct CaptureArgs {
 int captureSequence(CaptureArgs a) {
   rig::CaptureOptions& o = a.o;
   if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
+  a.devices.camera = cameraSpec(a.camera, "", "");
+  a.devices.pose = poseSpec(a.pose, a.profile);
   rig::refusePlaybackInto(a.devices, a.out);
   a.devices.sim.dir = a.out + "/.sim";
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
@@ -90,10 +93,10 @@ int runVerify(const std::string& root) {
 Command addCaptureCommand(CLI::App& app) {
   auto a = std::make_shared<CaptureArgs>();
   auto* cmd = app.add_subcommand("capture", "Capture a turntable sequence into a dataset (resumable)");
-  cmd->add_option("--camera", a->devices.camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS] (a recording)")->capture_default_str();
-  cmd->add_option("--pose", a->devices.pose, "sim (the simulated or played-back rig's own), modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
+  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS] (a recording)")->capture_default_str();
+  cmd->add_option("--pose", a->pose, "sim (the simulated or played-back rig's own), modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
       ->capture_default_str();
-  cmd->add_option("--profile", a->devices.profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
+  cmd->add_option("--profile", a->profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")
       ->capture_default_str();
   cmd->add_option("--class", a->o.cls, "Object class")->required();
   cmd->add_option("--instance", a->o.instance, "Object instance")->required();

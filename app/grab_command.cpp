@@ -3,7 +3,8 @@
 #include <iostream>
 
 #include "commands.h"
-#include "keyturn/rig/devices.h"
+#include "device_options.h"
+#include "keyturn/rig/device_factory.h"
 #include "keyturn/rig/frame_files.h"
 #include "keyturn/core/error.h"
 #include "progress.h"
@@ -26,7 +27,8 @@ struct GrabArgs {
 };
 
 int runGrab(const GrabArgs& a) {
-  auto cam = rig::openCamera(a.camera, a.sim_config, a.library);
+  rig::DeviceFactory factory;
+  auto cam = factory.openCamera(cameraSpec(a.camera, a.library, a.sim_config));
   drivers::TofSettings s = cam->settings();
   if (a.integration_time >= 0) s.integration_time = static_cast<std::uint8_t>(a.integration_time);
   s.auto_exposure.enabled = !a.no_auto_exposure && a.integration_time < 0;
@@ -64,10 +66,13 @@ int runGrab(const GrabArgs& a) {
 Command addGrabCommand(CLI::App& app) {
   auto a = std::make_shared<GrabArgs>();
   auto* cmd = app.add_subcommand("grab", "Grab SR4000 frames to an organized PCD and 16-bit PNGs");
-  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS]")->capture_default_str();
+  cmd->add_option("--camera", a->camera, "sim, sim:CONFIG, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS]")->capture_default_str();
   cmd->add_option("--mesasr-lib", a->library,
                   "Path of MESA's libmesasr.so for usb/eth (default: $KEYTURN_MESASR_LIB, then the usual sonames)");
-  cmd->add_option("--sim-config", a->sim_config, "Simulator configuration JSON (sets MESASR_SIM_CONFIG)");
+  // $MESASR_SIM_CONFIG, libmesasr-sim's own variable for outside programs, is read here only as this
+  // flag's default: the configuration reaches the simulator in the camera's spec, not the environment.
+  cmd->add_option("--sim-config", a->sim_config, "Simulator configuration JSON for --camera sim (default: $MESASR_SIM_CONFIG)")
+      ->envname("MESASR_SIM_CONFIG");
   cmd->add_option("--out,-o", a->out, "PCD to write; PNGs are written beside it")->required();
   cmd->add_option("--frames,-n", a->frames, "Frames to take; more than one gives their per-pixel median")
       ->capture_default_str()->check(CLI::Range(1, 10000));

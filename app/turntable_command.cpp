@@ -5,7 +5,9 @@
 
 #include "commands.h"
 #include "keyturn/core/error.h"
-#include "keyturn/drivers/modbus_turntable.h"
+#include "device_options.h"
+#include "keyturn/drivers/pose_source.h"
+#include "keyturn/rig/device_factory.h"
 
 namespace keyturn::app {
 namespace {
@@ -19,9 +21,12 @@ struct TurntableArgs {
 };
 
 int runTurntable(const TurntableArgs& a) {
-  drivers::ModbusOptions o;
-  o.log = [](const std::string& l) { std::fprintf(stderr, "keyturn: turntable: %s\n", l.c_str()); };
-  drivers::ModbusTurntable t(drivers::ModbusEndpoint::parse(a.pose), drivers::ModbusTurntableProfile::load(a.profile), o);
+  const rig::PoseSpec spec = poseSpec(a.pose, a.profile);
+  if (spec.kind == rig::PoseSpec::Kind::Simulated || spec.kind == rig::PoseSpec::Kind::Playback)
+    throw Error("--pose '" + a.pose + "': turntable drives a device: expected modbus-tcp:HOST:PORT, modbus-rtu:DEVICE or can:IFACE");
+  rig::DeviceFactory factory;
+  const auto source = factory.openPoseSource(spec);
+  drivers::PoseSource& t = *source;
   const bool moving_cmd = !std::isnan(a.move_to) || a.home;
   if (!std::isnan(a.move_to)) t.moveTo(a.move_to);
   if (a.home) t.home();
@@ -36,9 +41,9 @@ int runTurntable(const TurntableArgs& a) {
 
 Command addTurntableCommand(CLI::App& app) {
   auto a = std::make_shared<TurntableArgs>();
-  auto* cmd = app.add_subcommand("turntable", "Read, move, home or stop a Modbus turntable");
-  cmd->add_option("--pose", a->pose, "modbus-tcp:HOST:PORT[@UNIT] or modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT]")->required();
-  cmd->add_option("--profile", a->profile, "Register map: a JSON file, generic-encoder or keyturn-sim")
+  auto* cmd = app.add_subcommand("turntable", "Read, move, home or stop a Modbus turntable (or CANopen axes)");
+  cmd->add_option("--pose", a->pose, "modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")->required();
+  cmd->add_option("--profile", a->profile, "Register map: a JSON file, generic-encoder or keyturn-sim; for can: the CANopen axes file")
       ->capture_default_str();
   cmd->add_option("--move-to", a->move_to, "Move to this angle (°) and wait until in position");
   cmd->add_flag("--home", a->home, "Move to the home position and wait");

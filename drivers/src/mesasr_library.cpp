@@ -51,6 +51,7 @@ std::shared_ptr<MesaSrLibrary> MesaSrLibrary::load(const std::string& explicit_p
                          lib->SR_GetRows && lib->SR_GetCols;
   if (!essential)
     throw Error(lib->path + ": not a usable libMesaSR (missing " + missing + ")");
+  lib->KTSIM_OpenWithConfig = reinterpret_cast<KTSIM_OpenWithConfigFn*>(::dlsym(lib->handle, "KTSIM_OpenWithConfig"));
   return lib;
 }
 

@@ -36,6 +36,7 @@ Sr4000Connection Sr4000Connection::parse(const std::string& text) {
 
 std::string Sr4000Connection::describe() const {
   if (kind == Kind::Ethernet) return "SR4000 at " + address;
+  if (kind == Kind::Simulator) return simulator_config.empty() ? "simulated SR4000" : "simulated SR4000 (" + simulator_config + ")";
   return serial ? "SR4000 USB serial " + std::to_string(serial) : "first SR4000 on USB";
 }
 
@@ -58,9 +59,15 @@ void Sr4000Camera::fail(const std::string& what) const {
 
 void Sr4000Camera::open() {
   SRCAM cam = nullptr;
-  const int n = connection_.kind == Sr4000Connection::Kind::Ethernet
-                    ? lib_->SR_OpenETH(&cam, connection_.address.c_str())
-                    : lib_->SR_OpenUSB(&cam, connection_.serial);
+  int n = 0;
+  if (connection_.kind == Sr4000Connection::Kind::Simulator) {
+    if (!lib_->KTSIM_OpenWithConfig) fail("not libmesasr-sim: it has no KTSIM_OpenWithConfig to take the simulator's configuration");
+    n = lib_->KTSIM_OpenWithConfig(&cam, connection_.simulator_config.c_str());
+  } else if (connection_.kind == Sr4000Connection::Kind::Ethernet) {
+    n = lib_->SR_OpenETH(&cam, connection_.address.c_str());
+  } else {
+    n = lib_->SR_OpenUSB(&cam, connection_.serial);
+  }
   if (n <= 0 || !cam) fail("could not open the camera (open returned " + std::to_string(n) + ")");
   cam_ = cam;
   char buf[256] = {0};

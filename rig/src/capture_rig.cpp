@@ -3,8 +3,6 @@
 #include <filesystem>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset_playback.h"
-#include "keyturn/rig/devices.h"
 
 namespace keyturn::rig {
 
@@ -13,44 +11,45 @@ const char* const kSharedWorld = "--pose sim needs --camera sim: the simulated t
 }
 
 CaptureRig::CaptureRig(const CaptureDevices& d) {
-  if (isPlaybackSpec(d.camera)) {
+  using CameraKind = CameraSpec::Kind;
+  using PoseKind = PoseSpec::Kind;
+  if (d.camera.kind == CameraKind::Playback) {
     // The recording's own pose unless another source is named: like the simulated rig's, it comes with the camera.
-    auto recording = std::make_shared<Recording>(playbackDataset(d.camera), playbackOptions(d.camera));
-    if (d.pose == "sim" || d.pose == "playback") real_pose_ = std::make_unique<PlaybackPose>(recording);
-    else real_pose_ = openPoseSource(d.pose, d.profile);
-    real_camera_ = std::make_unique<PlaybackCamera>(recording);
+    PoseSpec pose = d.pose;
+    if (pose.kind == PoseKind::Simulated) pose.kind = PoseKind::Playback;
+    if (pose.kind == PoseKind::Playback && pose.playback.dataset.empty()) pose.playback = d.camera.playback;
+    real_pose_ = factory_.openPoseSource(pose);
+    real_camera_ = factory_.openCamera(d.camera);
     camera_ = real_camera_.get();
     pose_ = real_pose_.get();
-    camera_from_turntable_ = recording->cameraFromTurntable();
+    camera_from_turntable_ = factory_.cameraFromTurntable();
     return;
   }
-  if (d.pose == "playback") throw Error("--pose playback needs --camera playback:DATASET (the recording holds both)");
-  if (d.camera == "sim") {
+  if (d.pose.kind == PoseKind::Playback) throw Error("--pose playback needs --camera playback:DATASET (the recording holds both)");
+  if (d.camera.kind == CameraKind::Simulated) {
+    if (!d.camera.sim_config.empty())
+      throw Error("camera '" + d.camera.toString() +
+                  "': a capture writes its simulated camera's configuration itself (mesh, distance, seed); give sim");
     SimulatedRigOptions so = d.sim;
-    so.simulated_pose = d.pose == "sim";
+    so.simulated_pose = d.pose.kind == PoseKind::Simulated;
+    if (!so.simulated_pose) real_pose_ = factory_.openPoseSource(d.pose);  // a missing profile is said at once
     sim_ = openSimulatedRig(so);
     camera_ = sim_.camera.get();
     camera_from_turntable_ = sim_.camera_from_turntable;
-  } else {
-    (void)parseCameraSpec(d.camera);
-    if (d.pose == "sim") throw Error(kSharedWorld);
-    real_pose_ = openPoseSource(d.pose, d.profile);  // before the camera: a missing profile is said at once
-    real_camera_ = openCamera(d.camera, "");
-    camera_ = real_camera_.get();
+    pose_ = so.simulated_pose ? static_cast<drivers::PoseSource*>(sim_.turntable.get()) : real_pose_.get();
+    return;
   }
-  if (d.pose == "sim") {
-    if (!sim_.turntable) throw Error(kSharedWorld);
-    pose_ = sim_.turntable.get();
-  } else {
-    if (!real_pose_) real_pose_ = openPoseSource(d.pose, d.profile);
-    pose_ = real_pose_.get();
-  }
+  if (d.pose.kind == PoseKind::Simulated) throw Error(kSharedWorld);
+  real_pose_ = factory_.openPoseSource(d.pose);  // before the camera: a missing profile is said at once
+  real_camera_ = factory_.openCamera(d.camera);
+  camera_ = real_camera_.get();
+  pose_ = real_pose_.get();
 }
 
 void refusePlaybackInto(const CaptureDevices& d, const std::string& out) {
-  if (!isPlaybackSpec(d.camera)) return;
+  if (d.camera.kind != CameraSpec::Kind::Playback) return;
   std::error_code ec;
-  if (std::filesystem::equivalent(playbackDataset(d.camera), out, ec))
+  if (std::filesystem::equivalent(d.camera.playback.dataset, out, ec))
     throw Error(out + ": is the recording played back; capture into another folder");
 }
 

@@ -211,35 +211,4 @@ std::uint32_t PlaybackCamera::serial() const {
   return v.sidecar().empty() ? 0 : readViewCamera(recording_->root() + "/" + v.sidecar()).serial;
 }
 
-bool isPlaybackSpec(const std::string& spec) { return spec.rfind("playback:", 0) == 0; }
-
-namespace {
-// The "@FPS" suffix's position, or npos when the spec has none (an '@' in a folder name stays there).
-std::size_t rateSuffix(const std::string& spec) {
-  const std::size_t at = spec.rfind('@');
-  if (at == std::string::npos || at < 9) return std::string::npos;
-  const std::string tail = spec.substr(at + 1);
-  char* end = nullptr;
-  (void)std::strtod(tail.c_str(), &end);
-  return !tail.empty() && end && *end == '\0' ? at : std::string::npos;
-}
-}  // namespace
-
-std::string playbackDataset(const std::string& spec) {
-  const std::size_t at = rateSuffix(spec);
-  const std::string root = spec.substr(9, at == std::string::npos ? std::string::npos : at - 9);
-  if (root.empty()) throw Error("camera '" + spec + "': playback needs a dataset folder (playback:DATASET[@FPS])");
-  return root;
-}
-
-PlaybackOptions playbackOptions(const std::string& spec) {
-  PlaybackOptions o;
-  const std::size_t at = rateSuffix(spec);
-  if (at == std::string::npos) return o;
-  o.rate_fps = std::strtod(spec.c_str() + at + 1, nullptr);
-  if (!(o.rate_fps > 0) || !std::isfinite(o.rate_fps))
-    throw Error("camera '" + spec + "': the playback rate after @ must be a positive number of frames/s");
-  return o;
-}
-
 }  // namespace keyturn::rig

@@ -7,19 +7,13 @@
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/mesh.h"
-#include "keyturn/sim/tof_view.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn::rig {
 
-void useSimulatedCameraConfig(const SimulatedRigFiles& files) {
-  ::setenv("MESASR_SIM_CONFIG", files.cameraConfig().c_str(), 1);
-}
-
-std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles& files, const SimulatedCameraOptions& o,
-                                                        Eigen::Matrix4d* camera_from_turntable, DeviceLog log) {
-  fs::create_directories(files.dir);
+CameraSpec writeSimulatedCameraConfig(const std::string& path, const SimulatedCameraOptions& o) {
+  if (const fs::path dir = fs::path(path).parent_path(); !dir.empty()) fs::create_directories(dir);
   sim::MesaSrSimConfig c;
   c.mesh = o.mesh.rfind("builtin:", 0) == 0 ? o.mesh : fs::absolute(o.mesh).string();
   c.elevation = o.elevation_deg;
@@ -31,15 +25,10 @@ std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles&
   c.frame_rate = o.frame_rate;
   c.world = o.world.empty() ? "" : fs::absolute(o.world).string();
   c.unplug_file = o.unplug_file;
-  c.save(files.cameraConfig());
-  if (camera_from_turntable) {
-    sim::SceneView view;
-    view.distance = o.distance;
-    view.elevation_deg = o.elevation_deg;
-    view.roll_deg = o.roll_deg;
-    *camera_from_turntable = sim::cameraFromTurntable(sim::scaledMesh(sim::loadMeshOrBuiltin(c.mesh), c.scale), view);
-  }
-  return openCamera("sim", "", "", std::move(log));
+  c.save(path);
+  CameraSpec spec;
+  spec.sim_config = path;
+  return spec;
 }
 
 SimulatedTurntable::SimulatedTurntable(sim::TurntableServerOptions so, DeviceLog log) {
@@ -72,20 +61,21 @@ sim::TurntableMotion captureMotion(bool fast) {
 SimulatedRig openSimulatedRig(const SimulatedRigOptions& o) {
   const SimulatedRigFiles files{o.dir};
   fs::create_directories(files.dir);
-  useSimulatedCameraConfig(files);
   SimulatedCameraOptions camera = o.camera;
   if (o.simulated_pose) camera.world = fs::absolute(files.world()).string();
   else camera.world = o.world;
-  SimulatedRig rig;
+  sim::TurntableServerOptions so;
   if (o.simulated_pose) {
-    sim::TurntableServerOptions so;
     so.world_file = camera.world;
     so.motion = captureMotion(o.fast);
     so.seed = o.camera.seed;
     so.faults.random_rate = o.camera.fault_rate;
-    rig.turntable = std::make_unique<SimulatedTurntable>(so);
   }
-  rig.camera = openSimulatedCamera(files, camera, &rig.camera_from_turntable);
+  DeviceFactory factory(so);
+  SimulatedRig rig;
+  if (o.simulated_pose) rig.turntable = factory.openSimulatedTurntable();
+  rig.camera = factory.openCamera(writeSimulatedCameraConfig(files.cameraConfig(), camera));
+  rig.camera_from_turntable = *factory.cameraFromTurntable();
   return rig;
 }
 

@@ -144,6 +144,8 @@ FORWARD(int, SR_CoordTrfPntUint16,
         (SRCAM c, CU8 ix, CU8 iy, CU16 d, short* x, short* y, unsigned short* z, int n),
         (c, ix, iy, d, x, y, z, n), -1)
 FORWARD(int, SR_TCPSend, (SRCAM c, void* buf, int len, int flags), (c, buf, len, flags), -1)
+/* keyturn's extension (mesasr_api.h): a camera opened with its own configuration file. */
+FORWARD(int, KTSIM_OpenWithConfig, (SRCAM* c, const char* config), (c, config), -1)
 FORWARD(int, SR_TCPRecv, (SRCAM c, void* buf, int len, int flags), (c, buf, len, flags), -1)
 
 SIM_EXPORT void SR_SetTimeout(SRCAM c, int ms) {  /* the one without a result */

@@ -79,12 +79,15 @@ bool unplugged(const MesaSrSimConfig& c) {
   return !c.unplug_file.empty() && ::stat(c.unplug_file.c_str(), &st) == 0;
 }
 
-int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned serial) {
+// config_path: null for $MESASR_SIM_CONFIG (libMesaSR's own entry points), else the file keyturn
+// passed to KTSIM_OpenWithConfig ("" for the defaults).
+int openCamera(SRCAM* out, bool ethernet, const std::string& address, unsigned serial, const char* config_path) {
   if (!out) return -1;
   *out = nullptr;
   try {
     auto d = std::make_unique<CMesaDevice>();
-    d->config = MesaSrSimConfig::fromEnvironment();
+    if (!config_path) d->config = MesaSrSimConfig::fromEnvironment();
+    else if (*config_path) d->config = MesaSrSimConfig::fromFile(config_path);
     if (d->config.faults.open_fail || unplugged(d->config)) return -1;
     if (!ethernet && serial != 0 && serial != d->config.serial) return 0;  // no such camera
     const auto mesh = keyturn::sim::scaledMesh(keyturn::sim::loadMeshOrBuiltin(d->config.mesh), d->config.scale);
@@ -197,7 +200,12 @@ bool alive(SRCAM cam) { return cam && !cam->unplugged; }
 }  // namespace
 
 SIM_EXPORT int SR_OpenUSB(SRCAM* srCam, unsigned int serialNumber) {
-  return openCamera(srCam, false, "", serialNumber);
+  return openCamera(srCam, false, "", serialNumber, nullptr);
+}
+
+// keyturn's extension (mesasr_api.h): the configuration passed, not read from the environment.
+SIM_EXPORT int KTSIM_OpenWithConfig(SRCAM* srCam, const char* configPath) {
+  return openCamera(srCam, false, "", 0, configPath ? configPath : "");
 }
 
 SIM_EXPORT int SR_OpenETH(SRCAM* srCam, const char* addr) {
@@ -206,7 +214,7 @@ SIM_EXPORT int SR_OpenETH(SRCAM* srCam, const char* addr) {
     if (srCam) *srCam = nullptr;
     return -1;
   }
-  return openCamera(srCam, true, addr, 0);
+  return openCamera(srCam, true, addr, 0, nullptr);
 }
 
 SIM_EXPORT int SR_OpenDlg(SRCAM* srCam, int, int) { return SR_OpenUSB(srCam, 0); }

@@ -62,6 +62,18 @@ check "open failure is one clear line" test "$(wc -l < "$work/openfail.err")" -e
 check "open failure names the camera" grep -q "simulated SR4000" "$work/openfail.err"
 check "no partial files after a failed grab" test ! -e "$work/grab/x.pcd"
 
+# The simulator's configuration three ways: in the camera's spec, by --sim-config, by $MESASR_SIM_CONFIG
+# (the flag's default); the same camera and the same frame each time.
+echo '{"serial": 4000777, "elevation": 45}' > "$work/c777.json"
+"$KT" grab --camera "sim:$work/c777.json" --out "$work/grab/spec.pcd" > /dev/null 2> "$work/spec.err"
+check "grab --camera sim:CONFIG opens the configured camera" grep -q "serial 4000777: 1 frame" "$work/spec.err"
+"$KT" grab --camera sim --sim-config "$work/c777.json" --out "$work/grab/flag.pcd" > /dev/null 2> "$work/flag.err"
+check "  as --sim-config does" grep -q "serial 4000777: 1 frame" "$work/flag.err"
+MESASR_SIM_CONFIG="$work/c777.json" "$KT" grab --camera sim --out "$work/grab/env.pcd" > /dev/null 2> "$work/env.err"
+check "  and \$MESASR_SIM_CONFIG" grep -q "serial 4000777: 1 frame" "$work/env.err"
+check "  the same frame" cmp -s "$work/grab/spec_distance.png" "$work/grab/flag_distance.png"
+check "  the same frame (environment)" cmp -s "$work/grab/spec_distance.png" "$work/grab/env_distance.png"
+
 KEYTURN_MESASR_LIB=/nonexistent/libmesasr.so "$KT" grab --camera usb --out "$work/grab/y.pcd" 2> "$work/nolib.err"
 check "missing libMesaSR exits non-zero" test $? -ne 0
 check "missing libMesaSR is one line" grep -q "^keyturn: libMesaSR not found (tried /nonexistent/libmesasr.so" "$work/nolib.err"
@@ -70,6 +82,8 @@ check "missing libMesaSR is one line" grep -q "^keyturn: libMesaSR not found (tr
 check "a library that is not libMesaSR exits non-zero" test $? -ne 0
 check "wrong library named in one line" grep -q "^keyturn: libm.so.6: not a usable libMesaSR (missing SR_OpenUSB" "$work/wronglib.err"
 check "wrong library error is one line" test "$(wc -l < "$work/wronglib.err")" -eq 1
+"$KT" grab --camera "eth:10.1.2.3,lib=libm.so.6" --out "$work/grab/z.pcd" 2> "$work/speclib.err"
+check "the library in the camera's spec is the one loaded" cmp -s "$work/wronglib.err" "$work/speclib.err"
 
 # USB discovery on umockdev-emulated devices.
 if command -v umockdev-run > /dev/null; then

@@ -243,17 +243,3 @@ TEST_F(Playback, ImportedViewsPlayAtAChosenRateWithTheDefaultSettings) {
   EXPECT_EQ(f.device, "");
   EXPECT_EQ(f.settings.integration_time, drivers::TofSettings().integration_time);
 }
-
-TEST(PlaybackSpec, ParsesTheDatasetAndTheRate) {
-  EXPECT_TRUE(rig::isPlaybackSpec("playback:out/demo"));
-  EXPECT_FALSE(rig::isPlaybackSpec("usb"));
-  EXPECT_EQ(rig::playbackDataset("playback:out/demo"), "out/demo");
-  EXPECT_EQ(rig::playbackOptions("playback:out/demo").rate_fps, 0);
-  EXPECT_EQ(rig::playbackDataset("playback:out/demo@12.5"), "out/demo");
-  EXPECT_EQ(rig::playbackOptions("playback:out/demo@12.5").rate_fps, 12.5);
-  EXPECT_EQ(rig::playbackDataset("playback:runs/a@b"), "runs/a@b");  // not a rate: part of the folder
-  EXPECT_EQ(errorOf([] { rig::playbackOptions("playback:out/demo@0"); }),
-            "camera 'playback:out/demo@0': the playback rate after @ must be a positive number of frames/s");
-  EXPECT_EQ(errorOf([] { rig::playbackDataset("playback:"); }),
-            "camera 'playback:': playback needs a dataset folder (playback:DATASET[@FPS])");
-}

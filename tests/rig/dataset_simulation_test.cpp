@@ -123,11 +123,13 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
   ASSERT_NE(simulated.simulatedTurntable(), nullptr);
   EXPECT_TRUE(simulated.cameraFromTurntable().has_value());
   EXPECT_EQ(simulated.camera().acquire().cloud.width, 176u);  // an SR4000 frame
-  d.camera = "usb";
+  d.camera = rig::CameraSpec::parse("usb");
   EXPECT_EQ(errorOf([&] { rig::CaptureRig real(d); }),
             "--pose sim needs --camera sim: the simulated table and camera share one world");
-  d.camera = "firewire";
-  EXPECT_EQ(errorOf([&] { rig::CaptureRig bad(d); }), "camera 'firewire': expected sim, usb, usb:SERIAL, eth:IP or playback:DATASET");
+  d.camera = rig::CameraSpec::parse("sim:" + (dir / "camera.json").string());
+  EXPECT_EQ(errorOf([&] { rig::CaptureRig configured(d); }),
+            "camera 'sim:" + (dir / "camera.json").string() +
+                "': a capture writes its simulated camera's configuration itself (mesh, distance, seed); give sim");
   fs::remove_all(dir);
 }
 

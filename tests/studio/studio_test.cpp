@@ -70,14 +70,15 @@ class ObservedFactory final : public RigFactory {
   int scans = 0, polls = 0;
   std::atomic<long> acquired{0}, opens{0};
 
-  std::unique_ptr<drivers::TofCamera> openCamera(const CameraRequest& r, Log log) override {
+  std::unique_ptr<drivers::TofCamera> openCamera(const rig::CameraSpec& r, Log log) override {
     ++opens;
     return std::make_unique<CountedCamera>(real_.openCamera(r, std::move(log)), acquired);
   }
-  std::unique_ptr<drivers::PoseSource> openPose(const PoseRequest& r, Log log) override {
+  std::unique_ptr<drivers::PoseSource> openPose(const rig::PoseSpec& r, Log log) override {
     return real_.openPose(r, std::move(log));
   }
   std::vector<SimObject> simObjects() const override { return real_.simObjects(); }
+  rig::CameraSpec simulatedCamera(const std::string& sim_object) override { return real_.simulatedCamera(sim_object); }
   void setSimulatedCameraUnplugged(bool unplugged) override { real_.setSimulatedCameraUnplugged(unplugged); }
   std::vector<std::pair<unsigned, std::string>> usbCameras() override {
     ++scans;

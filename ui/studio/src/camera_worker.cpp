@@ -19,15 +19,15 @@ CameraWorker::CameraWorker(RigFactory& factory) : factory_(factory) {
 
 CameraWorker::~CameraWorker() = default;
 
-void CameraWorker::open(const CameraRequest& request, const drivers::TofSettings& settings) {
+void CameraWorker::open(const rig::CameraSpec& spec, const drivers::TofSettings& settings) {
   close();
-  request_ = request;
+  spec_ = spec;
   settings_ = settings;
   try {
     openCamera();
   } catch (const std::exception& e) {
     camera_.reset();
-    emit openFailed(QString::fromStdString(request_.describe() + ": " + e.what()));
+    emit openFailed(QString::fromStdString(spec_.describe() + ": " + e.what()));
     return;
   }
   const auto s = camera_->settings();
@@ -42,7 +42,7 @@ void CameraWorker::open(const CameraRequest& request, const drivers::TofSettings
 }
 
 void CameraWorker::openCamera() {
-  camera_ = factory_.openCamera(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); });
+  camera_ = factory_.openCamera(spec_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); });
   camera_->configure(settings_);
 }
 

@@ -27,7 +27,7 @@ class CameraWorker : public QObject {
   std::atomic<bool>& captureStop() { return capture_stop_; }
 
   // Called in the worker's thread (QMetaObject::invokeMethod).
-  void open(const CameraRequest& request, const drivers::TofSettings& settings);
+  void open(const rig::CameraSpec& spec, const drivers::TofSettings& settings);
   void close();
   void configure(const drivers::TofSettings& settings);
   void capture(const CaptureRequest& request, std::shared_ptr<drivers::PoseSource> pose);
@@ -47,14 +47,14 @@ class CameraWorker : public QObject {
   void captureFinished(int written, int skipped, bool stopped, QString error);
 
  private:
-  void openCamera();  // request_ with settings_; throws
+  void openCamera();  // spec_ with settings_; throws
   void acquireOne();
   void lost(const std::string& why);
   void tryReconnect();
 
   RigFactory& factory_;
   std::unique_ptr<drivers::TofCamera> camera_;
-  CameraRequest request_;
+  rig::CameraSpec spec_;
   drivers::TofSettings settings_;
   QTimer* live_ = nullptr;
   QTimer* reconnect_ = nullptr;

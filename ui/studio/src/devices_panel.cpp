@@ -235,14 +235,14 @@ void DevicesPanel::updateCameraKind() {
 }
 
 void DevicesPanel::updatePoseKind() {
-  const auto k = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
-  const bool external = k != PoseRequest::Kind::None && k != PoseRequest::Kind::Simulated && k != PoseRequest::Kind::Playback;
+  const auto k = static_cast<PoseChoice>(pose_kind_->currentIndex());
+  const bool external = k != PoseChoice::None && k != PoseChoice::Simulated && k != PoseChoice::Playback;
   pose_endpoint_->setEnabled(external);
   pose_profile_->setEnabled(external);
-  pose_endpoint_->setPlaceholderText(k == PoseRequest::Kind::ModbusTcp   ? "127.0.0.1:1502"
-                                     : k == PoseRequest::Kind::ModbusRtu ? "/dev/ttyUSB0"
-                                     : k == PoseRequest::Kind::Can       ? "can0"
-                                                                         : "");
+  pose_endpoint_->setPlaceholderText(k == PoseChoice::ModbusTcp   ? "127.0.0.1:1502"
+                                     : k == PoseChoice::ModbusRtu ? "/dev/ttyUSB0"
+                                     : k == PoseChoice::Can       ? "can0"
+                                                                  : "");
 }
 
 void DevicesPanel::refreshUsb() {
@@ -256,25 +256,32 @@ void DevicesPanel::refreshUsb() {
   }
 }
 
-CameraRequest DevicesPanel::cameraRequest() const {
-  CameraRequest r;
-  r.kind = static_cast<CameraRequest::Kind>(camera_kind_->currentIndex());
-  r.usb_serial = usb_list_->currentData().toUInt();
-  r.address = address_->text().trimmed().toStdString();
-  r.sim_object = simObject().toStdString();
-  r.playback = playback();
-  return r;
+rig::CameraSpec DevicesPanel::cameraSpec() const {
+  rig::CameraSpec spec;
+  switch (static_cast<rig::CameraSpec::Kind>(camera_kind_->currentIndex())) {
+    case rig::CameraSpec::Kind::Simulated: return factory_.simulatedCamera(simObject().toStdString());
+    case rig::CameraSpec::Kind::Usb:
+      spec.kind = rig::CameraSpec::Kind::Usb;
+      spec.usb_serial = usb_list_->currentData().toUInt();
+      return spec;
+    case rig::CameraSpec::Kind::Ethernet: return rig::CameraSpec::parse("eth:" + address_->text().trimmed().toStdString());
+    case rig::CameraSpec::Kind::Playback:
+      spec.kind = rig::CameraSpec::Kind::Playback;
+      spec.playback = playback();
+      return spec;
+  }
+  return spec;
 }
 
-PlaybackRequest DevicesPanel::playback() const {
-  PlaybackRequest p;
+rig::PlaybackSpec DevicesPanel::playback() const {
+  rig::PlaybackSpec p;
   p.dataset = playback_dataset_->text().trimmed().toStdString();
   p.rate_fps = playback_rate_->value();
   p.loop = playback_loop_->isChecked();
   return p;
 }
 
-void DevicesPanel::setPlayback(const PlaybackRequest& p) {
+void DevicesPanel::setPlayback(const rig::PlaybackSpec& p) {
   playback_dataset_->setText(QString::fromStdString(p.dataset));
   playback_rate_->setValue(p.rate_fps);
   playback_loop_->setChecked(p.loop);
@@ -295,24 +302,33 @@ drivers::TofSettings DevicesPanel::cameraSettings() const {
   return s;
 }
 
-PoseRequest DevicesPanel::poseRequest() const {
-  PoseRequest r;
-  r.kind = static_cast<PoseRequest::Kind>(pose_kind_->currentIndex());
-  r.endpoint = pose_endpoint_->text().trimmed().toStdString();
-  r.profile = pose_profile_->text().trimmed().toStdString();
-  r.playback = playback();
-  return r;
+std::optional<rig::PoseSpec> DevicesPanel::poseSpec() const {
+  const std::string endpoint = pose_endpoint_->text().trimmed().toStdString();
+  rig::PoseSpec spec;
+  switch (static_cast<PoseChoice>(pose_kind_->currentIndex())) {
+    case PoseChoice::None: return std::nullopt;
+    case PoseChoice::Simulated: return spec;
+    case PoseChoice::ModbusTcp: spec = rig::PoseSpec::parse("modbus-tcp:" + endpoint); break;
+    case PoseChoice::ModbusRtu: spec = rig::PoseSpec::parse("modbus-rtu:" + endpoint); break;
+    case PoseChoice::Can: spec = rig::PoseSpec::parse("can:" + endpoint); break;
+    case PoseChoice::Playback:
+      spec.kind = rig::PoseSpec::Kind::Playback;
+      spec.playback = playback();  // the camera's recording: the same timeline
+      return spec;
+  }
+  if (spec.profile.empty()) spec.profile = pose_profile_->text().trimmed().toStdString();
+  return spec;
 }
 
 QString DevicesPanel::simObject() const { return sim_object_->currentData().toString(); }
 
-void DevicesPanel::setCameraChoice(CameraRequest::Kind kind, const QString& sim_object) {
+void DevicesPanel::setCameraChoice(rig::CameraSpec::Kind kind, const QString& sim_object) {
   camera_kind_->setCurrentIndex(static_cast<int>(kind));
   const int i = sim_object_->findData(sim_object);
   if (i >= 0) sim_object_->setCurrentIndex(i);
 }
 
-void DevicesPanel::setPoseChoice(PoseRequest::Kind kind) { pose_kind_->setCurrentIndex(static_cast<int>(kind)); }
+void DevicesPanel::setPoseChoice(PoseChoice choice) { pose_kind_->setCurrentIndex(static_cast<int>(choice)); }
 
 void DevicesPanel::save(QSettings& s) const {
   s.setValue("camera/kind", camera_kind_->currentIndex());

@@ -4,6 +4,8 @@
 // readout and jog / home / move-to / stop.
 #include <QWidget>
 
+#include <optional>
+
 #include "keyturn/studio/rig_factory.h"
 
 class QCheckBox;
@@ -21,15 +23,20 @@ namespace keyturn::studio {
 class DevicesPanel : public QWidget {
   Q_OBJECT
  public:
+  // The pose sources in the panel's list, in its order.
+  enum class PoseChoice { None, Simulated, ModbusTcp, ModbusRtu, Can, Playback };
+
   DevicesPanel(RigFactory& factory, QWidget* parent = nullptr);
 
-  CameraRequest cameraRequest() const;
+  // The chosen camera as rig's spec (a simulated one's configuration written by the factory).
+  // Throws keyturn::Error naming a bad address or endpoint typed in the panel.
+  rig::CameraSpec cameraSpec() const;
   drivers::TofSettings cameraSettings() const;
-  PoseRequest poseRequest() const;
-  void setCameraChoice(CameraRequest::Kind kind, const QString& sim_object);
-  void setPoseChoice(PoseRequest::Kind kind);
-  void setPlayback(const PlaybackRequest& playback);
-  PlaybackRequest playback() const;
+  std::optional<rig::PoseSpec> poseSpec() const;  // none: "None" chosen
+  void setCameraChoice(rig::CameraSpec::Kind kind, const QString& sim_object);
+  void setPoseChoice(PoseChoice choice);
+  void setPlayback(const rig::PlaybackSpec& playback);
+  rig::PlaybackSpec playback() const;
   QString simObject() const;
 
   void save(QSettings& s) const;

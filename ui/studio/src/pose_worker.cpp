@@ -19,18 +19,18 @@ PoseWorker::~PoseWorker() = default;
 
 void PoseWorker::connectSource() {
   source_ = std::make_shared<rig::LockedPoseSource>(
-      factory_.openPose(request_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); }));
+      factory_.openPose(*spec_, [this](const std::string& l) { emit logLine(QString::fromStdString(l)); }));
 }
 
-void PoseWorker::open(const PoseRequest& request) {
+void PoseWorker::open(const std::optional<rig::PoseSpec>& spec) {
   close();
-  request_ = request;
-  if (request_.kind == PoseRequest::Kind::None) return;
+  spec_ = spec;
+  if (!spec_) return;
   try {
     connectSource();
   } catch (const std::exception& e) {
     source_.reset();
-    emit openFailed(QString::fromStdString(request_.describe() + ": " + e.what()));
+    emit openFailed(QString::fromStdString(spec_->describe() + ": " + e.what()));
     return;
   }
   emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);

@@ -5,6 +5,7 @@
 #include <QObject>
 #include <QTimer>
 #include <memory>
+#include <optional>
 
 #include "keyturn/studio/rig_factory.h"
 
@@ -17,7 +18,7 @@ class PoseWorker : public QObject {
   ~PoseWorker() override;
 
   // Called in the worker's thread.
-  void open(const PoseRequest& request);
+  void open(const std::optional<rig::PoseSpec>& spec);  // none: no pose source
   void close();
   void jog(double delta_deg);
   void home();
@@ -37,10 +38,10 @@ class PoseWorker : public QObject {
   void poll();
   void command(const char* what, const std::function<void(drivers::PoseSource&)>& f);
   void tryReconnect();
-  void connectSource();  // request_; throws
+  void connectSource();  // spec_; throws
 
   RigFactory& factory_;
-  PoseRequest request_;
+  std::optional<rig::PoseSpec> spec_;
   std::shared_ptr<drivers::PoseSource> source_;
   QTimer* poll_ = nullptr;
   QTimer* reconnect_ = nullptr;

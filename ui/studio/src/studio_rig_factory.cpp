@@ -6,7 +6,6 @@
 #include <fstream>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/devices.h"
 #include "keyturn/rig/object_list.h"
 
 namespace fs = std::filesystem;
@@ -28,8 +27,9 @@ StudioRigFactory::StudioRigFactory(std::string objects_csv) {
   if (objects_.empty()) objects_.push_back({"mug", "builtin", "builtin:mug"});
   files_.dir = (fs::temp_directory_path() / ("keyturn-studio-" + std::to_string(::getpid()))).string();
   fs::create_directories(files_.dir);
-  // Before any device thread runs (setenv is not thread-safe).
-  rig::useSimulatedCameraConfig(files_);
+  sim::TurntableServerOptions table;  // the table's real-time motion
+  table.world_file = files_.world();
+  devices_ = std::make_unique<rig::DeviceFactory>(table);
 }
 
 StudioRigFactory::~StudioRigFactory() {
@@ -37,63 +37,25 @@ StudioRigFactory::~StudioRigFactory() {
   fs::remove_all(files_.dir, ec);
 }
 
-std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const CameraRequest& r, Log log) {
-  using Kind = CameraRequest::Kind;
-  if (r.kind != Kind::Simulated) {
-    std::lock_guard<std::mutex> l(mutex_);
-    camera_from_turntable_.reset();  // a real rig: not calibrated from here
-  }
-  if (r.kind == Kind::Usb)
-    return rig::openCamera(r.usb_serial ? "usb:" + std::to_string(r.usb_serial) : "usb", "", "", log);
-  if (r.kind == Kind::Ethernet) return rig::openCamera("eth:" + r.address, "", "", log);
-  if (r.kind == Kind::Playback) {
-    auto played = recording(r.playback);
-    if (played->ended()) played->rewind();  // Connect after the end plays it again (the pose follows: same timeline)
-    std::lock_guard<std::mutex> l(mutex_);
-    camera_from_turntable_ = played->cameraFromTurntable();  // the recorded calibration, for captures from it
-    return std::make_unique<rig::PlaybackCamera>(played);
-  }
+std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const rig::CameraSpec& spec, Log log) {
+  return devices_->openCamera(spec, std::move(log));
+}
+
+std::unique_ptr<drivers::PoseSource> StudioRigFactory::openPose(const rig::PoseSpec& spec, Log log) {
+  return devices_->openPoseSource(spec, std::move(log));
+}
+
+rig::CameraSpec StudioRigFactory::simulatedCamera(const std::string& sim_object) {
   const SimObject* object = &objects_.front();
   for (const auto& o : objects_)
-    if (o.instance == r.sim_object) object = &o;
+    if (o.instance == sim_object) object = &o;
   rig::SimulatedCameraOptions c;
   c.mesh = object->mesh;
-  c.elevation_deg = r.sim_elevation_deg;
-  c.distance = r.sim_distance_m;
   c.world = files_.world();
   c.unplug_file = files_.dir + "/unplugged";
   c.frame_rate = kSimFrameRate;
-  Eigen::Matrix4d pose;
-  auto camera = rig::openSimulatedCamera(files_, c, &pose, log);
-  std::lock_guard<std::mutex> l(mutex_);
-  camera_from_turntable_ = pose;
-  return camera;
-}
-
-std::unique_ptr<drivers::PoseSource> StudioRigFactory::openPose(const PoseRequest& r, Log log) {
-  using Kind = PoseRequest::Kind;
-  switch (r.kind) {
-    case Kind::Simulated: {
-      sim::TurntableServerOptions so;  // the table's real-time motion
-      so.world_file = files_.world();
-      return std::make_unique<rig::SimulatedTurntable>(so, log);
-    }
-    case Kind::ModbusTcp: return rig::openPoseSource("modbus-tcp:" + r.endpoint, r.profile, log);
-    case Kind::ModbusRtu: return rig::openPoseSource("modbus-rtu:" + r.endpoint, r.profile, log);
-    case Kind::Can: return rig::openPoseSource("can:" + r.endpoint, r.profile, log);
-    case Kind::Playback: return std::make_unique<rig::PlaybackPose>(recording(r.playback));
-    case Kind::None: break;
-  }
-  throw Error("no pose source chosen");
-}
-
-std::shared_ptr<rig::Recording> StudioRigFactory::recording(const PlaybackRequest& r) {
-  std::lock_guard<std::mutex> l(mutex_);
-  if (!recording_ || !(playing_ == r)) {
-    recording_ = std::make_shared<rig::Recording>(r.dataset, rig::PlaybackOptions{r.rate_fps, r.loop});
-    playing_ = r;
-  }
-  return recording_;
+  std::lock_guard<std::mutex> l(config_mutex_);
+  return rig::writeSimulatedCameraConfig(files_.cameraConfig(), c);
 }
 
 void StudioRigFactory::setSimulatedCameraUnplugged(bool unplugged) {
@@ -134,9 +96,6 @@ bool StudioRigFactory::usbCamerasChanged() {
   return changed;
 }
 
-std::optional<Eigen::Matrix4d> StudioRigFactory::cameraFromTurntable() const {
-  std::lock_guard<std::mutex> l(mutex_);
-  return camera_from_turntable_;
-}
+std::optional<Eigen::Matrix4d> StudioRigFactory::cameraFromTurntable() const { return devices_->cameraFromTurntable(); }
 
 }  // namespace keyturn::studio

@@ -152,8 +152,8 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
   if (d_->options.simulated) {
     QString object = QString::fromStdString(d_->options.sim_object);
     if (object.isEmpty() && !factory.simObjects().empty()) object = QString::fromStdString(factory.simObjects().front().instance);
-    d_->devices->setCameraChoice(CameraRequest::Kind::Simulated, object);
-    d_->devices->setPoseChoice(PoseRequest::Kind::Simulated);
+    d_->devices->setCameraChoice(rig::CameraSpec::Kind::Simulated, object);
+    d_->devices->setPoseChoice(DevicesPanel::PoseChoice::Simulated);
     emit d_->devices->simObjectChanged(d_->devices->simObject());
     // The turntable first: the simulated camera sees the angle it publishes.
     emit d_->devices->connectPose();
@@ -169,8 +169,8 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
     } catch (const std::exception&) {
       // The camera's open names the problem in the banner.
     }
-    d_->devices->setCameraChoice(CameraRequest::Kind::Playback, QString());
-    d_->devices->setPoseChoice(PoseRequest::Kind::Playback);
+    d_->devices->setCameraChoice(rig::CameraSpec::Kind::Playback, QString());
+    d_->devices->setPoseChoice(DevicesPanel::PoseChoice::Playback);
     emit d_->devices->connectCamera();
     emit d_->devices->connectPose();
   }

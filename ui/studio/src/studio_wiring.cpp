@@ -24,7 +24,15 @@ void StudioWindow::Impl::wire() {
 
   // Devices panel → workers.
   QObject::connect(devices, &DevicesPanel::connectCamera, w, [this] {
-    const CameraRequest r = devices->cameraRequest();
+    rig::CameraSpec r;
+    try {
+      r = devices->cameraSpec();
+    } catch (const std::exception& e) {  // a bad address typed, an unwritable configuration
+      camera_problem = tr("Could not open the camera: %1").arg(e.what());
+      devices->cameraFailing(e.what());
+      updateBanner();
+      return;
+    }
     const drivers::TofSettings s = devices->cameraSettings();
     onCamera([c = camera, r, s] { c->open(r, s); });
   });
@@ -44,7 +52,15 @@ void StudioWindow::Impl::wire() {
         capture->setObject(QString::fromStdString(o.cls), QString::fromStdString(o.instance));
   });
   QObject::connect(devices, &DevicesPanel::connectPose, w, [this] {
-    const PoseRequest r = devices->poseRequest();
+    std::optional<rig::PoseSpec> r;
+    try {
+      r = devices->poseSpec();
+    } catch (const std::exception& e) {  // a bad endpoint typed
+      pose_problem = tr("Could not open the pose source: %1").arg(e.what());
+      devices->poseFailing(e.what());
+      updateBanner();
+      return;
+    }
     onPose([p = pose, r] { p->open(r); });
   });
   QObject::connect(devices, &DevicesPanel::disconnectPose, w, [this] {

@@ -106,6 +106,18 @@ typedef int SR_FuncCB(SRCAM srCam, unsigned int msg, unsigned int param, void* d
 KEYTURN_MESASR_FUNCTIONS(KEYTURN_MESASR_DECLARE)
 #undef KEYTURN_MESASR_DECLARE
 
+/* keyturn's extension, exported by libmesasr-sim only (MESA's library has no such
+ * function; keyturn looks it up with dlsym and uses it when present): opens the
+ * simulated camera that the configuration file configPath describes (NULL or "":
+ * the simulator's defaults), as SR_OpenUSB(srCam, 0) opens the one that
+ * $MESASR_SIM_CONFIG describes. Each camera keeps its own configuration, so one
+ * process can open several different simulated cameras without the environment;
+ * outside programs (MESA's own test program) keep using $MESASR_SIM_CONFIG.
+ * Returns 1 on success, -1 when the configuration or its mesh cannot be read or
+ * the camera is unplugged (as SR_OpenUSB). */
+typedef int KTSIM_OpenWithConfigFn(SRCAM* srCam, const char* configPath);
+KTSIM_OpenWithConfigFn KTSIM_OpenWithConfig;
+
 /* Firmware version register of the SR4000. */
 #define SR4000_REG_FIRMWARE 46
 

@@ -14,6 +14,8 @@ struct MesaSrLibrary {
 #define KEYTURN_MESASR_POINTER(ret, name, args) ret(*name) args = nullptr;
   KEYTURN_MESASR_FUNCTIONS(KEYTURN_MESASR_POINTER)
 #undef KEYTURN_MESASR_POINTER
+  // keyturn's extension (mesasr_api.h): present in libmesasr-sim only, else null.
+  KTSIM_OpenWithConfigFn* KTSIM_OpenWithConfig = nullptr;
 
   std::string path;  // what was loaded
   void* handle = nullptr;

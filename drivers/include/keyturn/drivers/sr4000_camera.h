@@ -1,6 +1,6 @@
 #pragma once
 // The SwissRanger SR4000 through libMesaSR: USB (serial, 0 = first camera) or
-// Ethernet (IP). A failed acquisition closes and reopens the camera with
+// Ethernet (IP), or libmesasr-sim's camera with its configuration passed explicitly. A failed acquisition closes and reopens the camera with
 // exponential backoff (reported through the log callback) before giving up.
 #include <functional>
 #include <memory>
@@ -12,9 +12,11 @@
 namespace keyturn::drivers {
 
 struct Sr4000Connection {
-  enum class Kind { Usb, Ethernet } kind = Kind::Usb;
+  // Simulator: libmesasr-sim's own camera, opened through its KTSIM_OpenWithConfig (mesasr_api.h).
+  enum class Kind { Usb, Ethernet, Simulator } kind = Kind::Usb;
   unsigned serial = 0;  // USB: 0 = first camera found
   std::string address;  // Ethernet: IPv4 address
+  std::string simulator_config;  // Simulator: its configuration file; empty: the simulator's defaults
 
   // "usb", "usb:SERIAL", "eth:IP". Throws keyturn::Error.
   static Sr4000Connection parse(const std::string& text);

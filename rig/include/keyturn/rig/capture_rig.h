@@ -1,8 +1,8 @@
 #pragma once
-// The devices of one capture, opened by name (devices.h): the simulated rig's
-// camera and, with pose "sim", its turntable (simulated_rig.h), or a real camera
-// and pose source. Opened in the order that names a bad one before anything is
-// written: the pose source (and its profile) before the camera.
+// The devices of one capture, opened through the device factory (device_factory.h): the
+// simulated rig's camera and, with pose sim, its turntable (simulated_rig.h), a recording's
+// camera and poses, or a real camera and pose source. Opened in the order that names a bad one
+// before anything is written: the pose source (and its profile) before the camera.
 #include <Eigen/Core>
 #include <memory>
 #include <optional>
@@ -10,20 +10,21 @@
 
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
+#include "keyturn/rig/device_factory.h"
+#include "keyturn/rig/device_spec.h"
 #include "keyturn/rig/simulated_rig.h"
 
 namespace keyturn::rig {
 
 struct CaptureDevices {
-  std::string camera = "sim";   // sim, usb, usb:SERIAL, eth:IP, playback:DATASET[@FPS]
-  std::string pose = "sim";     // sim (the simulated or played-back rig's own), playback, or a pose source spec
-  std::string profile;          // the pose source's profile
-  SimulatedRigOptions sim;      // with camera sim (simulated_pose follows pose)
+  CameraSpec camera;         // simulated (configured by sim below), usb, eth or playback
+  PoseSpec pose;             // sim: the simulated or played-back rig's own; playback; or a real pose source
+  SimulatedRigOptions sim;   // with a simulated camera (simulated_pose follows pose)
 };
 
 class CaptureRig {
  public:
-  // Throws keyturn::Error naming the device or the combination (pose sim without camera sim).
+  // Throws keyturn::Error naming the device or the combination (pose sim without a simulated camera).
   explicit CaptureRig(const CaptureDevices& devices);
   drivers::TofCamera& camera() { return *camera_; }
   drivers::PoseSource& pose() { return *pose_; }
@@ -33,6 +34,7 @@ class CaptureRig {
   const SimulatedTurntable* simulatedTurntable() const { return sim_.turntable.get(); }
 
  private:
+  DeviceFactory factory_;
   SimulatedRig sim_;  // owns the simulated devices, when used
   std::unique_ptr<drivers::TofCamera> real_camera_;
   std::unique_ptr<drivers::PoseSource> real_pose_;

@@ -109,9 +109,4 @@ class PlaybackPose final : public drivers::PoseSource {
   std::shared_ptr<Recording> recording_;
 };
 
-// "playback:DATASET" or "playback:DATASET@FPS" (FPS > 0: the rate; without it the recorded rate).
-bool isPlaybackSpec(const std::string& spec);
-std::string playbackDataset(const std::string& spec);
-PlaybackOptions playbackOptions(const std::string& spec);  // throws naming a bad rate
-
 }  // namespace keyturn::rig

@@ -2,7 +2,8 @@
 // The simulated rig, for the CLI and the studio alike: the simulated SR4000
 // (libmesasr-sim, opened through the real driver) and the simulated turntable
 // (its Modbus server in this process and the real Modbus driver talking to it
-// over loopback), sharing one world file in the rig's folder.
+// over loopback), sharing one world file in the rig's folder. Both are opened by
+// the device factory (device_factory.h); this file writes what they share.
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
@@ -10,7 +11,8 @@
 
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
-#include "keyturn/rig/devices.h"
+#include "keyturn/rig/device_factory.h"
+#include "keyturn/rig/device_spec.h"
 #include "keyturn/sim/turntable_sim.h"
 
 namespace keyturn::drivers {
@@ -26,10 +28,6 @@ struct SimulatedRigFiles {
   std::string cameraConfig() const { return dir + "/camera.json"; }
 };
 
-// libmesasr-sim reads $MESASR_SIM_CONFIG at every open: a process with device threads sets it
-// once, before they start (setenv is not thread-safe); openSimulatedRig sets it itself.
-void useSimulatedCameraConfig(const SimulatedRigFiles& files);
-
 struct SimulatedCameraOptions {
   std::string mesh = "builtin:mug";  // builtin:NAME or a mesh file
   double elevation_deg = 30;
@@ -43,10 +41,9 @@ struct SimulatedCameraOptions {
   std::string unplug_file;           // while this file exists the camera is unplugged
 };
 
-// Writes the camera's configuration for this object and elevation and opens it ($MESASR_SIM_CONFIG
-// must name files.cameraConfig()). camera_from_turntable: the exact pose at 0°.
-std::unique_ptr<drivers::TofCamera> openSimulatedCamera(const SimulatedRigFiles& files, const SimulatedCameraOptions& o,
-                                                        Eigen::Matrix4d* camera_from_turntable, DeviceLog log = {});
+// Writes libmesasr-sim's configuration for this object and elevation to path (its folder made) and
+// returns the spec that opens it: sim:PATH. Mesh and world paths are written absolute.
+CameraSpec writeSimulatedCameraConfig(const std::string& path, const SimulatedCameraOptions& o);
 
 // The simulated turntable as one PoseSource: it owns its server, which outlives the driver.
 class SimulatedTurntable final : public drivers::PoseSource {

@@ -1,6 +1,8 @@
 #pragma once
-// Configuration of libmesasr-sim, the simulated libMesaSR: a JSON file named
-// by $MESASR_SIM_CONFIG, read when a camera is opened. Everything is optional.
+// Configuration of libmesasr-sim, the simulated libMesaSR: a JSON file read when
+// a camera is opened, passed by keyturn through KTSIM_OpenWithConfig
+// (drivers/mesasr_api.h) and named by $MESASR_SIM_CONFIG for programs outside
+// keyturn (SR_OpenUSB/SR_OpenETH). Everything is optional.
 //
 // {
 //   "mesh": "builtin:mug" | "path/to/object.ply",   (relative to the config file)

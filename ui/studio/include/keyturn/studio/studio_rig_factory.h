@@ -1,12 +1,13 @@
 #pragma once
-// The studio's devices: the real drivers (SR4000 over USB or Ethernet through
-// libMesaSR, Modbus RTU/TCP turntables, CANopen axes over SocketCAN) and the
-// simulated rig (rig/simulated_rig.h: libmesasr-sim and the simulated Modbus
-// turntable, sharing a world file in a private runtime folder).
+// The studio's devices, opened by rig's device factory (rig/device_factory.h) as
+// the CLI opens them. What is the studio's own: the simulated rig's files in a
+// private runtime folder (the world the simulated camera and turntable share,
+// the camera's configuration, its unplug flag), the simulated objects to choose
+// from, and USB discovery for the Devices panel.
 #include <mutex>
 
 #include "keyturn/drivers/usb_discovery.h"
-#include "keyturn/rig/dataset_playback.h"
+#include "keyturn/rig/device_factory.h"
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/studio/rig_factory.h"
 
@@ -18,9 +19,10 @@ class StudioRigFactory final : public RigFactory {
   explicit StudioRigFactory(std::string objects_csv);
   ~StudioRigFactory() override;
 
-  std::unique_ptr<drivers::TofCamera> openCamera(const CameraRequest& request, Log log) override;
-  std::unique_ptr<drivers::PoseSource> openPose(const PoseRequest& request, Log log) override;
+  std::unique_ptr<drivers::TofCamera> openCamera(const rig::CameraSpec& spec, Log log) override;
+  std::unique_ptr<drivers::PoseSource> openPose(const rig::PoseSpec& spec, Log log) override;
   std::vector<SimObject> simObjects() const override { return objects_; }
+  rig::CameraSpec simulatedCamera(const std::string& sim_object) override;
   void setSimulatedCameraUnplugged(bool unplugged) override;
   std::vector<std::pair<unsigned, std::string>> usbCameras() override;
   bool usbCamerasChanged() override;
@@ -28,17 +30,12 @@ class StudioRigFactory final : public RigFactory {
   const std::string& runtimeDir() const { return files_.dir; }
 
  private:
-  // The camera and the pose source of one recording share its timeline, whichever opens first.
-  std::shared_ptr<rig::Recording> recording(const PlaybackRequest& request);
-
   std::vector<SimObject> objects_;
   rig::SimulatedRigFiles files_;
-  mutable std::mutex mutex_;
-  std::optional<Eigen::Matrix4d> camera_from_turntable_;
+  std::unique_ptr<rig::DeviceFactory> devices_;  // its simulated turntable writes files_.world()
+  std::mutex config_mutex_;                      // simulatedCamera writes one configuration at a time
   std::unique_ptr<drivers::UsbHotplugWatcher> hotplug_;
   bool hotplug_tried_ = false, usb_changed_ = false;
-  PlaybackRequest playing_;
-  std::shared_ptr<rig::Recording> recording_;
 };
 
 }  // namespace keyturn::studio

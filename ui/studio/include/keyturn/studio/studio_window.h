@@ -18,7 +18,7 @@ struct StudioOptions {
   std::string settings_file;     // "" = the user's (QSettings keyturn/studio)
   bool start_capture = false;    // start the capture sequence once camera and turntable are up
   bool geodesic_paths = false;   // show the geodesic paths in the 3D view from the start
-  PlaybackRequest playback;      // dataset not empty: start playing it back as camera and pose source
+  rig::PlaybackSpec playback;    // dataset not empty: start playing it back as camera and pose source
 };
 
 // Live numbers, for the status bar, tests and `keyturn-studio --measure`.
