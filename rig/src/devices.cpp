@@ -5,6 +5,7 @@
 #include <iostream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/install_layout.h"
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/drivers/sr4000_camera.h"
@@ -12,15 +13,12 @@
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/mesh.h"
 
-#ifndef KEYTURN_MESASR_SIM_DEFAULT
-#define KEYTURN_MESASR_SIM_DEFAULT "libmesasr.so"
-#endif
 
 namespace keyturn::rig {
 
 std::string simulatorLibraryPath() {
   const char* env = std::getenv("KEYTURN_MESASR_SIM");
-  return env && *env ? env : KEYTURN_MESASR_SIM_DEFAULT;
+  return env && *env ? env : prefixPath("lib/keyturn/mesasr-sim/libmesasr.so").string();
 }
 
 drivers::Sr4000Connection parseCameraSpec(const std::string& spec) {

@@ -1,7 +1,7 @@
 #pragma once
 // Opening the rig's devices by name, for the CLI and the studio:
 //   camera  sim|usb[:SERIAL]|eth:IP|playback:DATASET[@FPS] → a TofCamera. "sim" loads
-//           libmesasr-sim (the build's, or $KEYTURN_MESASR_SIM) and opens its first USB
+//           libmesasr-sim (PREFIX/lib/keyturn/mesasr-sim, or $KEYTURN_MESASR_SIM) and opens its first USB
 //           camera; usb and eth load MESA's libMesaSR ($KEYTURN_MESASR_LIB or the usual
 //           sonames); playback replays a dataset (dataset_playback.h).
 //   pose    modbus-tcp:HOST:PORT|modbus-rtu:DEV|can:IFACE → a PoseSource (for can:
