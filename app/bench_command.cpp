@@ -19,14 +19,12 @@
 #include "keyturn/bench/startup_timing.h"
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/install_layout.h"
 #include "keyturn/sim/tof_view.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 #include "progress.h"
 #include "keyturn/core/view_files.h"
 
-#ifndef KEYTURN_DATA_DIR
-#define KEYTURN_DATA_DIR "data"
-#endif
 
 namespace keyturn::app {
 namespace {
@@ -84,7 +82,7 @@ int runBench(BenchArgs a) {
 int runScalingCommand(const BenchArgs& a) {
   if (a.files.size() > 1) throw Error("bench --scaling takes one frame (or none: the shipped Kinect frame)");
   bench::ScalingArgs s;
-  s.file = a.files.empty() ? std::string(KEYTURN_DATA_DIR) + "/frames/mosd_learn0.pcd" : a.files[0];
+  s.file = a.files.empty() ? (dataDirectory() / "frames/mosd_learn0.pcd").string() : a.files[0];
   s.depth = a.depth.toOptions();
   s.sizes = a.sizes;
   s.runs = a.runs;
@@ -94,7 +92,7 @@ int runScalingCommand(const BenchArgs& a) {
   if (a.json) std::cout << out.dump(2) << "\n";
   else std::fputs(bench::scalingTable(out).c_str(), stdout);
   if (!a.plot.empty()) {
-    ui::saveReportPlots({{bench::scalingPlot(out, a.plot)}, {}}, "");
+    plots::saveReportPlots({{bench::scalingPlot(out, a.plot)}, {}}, "");
     if (!a.json) std::printf("\nplot: %s\n", a.plot.c_str());
   }
   return out["failed"].get<int>() ? 1 : 0;

@@ -11,7 +11,7 @@
 #include "descriptor_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/learning/consistency.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 
 namespace keyturn::app {
 namespace {
@@ -32,7 +32,7 @@ int runConsistency(const ConsistencyArgs& a) {
   for (std::string f; std::getline(ss, f, ',');) q.blocks.push_back(f);
   const learning::ConsistencyReport report = learning::consistency(t, q, a.dataset);
   std::filesystem::create_directories(a.out);
-  ui::saveReportPlots(report.plots, a.out);
+  plots::saveReportPlots(report.plots, a.out);
   const std::string csv_path = (std::filesystem::path(a.out) / "consistency.csv").string();
   writeFileDurably(csv_path, report.csv);
   if (!a.quiet) std::cerr << "keyturn consistency: " << a.object << " → " << csv_path << " and consistency_e*.png\n";

@@ -11,10 +11,8 @@
 
 #include "commands.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/install_layout.h"
 
-#ifndef KEYTURN_DATA_DIR
-#define KEYTURN_DATA_DIR "data"
-#endif
 
 namespace fs = std::filesystem;
 
@@ -23,7 +21,7 @@ namespace {
 
 struct DemoArgs {
   std::string out = "out/demo";  // as scripts/demo.sh
-  std::string data = KEYTURN_DATA_DIR;
+  std::string data;  // empty: keyturn::dataDirectory()
   double step = 30;
 };
 
@@ -46,6 +44,7 @@ std::string quote(const std::string& s) { return "'" + s + "'"; }
 
 int runDemo(const DemoArgs& a) {
   const std::string kt = quote(self());
+  const std::string data = a.data.empty() ? dataDirectory().string() : a.data;
   fs::create_directories(a.out);
   // Four shipped objects of different shapes and sizes.
   const std::string list = a.out + "/objects.csv";
@@ -56,7 +55,7 @@ int runDemo(const DemoArgs& a) {
                           "bottle__ycb_006_mustard_bottle"}) {
       const std::string name = m;
       const auto sep = name.find("__");
-      f << name.substr(0, sep) << ',' << name.substr(sep + 2) << ',' << fs::absolute(a.data + "/objects/" + name + ".ply").string() << "\n";
+      f << name.substr(0, sep) << ',' << name.substr(sep + 2) << ',' << fs::absolute(data + "/objects/" + name + ".ply").string() << "\n";
     }
   }
   const std::string ds = a.out + "/dataset";
@@ -104,7 +103,7 @@ Command addDemoCommand(CLI::App& app) {
   auto a = std::make_shared<DemoArgs>();
   auto* cmd = app.add_subcommand("demo", "Simulate a small dataset of shipped objects, verify and describe it");
   cmd->add_option("--out,-o", a->out, "Working folder")->capture_default_str();
-  cmd->add_option("--data", a->data, "keyturn's data folder (object meshes)")->capture_default_str();
+  cmd->add_option("--data", a->data, "keyturn's data folder (object meshes; default: PREFIX/share/keyturn or $KEYTURN_DATA_DIR)");
   cmd->add_option("--step", a->step, "Turntable step (°)")->capture_default_str();
   return {cmd, [a] { return runDemo(*a); }};
 }

@@ -14,7 +14,7 @@
 #include "keyturn/learning/evaluation_parts.h"
 #include "keyturn/learning/evaluation_report.h"
 #include "keyturn/learning/feature_cache.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 #include "learning_options.h"
 #include "progress.h"
 
@@ -97,7 +97,7 @@ int runEvaluate(const EvaluateArgs& a) {
   std::filesystem::create_directories(out);
   writeFileDurably((out / "report.csv").string(), report.csv);
   writeFileDurably((out / "report.json").string(), report.json);
-  ui::saveReportPlots(report.plots, a.out);
+  plots::saveReportPlots(report.plots, a.out);
   writeFileDurably((out / "report.md").string(), report.markdown);
   if (a.json) std::cout << report.json;
   if (!a.quiet)

@@ -10,7 +10,7 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/repeatability_study.h"
 #include "keyturn/rig/study_views.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -44,7 +44,7 @@ int runRepeatability(RepArgs a) {
   writeFileDurably(a.out + "/pairs.csv", studyPairsCsv(s));
   writeFileDurably(a.out + "/summary.md", md);
   writeFileDurably(a.out + "/summary.json", json);
-  ui::saveReportPlots(studyPlots(s), a.out);
+  plots::saveReportPlots(studyPlots(s), a.out);
   std::cout << (a.json ? json : md + "Report: " + a.out + "\n");
   return 0;
 }

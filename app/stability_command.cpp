@@ -17,7 +17,7 @@
 #include "keyturn/core/stability_study.h"
 #include "keyturn/core/view_files.h"
 #include "keyturn/sim/tof_view.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -90,7 +90,7 @@ int runStability(const StabilityArgs& a) {
     std::filesystem::create_directories(a.out);
     writeFileDurably(a.out + "/stability.md", md);
     writeFileDurably(a.out + "/stability.json", json);
-    ui::saveReportPlots(stabilityPlots(s), a.out);
+    plots::saveReportPlots(stabilityPlots(s), a.out);
   }
   std::cout << (a.json ? json + "\n" : md + (a.out.empty() ? "" : "Report: " + a.out + "\n"));
   return 0;

@@ -11,13 +11,11 @@
 #include <iostream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/install_layout.h"
 #include "keyturn/rig/dataset_playback.h"
 #include "keyturn/studio/studio_rig_factory.h"
 #include "keyturn/studio/studio_session.h"
 
-#ifndef KEYTURN_DATA_DIR
-#define KEYTURN_DATA_DIR "data"
-#endif
 
 namespace {
 
@@ -64,7 +62,13 @@ int main(int argc, char** argv) {
     std::cerr << "keyturn-studio: " << e.what() << " (see keyturn-studio --help)\n";
     return 1;
   }
-  const std::string data = KEYTURN_DATA_DIR;
+  std::string data;
+  try {
+    data = keyturn::dataDirectory().string();
+  } catch (const keyturn::Error& e) {
+    std::cerr << "keyturn-studio: " << e.what() << "\n";
+    return 1;
+  }
   const std::string objects_csv = data + "/objects/objects.csv";
   keyturn::studio::StudioRigFactory factory(objects_csv);
   // Refused here: the window would otherwise fall back to the object used last.

@@ -12,6 +12,7 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-300}
 build=${HARDENING_BUILD_DIR:-build-hardening}
+export KEYTURN_PLUGIN_PATH="$(pwd)/$build/lib/keyturn"  # the fuzzers sit a folder deeper than the programs
 seed=${FUZZ_SEED:-$(date +%s)}
 work=${FUZZ_WORK:-$(mktemp -d)}
 mkdir -p "$work"

@@ -1,7 +1,6 @@
 #include "keyturn/core/plugin.h"
 
 #include <dlfcn.h>
-#include <link.h>
 
 #include <cstdlib>
 #include <filesystem>
@@ -10,26 +9,12 @@
 #include <vector>
 
 #include "keyturn/core/error.h"
-
-#ifndef KEYTURN_BUILD_PLUGIN_DIR
-#define KEYTURN_BUILD_PLUGIN_DIR ""
-#endif
+#include "keyturn/core/install_layout.h"
 
 namespace keyturn {
 namespace {
 
 namespace fs = std::filesystem;
-
-// The file of the program or shared module this code was linked into.
-fs::path ownFile() {
-  Dl_info info{};
-  link_map* map = nullptr;
-  if (dladdr1(reinterpret_cast<void*>(&pluginSymbol), &info, reinterpret_cast<void**>(&map), RTLD_DL_LINKMAP) &&
-      map && map->l_name && map->l_name[0] != '\0')
-    return map->l_name;
-  std::error_code ec;  // the main program: its link-map name is empty
-  return fs::read_symlink("/proc/self/exe", ec);
-}
 
 std::vector<fs::path> searchFolders() {
   std::vector<fs::path> folders;
@@ -41,12 +26,11 @@ std::vector<fs::path> searchFolders() {
       start = end + 1;
     }
   }
-  const fs::path own = ownFile();
+  const fs::path own = runningFile();
   if (!own.empty()) {
-    folders.push_back(own.parent_path());
-    folders.push_back(own.parent_path().parent_path() / "lib" / "keyturn");
+    folders.push_back(own.parent_path());  // a Python module carries its plugins beside it
+    folders.push_back(prefixPath("lib/keyturn"));
   }
-  if (KEYTURN_BUILD_PLUGIN_DIR[0] != '\0') folders.emplace_back(KEYTURN_BUILD_PLUGIN_DIR);
   return folders;
 }
 

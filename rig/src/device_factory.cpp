@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/install_layout.h"
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/drivers/sr4000_camera.h"
@@ -16,15 +17,12 @@
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
 
-#ifndef KEYTURN_MESASR_SIM_DEFAULT
-#define KEYTURN_MESASR_SIM_DEFAULT "libmesasr.so"
-#endif
 
 namespace keyturn::rig {
 
 std::string simulatorLibraryPath() {
   const char* env = std::getenv("KEYTURN_MESASR_SIM");
-  return env && *env ? env : KEYTURN_MESASR_SIM_DEFAULT;
+  return env && *env ? env : prefixPath("lib/keyturn/mesasr-sim/libmesasr.so").string();
 }
 
 namespace {

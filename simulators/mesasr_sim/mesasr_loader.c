@@ -22,9 +22,6 @@
 
 #define SIM_EXPORT __attribute__((visibility("default")))
 
-#ifndef KEYTURN_MESASR_SIM_CORE_BUILT
-#error "KEYTURN_MESASR_SIM_CORE_BUILT: the path of the core as built"
-#endif
 #define CORE_NAME "libmesasr-sim-core.so"
 
 /* AddressSanitizer refuses RTLD_DEEPBIND: under it the core is always loaded plainly. */
@@ -68,8 +65,8 @@ static void loadCore(void) {
       snprintf(beside, sizeof beside, "%s%s", real, CORE_NAME);
     }
   }
-  /* The core beside this file (symbolic links followed) if it is there, else where it was built. */
-  const char* path = beside[0] && access(beside, F_OK) == 0 ? beside : KEYTURN_MESASR_SIM_CORE_BUILT;
+  /* The core beside this file, symbolic links followed (built and installed side by side). */
+  const char* path = beside[0] ? beside : CORE_NAME;
   g_core = dlopen(path, flags);
   if (!g_core) fprintf(stderr, "libmesasr-sim: cannot load the simulator %s: %s\n", path, dlerror());
 }

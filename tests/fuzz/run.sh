@@ -15,6 +15,8 @@
 #   FUZZ_WORK     keep the work folder here (the corpus each run grew, logs, crashes)
 set -u
 build=$(cd "${1:?hardening build folder}" && pwd)
+# The fuzzers sit a folder deeper than the programs: show them the build's plugins.
+export KEYTURN_PLUGIN_PATH="$build/lib/keyturn"
 if [ -n "${FUZZ_SECONDS:-}" ]; then runs=${2:--1}; else runs=${2:-4000}; fi
 here=$(cd "$(dirname "$0")" && pwd)
 if [ -n "${FUZZ_WORK:-}" ]; then out=$FUZZ_WORK; mkdir -p "$out"; else out=$(mktemp -d); fi

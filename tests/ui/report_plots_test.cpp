@@ -1,6 +1,6 @@
 // Report plots drawn headless (no window, no display): each file a PNG of the
 // size asked for, sub-folders made, an unwritable file named.
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 
 #include <gtest/gtest.h>
 
@@ -50,7 +50,7 @@ TEST(ReportPlots, EachPlotIsAPngOfItsSizeInItsSubFolder) {
   log.series = {{"time", {1000, 10000, 100000}, {1, 8, 90}}};
   plots.curves.push_back(log);
   plots.confusions.push_back({"confusion/kfold.png", "kfold", {"a", "b"}, {{12, 0}, {1, 11}}});
-  ui::saveReportPlots(plots, dir.string());
+  plots::saveReportPlots(plots, dir.string());
   EXPECT_EQ(pngSize(dir / "pdfs/a.png"), (std::pair<unsigned, unsigned>{640, 400}));
   EXPECT_EQ(pngSize(dir / "scaling.png"), (std::pair<unsigned, unsigned>{900, 560}));
   const auto confusion = pngSize(dir / "confusion/kfold.png");
@@ -65,6 +65,6 @@ TEST(ReportPlots, AFileThatCannotBeWrittenIsNamed) {
   c.file = "/proc/keyturn-no/such.png";
   c.series = {{"s", {0, 1}, {0, 1}}};
   plots.curves.push_back(c);
-  const std::string msg = test::errorOf([&] { ui::saveReportPlots(plots, ""); });
+  const std::string msg = test::errorOf([&] { plots::saveReportPlots(plots, ""); });
   EXPECT_EQ(msg.rfind("/proc/keyturn-no: cannot create the folder (", 0), 0u) << msg;
 }

@@ -1,7 +1,7 @@
 #pragma once
 // The one place keyturn opens devices: a CameraSpec or a PoseSpec (device_spec.h) becomes a
 // TofCamera or a PoseSource, for the CLI, capture and the studio alike.
-//   simulated  libmesasr-sim (the build's, or $KEYTURN_MESASR_SIM) through the real SR4000 driver,
+//   simulated  libmesasr-sim (PREFIX/lib/keyturn/mesasr-sim, or $KEYTURN_MESASR_SIM) through the real SR4000 driver,
 //              its configuration file passed explicitly (KTSIM_OpenWithConfig, drivers/mesasr_api.h)
 //   usb, eth   MESA's libMesaSR (the spec's library, else $KEYTURN_MESASR_LIB or the usual sonames)
 //   playback   a dataset replayed (dataset_playback.h); its camera and pose source share one timeline
@@ -28,7 +28,7 @@ class SimulatedTurntable;
 // The driver's retries and reconnects (default: stderr, "keyturn: camera: …" / "keyturn: turntable: …").
 using DeviceLog = std::function<void(const std::string&)>;
 
-// libmesasr-sim's libmesasr.so: $KEYTURN_MESASR_SIM, else the build's.
+// libmesasr-sim's libmesasr.so: $KEYTURN_MESASR_SIM, else PREFIX/lib/keyturn/mesasr-sim/ (install_layout.h).
 std::string simulatorLibraryPath();
 
 class DeviceFactory {

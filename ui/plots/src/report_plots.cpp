@@ -1,11 +1,11 @@
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/plugin.h"
 
-namespace keyturn::ui {
+namespace keyturn::plots {
 
-// Qt (Widgets, Charts) is loaded with the plugin "plots" (plugins/report_plots_qt.cpp) when a
+// Qt (Widgets, Charts) is loaded with the plugin "plots" (plugin/report_plots_qt.cpp) when a
 // report is drawn, not at every start of the tool.
 void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
   using Save = bool(const ReportPlots&, const std::string&, std::string&);
@@ -14,4 +14,4 @@ void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
   if (!save(plots, dir, error)) throw Error(error);
 }
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

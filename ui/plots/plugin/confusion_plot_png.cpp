@@ -1,4 +1,4 @@
-#include "keyturn/ui/confusion_plot.h"
+#include "confusion_plot_png.h"
 
 #include <QFont>
 #include <QFontMetrics>
@@ -9,9 +9,9 @@
 #include "headless_app.h"
 #include "keyturn/core/error.h"
 
-namespace keyturn::ui {
+namespace keyturn::plots {
 
-void saveConfusionPng(const ConfusionMatrix& m, const std::string& path) {
+void saveConfusionPng(const ConfusionPlot& m, const std::string& path) {
   ensureApplication();
   const int n = static_cast<int>(m.labels.size());
   if (n == 0 || static_cast<int>(m.counts.size()) != n) throw Error(path + ": a confusion matrix needs its labels");
@@ -67,4 +67,4 @@ void saveConfusionPng(const ConfusionMatrix& m, const std::string& path) {
   if (!img.save(QString::fromStdString(path), "PNG")) throw Error(path + ": cannot write the PNG");
 }
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

@@ -1,4 +1,4 @@
-#include "keyturn/ui/line_chart.h"
+#include "curve_plot_png.h"
 
 #include <QApplication>
 #include <QGraphicsScene>
@@ -18,7 +18,7 @@
 #include "headless_app.h"
 #include "keyturn/core/error.h"
 
-namespace keyturn::ui {
+namespace keyturn::plots {
 namespace {
 QtCharts::QAbstractAxis* makeAxis(bool log, const std::string& title) {
   QtCharts::QAbstractAxis* axis;
@@ -49,7 +49,8 @@ void setRange(QtCharts::QAbstractAxis* axis, bool log, double lo, double hi) {
 }
 }  // namespace
 
-void saveChartPng(const LineChart& c, const std::string& path, int width, int height) {
+void saveCurvePng(const CurvePlot& c, const std::string& path) {
+  const int width = c.width, height = c.height;
   ensureApplication();
   auto* chart = new QtCharts::QChart();
   chart->setTitle(QString::fromStdString(c.title));
@@ -123,4 +124,4 @@ void saveChartPng(const LineChart& c, const std::string& path, int width, int he
   if (!img.save(QString::fromStdString(path), "PNG")) throw Error(path + ": cannot write the chart PNG");
 }
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

@@ -1,8 +1,8 @@
 #pragma once
 // Qt drawing needs a QApplication; a command-line tool may have none, and a
 // headless machine no display (then the offscreen platform is chosen).
-namespace keyturn::ui {
+namespace keyturn::plots {
 
 void ensureApplication();
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

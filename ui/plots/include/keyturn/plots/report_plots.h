@@ -6,9 +6,9 @@
 
 #include "keyturn/core/report_plots.h"
 
-namespace keyturn::ui {
+namespace keyturn::plots {
 
 // Throws keyturn::Error naming the file that cannot be written.
 void saveReportPlots(const ReportPlots& plots, const std::string& dir);
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

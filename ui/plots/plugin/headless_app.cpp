@@ -7,7 +7,7 @@
 #include <cstdlib>
 #include <string>
 
-namespace keyturn::ui {
+namespace keyturn::plots {
 
 void ensureApplication() {
   if (QCoreApplication::instance()) return;
@@ -26,4 +26,4 @@ void ensureApplication() {
   (void)app;
 }
 
-}  // namespace keyturn::ui
+}  // namespace keyturn::plots

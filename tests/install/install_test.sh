@@ -1,0 +1,62 @@
+#!/usr/bin/env bash
+# `cmake --install` into a fresh prefix, then the installed tree on its own: no installed file
+# names the source or the build tree, and from an empty environment the installed programs find
+# their data, plugins and simulated camera relative to themselves (core/install_layout.h):
+# `keyturn demo`, a describe whose plugin loads from the prefix, the simulated SR4000 from the
+# prefix, the studio under Xvfb, and the Python module from the prefix.
+# usage: install_test.sh BUILD_DIR SOURCE_DIR WORK [XVFB_RUN]
+set -u
+build=$(cd "${1:?build folder}" && pwd)
+source=$(cd "${2:?source folder}" && pwd)
+work=${3:?work folder}
+xvfb=${4:-}
+rm -rf "$work"; mkdir -p "$work"; work=$(cd "$work" && pwd)
+prefix=$work/prefix
+pass=0; fail=0
+check() {  # check NAME COMMAND...
+  local name=$1; shift
+  if "$@"; then pass=$((pass + 1)); else fail=$((fail + 1)); echo "FAILED: $name"; fi
+}
+# An environment with nothing of the build or the source: the installed programs alone.
+clean() { env -i PATH=/usr/bin:/bin HOME="$work" LANG=C.UTF-8 "$@"; }
+
+cmake --install "$build" --prefix "$prefix" > "$work/install.log" 2>&1 || { cat "$work/install.log"; exit 1; }
+kt=$prefix/bin/keyturn
+
+check "programs, plugins, simulator and data installed" test -x "$kt" -a -f "$prefix/lib/keyturn/libkeyturn_pcl_io.so" \
+  -a -f "$prefix/lib/keyturn/mesasr-sim/libmesasr.so" -a -f "$prefix/lib/keyturn/mesasr-sim/libmesasr-sim-core.so" \
+  -a -f "$prefix/share/keyturn/objects/objects.csv" -a -d "$prefix/share/keyturn/models/sim-objects"
+# Absolute paths compiled or written into what is installed would tie it to this checkout.
+names_tree() { grep -rlaF -e "$source/" -e "$build/" "$prefix" > "$work/tied.txt"; test -s "$work/tied.txt"; }
+if names_tree; then echo "installed files naming $source or $build:"; cat "$work/tied.txt"; fi
+check "no installed file names the source or build tree" test ! -s "$work/tied.txt"
+
+check "keyturn demo from the prefix" bash -c "cd '$work' && env -i PATH=/usr/bin:/bin HOME='$work' LANG=C.UTF-8 \
+  '$kt' demo --step 90 --out '$work/demo' > '$work/demo.out' 2>&1 && grep -qE '^  mug/ycb_025_mug +4 ' '$work/demo.out'"
+clean LD_DEBUG=files "$kt" describe "$prefix/share/keyturn/frames/mosd_learn0.pcd" --features kpd2 > "$work/describe.out" 2> "$work/describe.ld"
+check "describe's PCD plugin loaded from the prefix" grep -q "file=$prefix/lib/keyturn/libkeyturn_pcl_io.so" "$work/describe.ld"
+clean LD_DEBUG=files "$kt" grab --camera sim --out "$work/grab.pcd" > "$work/grab.out" 2> "$work/grab.ld"
+check "the simulated SR4000 loaded from the prefix" grep -q "file=$prefix/lib/keyturn/mesasr-sim/libmesasr.so" "$work/grab.ld"
+check "a frame grabbed" test -s "$work/grab.pcd"
+# Without its data the program says where it looked, in one line.
+mv "$prefix/share/keyturn" "$prefix/share/keyturn.away"
+clean "$kt" demo --out "$work/demo-nodata" > /dev/null 2> "$work/nodata.err"
+check "missing data: one line naming the folder" bash -c "test \$(wc -l < '$work/nodata.err') -eq 1 && grep -q 'share/keyturn' '$work/nodata.err'"
+mv "$prefix/share/keyturn.away" "$prefix/share/keyturn"
+
+if [ -x "$prefix/bin/keyturn-studio" ] && [ -n "$xvfb" ]; then
+  clean "$xvfb" -a -s "-screen 0 1600x1000x24" "$prefix/bin/keyturn-studio" --simulated --measure 2 \
+    --screenshot "$work/studio.png" > "$work/studio.json" 2> "$work/studio.err"
+  check "studio from the prefix, simulated rig and built-in model" bash -c "grep -q camera_fps '$work/studio.json' && test -s '$work/studio.png'"
+fi
+site=$(find "$prefix/lib" -path '*-packages/keyturn/__init__.py' -print -quit)
+if [ -n "$site" ]; then
+  check "Python module from the prefix" clean PYTHONPATH="$(dirname "$(dirname "$site")")" /usr/bin/python3 -c "
+import keyturn
+d = keyturn.describe(keyturn.load_cloud('$prefix/share/keyturn/frames/mosd_learn0.pcd'), features='kpd2')
+assert len(d.keypoints) > 20, len(d.keypoints)
+assert keyturn.__file__.startswith('$prefix'), keyturn.__file__
+"
+fi
+echo "$pass passed, $fail failed"
+test "$fail" -eq 0
