@@ -1,21 +1,30 @@
+// The window: lays out the panels, docks and toolbar, and connects the three
+// controllers (devices, live view, capture) to them and to each other.
 #include "keyturn/studio/studio_window.h"
 
 #include <QCloseEvent>
 #include <QDockWidget>
 #include <QGuiApplication>
 #include <QHBoxLayout>
-#include <QPushButton>
+#include <QLabel>
 #include <QScreen>
 #include <QScrollArea>
 #include <QScrollBar>
+#include <QSettings>
 #include <QSplitter>
 #include <QStatusBar>
 #include <QTimer>
 #include <QToolBar>
 #include <QVBoxLayout>
 
-#include "keyturn/rig/dataset.h"
-#include "studio_window_impl.h"
+#include "capture_controller.h"
+#include "capture_panel.h"
+#include "cloud_view.h"
+#include "device_controller.h"
+#include "devices_panel.h"
+#include "image_panel.h"
+#include "live_view.h"
+#include "recognition_panel.h"
 
 namespace keyturn::studio {
 
@@ -37,40 +46,55 @@ QScrollArea* scrolling(QWidget* panel, int max_width) {
   return area;
 }
 
+QDockWidget* dock(const QString& title, const char* name, QWidget* contents) {
+  auto* d = new QDockWidget(title);
+  d->setObjectName(name);
+  d->setWidget(contents);
+  return d;
+}
+
 }  // namespace
 
-void StudioWindow::Impl::build() {
-  w->setWindowTitle("keyturn studio");
+StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* parent)
+    : QMainWindow(parent), options_(std::move(options)) {
+  settings_ = options_.settings_file.empty()
+                  ? std::make_unique<QSettings>("keyturn", "studio")
+                  : std::make_unique<QSettings>(QString::fromStdString(options_.settings_file), QSettings::IniFormat);
+  buildLayout(factory, options_.recognition_threads);
+  QSettings& s = *settings_;
+  devices_panel_->restore(s);
+  capture_panel_->restore(s);
+  placeWindow();
+  if (!options_.dataset.empty()) capture_panel_->setDataset(QString::fromStdString(options_.dataset));
+  const QString model = options_.model.empty() ? s.value("recognition/model").toString()
+                                               : QString::fromStdString(options_.model);
+  if (!model.isEmpty()) live_->loadModel(model);
+  connectDevices(factory);
+  if (options_.start_capture) startCaptureWhenReady();
+}
+
+StudioWindow::~StudioWindow() = default;
+
+void StudioWindow::buildLayout(RigFactory& factory, int recognition_threads) {
+  setWindowTitle("keyturn studio");
   auto* central = new QWidget;
   auto* layout = new QVBoxLayout(central);
   layout->setContentsMargins(4, 4, 4, 4);
 
-  banner = new QWidget;
-  banner->setObjectName("banner");
-  banner->setStyleSheet("#banner { background: #c0392b; border-radius: 4px; } #banner QLabel { color: white; }");
-  auto* bl = new QHBoxLayout(banner);
-  banner_text = new QLabel;
-  banner_text->setObjectName("bannerText");
-  banner_text->setWordWrap(true);
-  auto* reconnect = new QPushButton(tr("Reconnect now"));
-  bl->addWidget(banner_text, 1);
-  bl->addWidget(reconnect);
-  banner->hide();
-  layout->addWidget(banner);
-  QObject::connect(reconnect, &QPushButton::clicked, w, [this] {
-    onCamera([c = camera] { c->reconnectNow(); });
-  });
+  devices_panel_ = new DevicesPanel(factory);
+  devices_ = std::make_unique<DeviceController>(factory, devices_panel_);
+  layout->addWidget(devices_->banner());
 
   auto* images = new QHBoxLayout;
-  distance = new ImagePanel(tr("Distance"), true);
-  amplitude = new ImagePanel(tr("Amplitude"), false);
-  confidence = new ImagePanel(tr("Confidence"), false);
+  auto* distance = new ImagePanel(tr("Distance"), true);
+  auto* amplitude = new ImagePanel(tr("Amplitude"), false);
+  auto* confidence = new ImagePanel(tr("Confidence"), false);
   images->addWidget(distance);
   images->addWidget(amplitude);
   images->addWidget(confidence);
   auto* image_row = new QWidget;
   image_row->setLayout(images);
-  cloud = new CloudView;
+  auto* cloud = new CloudView;
   auto* split = new QSplitter(Qt::Vertical);
   split->addWidget(image_row);
   split->addWidget(cloud);
@@ -79,150 +103,118 @@ void StudioWindow::Impl::build() {
   split->setStretchFactor(1, 3);
   split->setSizes({260, 420});
   layout->addWidget(split, 1);
-  w->setCentralWidget(central);
+  setCentralWidget(central);
 
-  devices = new DevicesPanel(factory);
-  auto* dock_devices = new QDockWidget(tr("Devices"));
-  dock_devices->setObjectName("devicesDock");
-  dock_devices->setWidget(scrolling(devices, 420));
-  w->addDockWidget(Qt::LeftDockWidgetArea, dock_devices);
+  addDockWidget(Qt::LeftDockWidgetArea, dock(tr("Devices"), "devicesDock", scrolling(devices_panel_, 420)));
+  recognition_panel_ = new RecognitionPanel;
+  recognition_panel_->setMaximumWidth(420);
+  addDockWidget(Qt::RightDockWidgetArea, dock(tr("Recognition"), "recognitionDock", recognition_panel_));
+  capture_panel_ = new CapturePanel;
+  capture_dock_ = dock(tr("Capture"), "captureDock", capture_panel_);
+  addDockWidget(Qt::BottomDockWidgetArea, capture_dock_);
 
-  recognition = new RecognitionPanel;
-  auto* dock_rec = new QDockWidget(tr("Recognition"));
-  dock_rec->setObjectName("recognitionDock");
-  dock_rec->setWidget(recognition);
-  recognition->setMaximumWidth(420);
-  w->addDockWidget(Qt::RightDockWidgetArea, dock_rec);
+  auto* status = new QLabel;
+  status->setObjectName("rates");
+  statusBar()->addPermanentWidget(status, 1);
 
-  capture = new CapturePanel;
-  auto* dock_cap = new QDockWidget(tr("Capture"));
-  dock_cap->setObjectName("captureDock");
-  dock_cap->setWidget(capture);
-  w->addDockWidget(Qt::BottomDockWidgetArea, dock_cap);
-  capture_dock = dock_cap;
+  live_ = std::make_unique<LiveView>(LiveWidgets{distance, amplitude, confidence, cloud, recognition_panel_, status},
+                                     recognition_threads);
+  capture_ = std::make_unique<CaptureController>(factory, capture_panel_, *devices_, this);
+  connect(devices_.get(), &DeviceController::frameReady, live_.get(), &LiveView::showFrame);
+  connect(devices_.get(), &DeviceController::cameraRestarted, live_.get(), &LiveView::cameraRestarted);
+  connect(devices_panel_, &DevicesPanel::simObjectChanged, capture_.get(), &CaptureController::labelAsSimObject);
+  connect(devices_.get(), &DeviceController::message, statusBar(), &QStatusBar::showMessage);
+  connect(live_.get(), &LiveView::message, statusBar(), &QStatusBar::showMessage);
+  connect(capture_.get(), &CaptureController::message, statusBar(), &QStatusBar::showMessage);
+  buildToolbar(cloud);
+}
 
-  auto* tools = w->addToolBar(tr("Live"));
+void StudioWindow::buildToolbar(CloudView* cloud) {
+
+  auto* tools = addToolBar(tr("Live"));
   tools->setObjectName("liveToolbar");
-  pause_action = tools->addAction(tr("Pause live view"));
-  pause_action->setCheckable(true);
-  pause_action->setShortcut(Qt::Key_Space);
-  pause_action->setToolTip(tr("Freeze the live images, 3D view and recognition (Space)"));
+  auto* pause = tools->addAction(tr("Pause live view"));
+  pause->setCheckable(true);
+  pause->setShortcut(Qt::Key_Space);
+  pause->setToolTip(tr("Freeze the live images, 3D view and recognition (Space)"));
   auto* snap = tools->addAction(tr("Snapshot"));
   snap->setShortcut(QKeySequence(Qt::CTRL | Qt::Key_S));
   snap->setToolTip(tr("Save the current frame as PCD + PNGs (Ctrl+S)"));
-  paths_action = tools->addAction(tr("Geodesic paths"));
-  paths_action->setCheckable(true);
-  paths_action->setShortcut(Qt::Key_G);
-  paths_action->setToolTip(tr("Show the geodesic paths from the view's centre to each keypoint (G)"));
+  auto* paths = tools->addAction(tr("Geodesic paths"));
+  paths->setCheckable(true);
+  paths->setShortcut(Qt::Key_G);
+  paths->setToolTip(tr("Show the geodesic paths from the view's centre to each keypoint (G)"));
   auto* reset = tools->addAction(tr("Reset 3D view"));
   reset->setShortcut(Qt::Key_R);
-  for (QAction* a : {pause_action, snap, paths_action, reset}) w->addAction(a);
-  QObject::connect(pause_action, &QAction::toggled, w, [this](bool on) { paused = on; });
-  QObject::connect(snap, &QAction::triggered, w, [this] { snapshot(); });
-  QObject::connect(paths_action, &QAction::toggled, w, [this](bool on) { pool->setGeodesicPaths(on); });
-  QObject::connect(reset, &QAction::triggered, w, [this] { cloud->resetCamera(); });
-
-  status = new QLabel;
-  status->setObjectName("rates");
-  w->statusBar()->addPermanentWidget(status, 1);
+  for (QAction* a : {pause, snap, paths, reset}) addAction(a);
+  connect(pause, &QAction::toggled, live_.get(), &LiveView::setPaused);
+  connect(snap, &QAction::triggered, this, [this] { capture_->snapshot(live_->lastFrame()); });
+  connect(paths, &QAction::toggled, live_.get(), &LiveView::setGeodesicPaths);
+  connect(reset, &QAction::triggered, cloud, &CloudView::resetCamera);
+  if (options_.geodesic_paths) paths->setChecked(true);
 }
 
-StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* parent)
-    : QMainWindow(parent), d_(std::make_unique<Impl>(this, factory, std::move(options))) {
-  d_->settings = d_->options.settings_file.empty()
-                     ? std::make_unique<QSettings>("keyturn", "studio")
-                     : std::make_unique<QSettings>(QString::fromStdString(d_->options.settings_file), QSettings::IniFormat);
-  d_->build();
-  d_->wire();
-  QSettings& s = *d_->settings;
-  d_->devices->restore(s);
-  d_->capture->restore(s);
+// The window's size and its docks' layout: a size that fits the screen, then the saved ones.
+void StudioWindow::placeWindow() {
   // Fits a 1600 × 1000 screen with a title bar; smaller screens get what they have.
   QSize size(1600, 960);
   if (QScreen* screen = QGuiApplication::primaryScreen()) size = size.boundedTo(screen->availableGeometry().size());
   resize(size);
   // The capture dock at its own height, the live view and the side panels above it take the rest.
-  resizeDocks({d_->capture_dock}, {d_->capture_dock->minimumSizeHint().height()}, Qt::Vertical);
-  restoreGeometry(s.value("window/geometry").toByteArray());
-  restoreState(s.value("window/state").toByteArray());
-  if (!d_->options.dataset.empty()) d_->capture->setDataset(QString::fromStdString(d_->options.dataset));
-  const QString model = d_->options.model.empty() ? s.value("recognition/model").toString()
-                                                  : QString::fromStdString(d_->options.model);
-  if (!model.isEmpty()) d_->loadModel(model);
-  if (d_->options.simulated) {
-    QString object = QString::fromStdString(d_->options.sim_object);
+  resizeDocks({capture_dock_}, {capture_dock_->minimumSizeHint().height()}, Qt::Vertical);
+  restoreGeometry(settings_->value("window/geometry").toByteArray());
+  restoreState(settings_->value("window/state").toByteArray());
+}
+
+// The simulated rig or a recording, when the options ask for one.
+void StudioWindow::connectDevices(RigFactory& factory) {
+  if (options_.simulated) {
+    QString object = QString::fromStdString(options_.sim_object);
     if (object.isEmpty() && !factory.simObjects().empty()) object = QString::fromStdString(factory.simObjects().front().instance);
-    d_->devices->setCameraChoice(rig::CameraSpec::Kind::Simulated, object);
-    d_->devices->setPoseChoice(DevicesPanel::PoseChoice::Simulated);
-    emit d_->devices->simObjectChanged(d_->devices->simObject());
+    devices_panel_->setCameraChoice(rig::CameraSpec::Kind::Simulated, object);
+    devices_panel_->setPoseChoice(DevicesPanel::PoseChoice::Simulated);
+    emit devices_panel_->simObjectChanged(devices_panel_->simObject());
     // The turntable first: the simulated camera sees the angle it publishes.
-    emit d_->devices->connectPose();
-    emit d_->devices->connectCamera();
+    emit devices_panel_->connectPose();
+    emit devices_panel_->connectCamera();
   }
-  if (!d_->options.playback.dataset.empty()) {
-    d_->devices->setPlayback(d_->options.playback);
+  if (!options_.playback.dataset.empty()) {
+    devices_panel_->setPlayback(options_.playback);
     // A capture from the recording is labelled as its first view until the user says otherwise.
-    try {
-      const auto views = rig::Dataset::readManifest(d_->options.playback.dataset);
-      if (!views.empty())
-        d_->capture->setObject(QString::fromStdString(views.front().key.cls), QString::fromStdString(views.front().key.instance));
-    } catch (const std::exception&) {
-      // The camera's open names the problem in the banner.
-    }
-    d_->devices->setCameraChoice(rig::CameraSpec::Kind::Playback, QString());
-    d_->devices->setPoseChoice(DevicesPanel::PoseChoice::Playback);
-    emit d_->devices->connectCamera();
-    emit d_->devices->connectPose();
-  }
-  if (d_->options.geodesic_paths) d_->paths_action->setChecked(true);
-  if (d_->options.start_capture) {
-    // Unattended runs: start as soon as both devices answer.
-    auto* wait = new QTimer(this);
-    connect(wait, &QTimer::timeout, this, [this, wait] {
-      if (!d_->pose_source || d_->frames == 0) return;
-      wait->deleteLater();
-      wait->stop();
-      d_->capture->startFromOutside();
-    });
-    wait->start(100);
+    capture_->labelAsPlayback(options_.playback.dataset);
+    devices_panel_->setCameraChoice(rig::CameraSpec::Kind::Playback, QString());
+    devices_panel_->setPoseChoice(DevicesPanel::PoseChoice::Playback);
+    emit devices_panel_->connectCamera();
+    emit devices_panel_->connectPose();
   }
 }
 
-StudioWindow::~StudioWindow() {
-  d_->camera->captureStop() = true;  // a running capture ends after its current view
-  d_->camera_thread.quit();
-  d_->pose_thread.quit();
-  d_->camera_thread.wait();
-  d_->pose_thread.wait();
-  delete d_->pool;  // joins the recognition threads while the window's state still exists
-  d_->pool = nullptr;
+// Unattended runs: start the capture as soon as both devices answer.
+void StudioWindow::startCaptureWhenReady() {
+  auto* wait = new QTimer(this);
+  connect(wait, &QTimer::timeout, this, [this, wait] {
+    if (!devices_->poseSource() || live_->rates().frames == 0) return;
+    wait->deleteLater();
+    wait->stop();
+    capture_panel_->startFromOutside();
+  });
+  wait->start(100);
 }
 
 void StudioWindow::closeEvent(QCloseEvent* e) {
-  QSettings& s = *d_->settings;
+  QSettings& s = *settings_;
   s.setValue("window/geometry", saveGeometry());
   s.setValue("window/state", saveState());
-  d_->devices->save(s);
-  d_->capture->save(s);
-  s.setValue("recognition/model", d_->recognition->modelPath());
+  devices_panel_->save(s);
+  capture_panel_->save(s);
+  s.setValue("recognition/model", recognition_panel_->modelPath());
   s.sync();
   QMainWindow::closeEvent(e);
 }
 
-StudioRates StudioWindow::rates() const {
-  StudioRates r;
-  r.camera_fps = d_->frame_rate.rate();
-  r.recognition_fps = d_->result_rate.rate();
-  r.latency_ms = d_->latency_ms;
-  r.describe_ms = d_->describe_ms;
-  r.frames = d_->frames;
-  r.results = d_->results;
-  r.dropped = d_->pool->dropped();
-  return r;
-}
-
-QString StudioWindow::bannerText() const { return d_->banner->isHidden() ? QString() : d_->banner_text->text(); }
-QString StudioWindow::recognisedClass() const { return d_->recognition->stableClass(); }
-double StudioWindow::recognisedAgreement() const { return d_->recognition->stableAgreement(); }
+StudioRates StudioWindow::rates() const { return live_->rates(); }
+QString StudioWindow::bannerText() const { return devices_->bannerText(); }
+QString StudioWindow::recognisedClass() const { return recognition_panel_->stableClass(); }
+double StudioWindow::recognisedAgreement() const { return recognition_panel_->stableAgreement(); }
 
 }  // namespace keyturn::studio

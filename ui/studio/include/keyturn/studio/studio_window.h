@@ -1,11 +1,17 @@
 #pragma once
 // keyturn studio's main window: devices, live images, the 3D view, capture
 // and live recognition. Acquisition, the pose readout and recognition run on
-// their own threads; the window only shows what they report.
+// their own threads; the window only shows what they report. It lays out the
+// panels and connects three controllers, each owning its own state: the
+// devices (worker threads, problem banner), the live view (frames, results,
+// rates, redraw clock, model) and the capture (sequence start, snapshot).
 #include <QMainWindow>
 #include <memory>
 
 #include "keyturn/studio/rig_factory.h"
+
+class QDockWidget;
+class QSettings;
 
 namespace keyturn::studio {
 
@@ -27,6 +33,14 @@ struct StudioRates {
   long frames = 0, results = 0, dropped = 0;
 };
 
+class CaptureController;
+class CapturePanel;
+class CloudView;
+class DeviceController;
+class DevicesPanel;
+class LiveView;
+class RecognitionPanel;
+
 class StudioWindow : public QMainWindow {
   Q_OBJECT
  public:
@@ -42,8 +56,24 @@ class StudioWindow : public QMainWindow {
   void closeEvent(QCloseEvent* e) override;
 
  private:
-  struct Impl;
-  std::unique_ptr<Impl> d_;
+  void buildLayout(RigFactory& factory, int recognition_threads);
+  void buildToolbar(CloudView* cloud);
+  void placeWindow();
+  void connectDevices(RigFactory& factory);  // open what the options name
+  void startCaptureWhenReady();
+
+  StudioOptions options_;
+  std::unique_ptr<QSettings> settings_;
+  // The panels whose settings the window saves and restores (owned by their docks).
+  DevicesPanel* devices_panel_ = nullptr;
+  CapturePanel* capture_panel_ = nullptr;
+  RecognitionPanel* recognition_panel_ = nullptr;
+  QDockWidget* capture_dock_ = nullptr;
+  // Destroyed in reverse: the capture, then the device threads (a capture ends after its view),
+  // then the recognition threads — all before the widgets they draw into.
+  std::unique_ptr<LiveView> live_;
+  std::unique_ptr<DeviceController> devices_;
+  std::unique_ptr<CaptureController> capture_;
 };
 
 }  // namespace keyturn::studio

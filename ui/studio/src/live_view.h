@@ -1,0 +1,71 @@
+#pragma once
+// What the studio shows live: each camera frame goes to the recognition pool
+// and to the image panels, each result to the recognition pane and the 3D
+// view. Owns the newest frame and result, the rates and latency the status
+// line reports, the model recognition runs, and the redraw clock that keeps
+// the window from repainting per frame.
+#include <QObject>
+#include <QString>
+#include <memory>
+
+#include "frame_types.h"
+#include "keyturn/studio/studio_window.h"
+#include "rate_meter.h"
+
+class QLabel;
+
+namespace keyturn::studio {
+
+class CloudView;
+class ImagePanel;
+class RecognitionPanel;
+class RecognitionPool;
+
+// The widgets the live view draws into; the window lays them out and owns them.
+struct LiveWidgets {
+  ImagePanel* distance = nullptr;
+  ImagePanel* amplitude = nullptr;
+  ImagePanel* confidence = nullptr;
+  CloudView* cloud = nullptr;
+  RecognitionPanel* recognition = nullptr;
+  QLabel* status = nullptr;
+};
+
+class LiveView : public QObject {
+  Q_OBJECT
+ public:
+  // Starts `recognition_threads` recognition threads (describing only, until a model is loaded).
+  LiveView(const LiveWidgets& widgets, int recognition_threads, QObject* parent = nullptr);
+  ~LiveView() override;  // joins the recognition threads
+
+  void showFrame(const FramePtr& frame);
+  void cameraRestarted();        // a reopened camera counts its frames from 0 again
+  void setPaused(bool paused);   // frozen: frames and results are ignored
+  void setGeodesicPaths(bool on);
+  void loadModel(const QString& path);  // "" = describe only; a bad file is shown in the pane
+  FramePtr lastFrame() const { return last_frame_; }
+  StudioRates rates() const;
+
+ signals:
+  void message(const QString& text, int timeout_ms);
+
+ private:
+  void showResult(const ViewResultPtr& r);
+  void refresh();
+  void updateStatus();
+
+  LiveWidgets widgets_;
+  std::unique_ptr<RecognitionPool> pool_;
+  bool paused_ = false;
+  FramePtr last_frame_;
+  ViewResultPtr last_result_;
+  std::uint64_t last_result_sequence_ = 0;
+  bool frame_fresh_ = false, result_fresh_ = false;
+  qint64 last_cloud_ms_ = 0;
+  static constexpr int kCloudRedrawHz = 5;
+  RateMeter frame_rate_, result_rate_;
+  double latency_ms_ = 0, describe_ms_ = 0;
+  long frames_ = 0, results_ = 0;
+};
+
+}  // namespace keyturn::studio
