@@ -6,12 +6,13 @@
 #   tmp     leftover temporary files (NAME.tmp.XXXXXX, NAME.tmp, NAME.tmp.png) after a kill / at the end
 #   corrupt a file whose SHA-256 differs from its manifest row; missing: a row's file absent
 #   dup     a view with two rows; failed: rounds whose final verify is not OK
-# usage: KEYTURN=path/to/keyturn kill_stress.sh WORKDIR [ROUNDS] [LOAD_WORKERS] [SEED]
+# usage: KEYTURN=path/to/keyturn kill_stress.sh WORKDIR [ROUNDS] [LOAD_WORKERS] [SEED] [KILLS]
 set -u
 source "$(dirname "$0")/../cli/lib.sh"
 rounds=${2:-20}
 load=${3:-2}
 RANDOM=${4:-1}
+kills=${5:-4}
 
 busy=()
 for _ in $(seq 1 "$load"); do ( while :; do :; done ) & busy+=($!); done
@@ -26,13 +27,14 @@ sigkills=0; sigints=0; tmp_after_kill=0; bad_after_kill=0
 tmp_end=0; corrupt_end=0; missing_end=0; dup_end=0; failed=0
 for r in $(seq 1 "$rounds"); do
   ds="$work/r$r"
-  while :; do
+  # KILLS runs killed 1-3 views in, at a random moment 0-0.4 s after a row (a view takes ~0.3 s,
+  # a quarter of it writing its files, so about one kill in five lands in the writes); then one
+  # run to the end.
+  for k in $(seq 0 "$kills"); do
     "$KT" capture --class mug --instance builtin --step 5 --range 180 --settle 0.01 -q --out "$ds" \
         2>> "$work/r$r.err" > /dev/null &
     pid=$!
-    # Kill in 3 of 4 runs, 1-3 views in, at a random moment 0-0.4 s after a row: a view takes
-    # ~0.3 s, a quarter of it writing its files, so about one kill in five lands in the writes.
-    if [ $((RANDOM % 4)) -ne 0 ]; then
+    if [ "$k" -lt "$kills" ]; then
       target=$(( $(rows "$ds") + 1 + RANDOM % 3 ))
       for _ in $(seq 1500); do [ "$(rows "$ds")" -ge "$target" ] || ! kill -0 "$pid" 2> /dev/null && break; sleep 0.01; done
       sleep "0.$(printf %03d $((RANDOM % 400)))"
@@ -49,8 +51,8 @@ for r in $(seq 1 "$rounds"); do
       fi
     fi
     wait "$pid"; rc=$?
-    [ "$rc" -eq 0 ] && break
-    echo "round $r: capture exited $rc (see $work/r$r.err)"; break
+    [ "$rc" -eq 0 ] || echo "round $r: capture exited $rc (see $work/r$r.err)"
+    break
   done
   "$KT" verify "$ds" > "$work/r$r.verify.txt" 2> /dev/null; vrc=$?
   t=$(count_tmp "$ds"); [ "$t" -gt 0 ] && tmp_end=$((tmp_end + 1))
@@ -69,6 +71,7 @@ echo "rounds ending with temporaries  $tmp_end"
 echo "rounds ending corrupt/missing   $corrupt_end / $missing_end"
 echo "rounds ending not 36 rows once  $dup_end"
 echo "rounds failing verify           $failed"
+check "captures were killed" test "$((sigkills + sigints))" -gt 0
 check "no round fails verify" test "$failed" -eq 0
 check "no kill leaves a row whose files are not whole" test "$bad_after_kill" -eq 0
 check "no round ends with temporaries" test "$tmp_end" -eq 0
