@@ -42,6 +42,9 @@ int captureSequence(CaptureArgs a) {
   rig::CaptureRig capture_rig(a.devices);
   o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
   rig::Dataset dataset(a.out);
+  if (const std::size_t n = dataset.temporariesRemoved())
+    std::cerr << "keyturn capture: removed " << n << " leftover temporary file" << (n == 1 ? "" : "s")
+              << " of an interrupted write\n";
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
     o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);

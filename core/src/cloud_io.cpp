@@ -367,18 +367,11 @@ void saveCloud(const std::string& path, const Cloud& cloud, PcdEncoding encoding
     std::memcpy(blob.data.data() + i * blob.point_step, rec, blob.point_step);
   }
 
-  const fs::path target(path);
-  if (target.has_parent_path()) fs::create_directories(target.parent_path());
-  const std::string tmp = path + ".tmp";
-  int rc = 0;
-  if (lowerExtension(path) == ".ply") rc = detail::pclIo().write_ply(tmp, blob);
-  else rc = detail::pclIo().write_pcd(tmp, blob, static_cast<int>(encoding));
-  if (rc < 0) {
-    std::error_code ec;
-    fs::remove(tmp, ec);
-    fail(path, "could not write the point cloud");
-  }
-  commitFile(tmp, path);
+  writeFileDurablyWith(path, [&](const std::string& tmp) {
+    const int rc = lowerExtension(path) == ".ply" ? detail::pclIo().write_ply(tmp, blob)
+                                                  : detail::pclIo().write_pcd(tmp, blob, static_cast<int>(encoding));
+    if (rc < 0) fail(path, "could not write the point cloud");
+  });
 }
 
 }  // namespace keyturn

@@ -262,11 +262,11 @@ void savePng16(const std::string& path, const std::vector<std::uint16_t>& img, s
                std::uint32_t height) {
   if (img.size() != static_cast<std::size_t>(width) * height || img.empty())
     fail(path, "image data does not match its size");
-  // The encoder is chosen from the extension, so the temporary name keeps ".png".
-  const std::string tmp = path.substr(0, path.size() - 4) + ".tmp.png";
-  std::string why;
-  if (!detail::writePng16(tmp, img.data(), static_cast<int>(width), static_cast<int>(height), why)) fail(path, why);
-  commitFile(tmp, path);
+  // The encoder is chosen from the extension, which the temporary's name keeps.
+  writeFileDurablyWith(path, [&](const std::string& tmp) {
+    std::string why;
+    if (!detail::writePng16(tmp, img.data(), static_cast<int>(width), static_cast<int>(height), why)) fail(path, why);
+  });
 }
 
 }  // namespace keyturn

@@ -182,6 +182,8 @@ Dataset::Dataset(std::string root) : root_(std::move(root)) {
                               {"keyturn_version", KEYTURN_VERSION}};
     writeFileDurably(info, j.dump(2) + "\n");
   }
+  // The feature cache (.keyturn/) may be filling in another process; the simulator keeps its own state.
+  temporaries_removed_ = removeInterruptedWriteTemporaries(root_, {".keyturn", ".sim"});
   const std::string manifest = root_ + "/" + kManifest;
   if (!fs::exists(manifest)) writeFileDurably(manifest, manifestHeader() + "\n");
   repairInterruptedAppend(manifest);
@@ -229,10 +231,24 @@ nlohmann::json baseSidecar(const ViewKey& key, const ViewMetadata& meta) {
 
 }  // namespace
 
+// A view taken again after an interrupted capture starts clean: the files the interrupted take left
+// (no row names them) go, so none of them outlives the retake (a camera that gave a confidence map
+// then and none now). Only the kinds a view has (writeFrameFiles' and the sidecar) are touched.
+void Dataset::removeFilesWithoutRow(const std::string& abs_stem) const {
+  std::set<std::string> referenced;
+  for (const auto& v : views_) referenced.insert(v.files.begin(), v.files.end());
+  for (const char* suffix : {".pcd", "_distance.png", "_amplitude.png", "_confidence.png", ".json"}) {
+    const std::string path = abs_stem + suffix;
+    std::error_code ec;
+    if (!referenced.count(path.substr(root_.size() + 1)) && fs::is_regular_file(path, ec)) fs::remove(path, ec);
+  }
+}
+
 ViewRecord Dataset::beginView(const ViewKey& key, const ViewMetadata& meta, std::string& abs_stem) const {
   if (has(key)) throw Error(root_ + ": view " + viewStem(key) + " already captured");
   abs_stem = root_ + "/" + viewStem(key);
   fs::create_directories(fs::path(abs_stem).parent_path());
+  removeFilesWithoutRow(abs_stem);
   ViewRecord r;
   r.key = key;
   r.elevation_deg = meta.elevation_deg;
@@ -245,6 +261,8 @@ ViewRecord Dataset::commitView(ViewRecord r, const std::string& abs_stem, const 
   writeFileDurably(abs_stem + ".json", sidecar_json);
   r.files.push_back(abs_stem.substr(root_.size() + 1) + ".json");
   syncDirectory(fs::path(abs_stem).parent_path().string());
+  // Every file is durable under its final name by now (each one renamed into place after its
+  // temporary was flushed): the checksums are of the bytes committed, the row comes after them.
   for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
   appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
   views_.push_back(r);
@@ -363,7 +381,9 @@ VerifyReport Dataset::verify(const std::string& root) {
     if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
         rel.rfind(".keyturn/", 0) == 0)
       continue;
-    if (!referenced.count(rel)) rep.orphans.push_back(rel);
+    if (referenced.count(rel)) continue;
+    if (isInterruptedWriteTemporary(rel)) rep.temporaries.push_back(rel);
+    else rep.orphans.push_back(rel);
   }
   return rep;
 }
@@ -375,7 +395,9 @@ void removeDatasetWithoutViews(const std::string& root) {
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string rel = fs::relative(it->path(), root).string();
-    if (rel != "dataset.json" && rel != kManifest && rel != "calibration.json" && rel.rfind(".sim/", 0) != 0) return;
+    if (rel != "dataset.json" && rel != kManifest && rel != "calibration.json" && rel.rfind(".sim/", 0) != 0 &&
+        !isInterruptedWriteTemporary(rel))
+      return;
   }
   if (ec) return;
   if (fs::exists(fs::path(root) / kManifest)) {
@@ -399,6 +421,10 @@ std::string VerifyReport::text(const std::string& root) const {
   list("orphan", orphans);
   list("duplicate", duplicates);
   list("bad manifest row", bad_rows);
+  list("temporary", temporaries);
+  if (!temporaries.empty())
+    out << temporaries.size() << " leftover temporary file" << (temporaries.size() == 1 ? "" : "s")
+        << " from an interrupted write (not part of any view; the next capture removes them)\n";
   out << root << ": " << views << " views, " << missing.size() << " missing, " << corrupt.size() << " corrupt, "
       << orphans.size() << " orphan, " << duplicates.size() << " duplicate files"
       << (good() ? " — OK" : ok() ? " — EMPTY (no views)" : " — PROBLEMS") << "\n";

@@ -58,7 +58,11 @@ TEST_P(PcdEncodingTest, RoundTripKeepsOrganizationNaNsAndFields) {
     EXPECT_NEAR(r.amplitude[i], c.amplitude[i], 1e-3f);
     EXPECT_NEAR(r.confidence[i], c.confidence[i], 1e-5f);
   }
-  EXPECT_FALSE(fs::exists(path + ".tmp"));
+  for (const auto& e : fs::directory_iterator(tempDir()))
+    EXPECT_NE(e.path().filename().string().rfind("rt.pcd.tmp", 0), 0u) << "temporary left: " << e.path();
+  // Readable by others like every file keyturn writes (its temporary was made 0600).
+  EXPECT_EQ(fs::status(path).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
 }
 
 INSTANTIATE_TEST_SUITE_P(AllEncodings, PcdEncodingTest,

@@ -10,6 +10,7 @@
 
 #include <unistd.h>
 
+#include "keyturn/core/error.h"
 #include "support/error_of.h"
 
 using namespace keyturn;
@@ -79,4 +80,53 @@ TEST(DurableFile, WrittenFilesAreReadableByOthers) {
   writeFileDurably((d / "m.json").string(), "{}");
   EXPECT_EQ(fs::status(d / "m.json").permissions() & fs::perms::all,
             fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+}
+
+TEST(DurableFile, ALibraryWritesTheTemporaryByNameKeepingTheExtension) {
+  const fs::path d = fresh("keyturn_durable_with_" + std::to_string(::getpid()));
+  const std::string target = (d / "v" / "a5.0_distance.png").string();
+  std::string seen;
+  writeFileDurablyWith(target, [&](const std::string& tmp) {
+    seen = tmp;
+    std::ofstream(tmp, std::ios::trunc) << "png bytes";
+  });
+  EXPECT_EQ(read(target), "png bytes");
+  EXPECT_EQ(seen.rfind(target + ".tmp.", 0), 0u) << seen;
+  EXPECT_EQ(seen.substr(seen.size() - 4), ".png") << "an encoder picks its format by the extension: " << seen;
+  EXPECT_TRUE(isInterruptedWriteTemporary(seen)) << seen;
+  EXPECT_EQ(fs::status(target).permissions() & fs::perms::all,
+            fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
+  // A writer that fails leaves neither the target nor its temporary.
+  const std::string other = (d / "v" / "b.pcd").string();
+  EXPECT_EQ(test::errorOf([&] {
+              writeFileDurablyWith(other, [&](const std::string& tmp) {
+                std::ofstream(tmp) << "half";
+                throw Error(other + ": could not write the point cloud");
+              });
+            }),
+            other + ": could not write the point cloud");
+  EXPECT_EQ(std::distance(fs::directory_iterator(d / "v"), fs::directory_iterator()), 1);
+}
+
+TEST(DurableFile, KnowsTheTemporariesAKilledWriteLeaves) {
+  for (const char* name : {"a40.0.json.tmp.Ab12Cd", "a40.0.pcd.tmp.x9Y8z7", "a40.0_distance.png.tmp.QwErT1.png",
+                           "manifest.csv.tmp.000aaa", "e30/a40.0.pcd.tmp", "a40.0_amplitude.tmp.png"})
+    EXPECT_TRUE(isInterruptedWriteTemporary(name)) << name;
+  for (const char* name : {"a40.0.json", "a40.0.pcd", "notes.tmp", "a.tmp.Ab12C", "a.tmp.Ab-12C", "x.png.tmp.Ab12Cd.pcd",
+                           ".tmp.Ab12Cd.png", "a40.0_distance.png"})
+    EXPECT_FALSE(isInterruptedWriteTemporary(name)) << name;
+}
+
+TEST(DurableFile, RemovesLeftoverTemporariesButNotUnderSkippedFolders) {
+  const fs::path d = fresh("keyturn_durable_leftovers_" + std::to_string(::getpid()));
+  for (const char* f : {"m.csv.tmp.Ab12Cd", "c/i/e30/a5.0.json.tmp.Zz99Yy", "c/i/e30/a5.0.json", ".keyturn/f.bin.tmp.Ab12Cd"}) {
+    fs::create_directories((d / f).parent_path());
+    std::ofstream(d / f) << "x";
+  }
+  EXPECT_EQ(removeInterruptedWriteTemporaries(d.string(), {".keyturn"}), 2u);
+  EXPECT_FALSE(fs::exists(d / "m.csv.tmp.Ab12Cd"));
+  EXPECT_FALSE(fs::exists(d / "c/i/e30/a5.0.json.tmp.Zz99Yy"));
+  EXPECT_TRUE(fs::exists(d / "c/i/e30/a5.0.json"));
+  EXPECT_TRUE(fs::exists(d / ".keyturn/f.bin.tmp.Ab12Cd")) << "another process may be writing it";
+  EXPECT_EQ(removeInterruptedWriteTemporaries((d / "none").string()), 0u);
 }

@@ -15,7 +15,7 @@ per=$((360 / step))
 instances=$(( (views + per - 1) / per ))
 expected=$((instances * per))
 ds="$work/ds"
-kills=0; error_exits=0; runs=0
+kills=0; error_exits=0; runs=0; left=0
 start=$(date +%s)
 for i in $(seq 1 "$instances"); do
   while :; do
@@ -26,7 +26,12 @@ for i in $(seq 1 "$instances"); do
     # Kill it at a random moment in a third of the runs (0.2–2.2 s in).
     if [ $((RANDOM % 3)) -eq 0 ]; then
       sleep "0.$((RANDOM % 10))"; sleep "$((RANDOM % 2))"
-      if kill -0 "$pid" 2> /dev/null; then kill -9 "$pid"; wait "$pid" 2> /dev/null; kills=$((kills + 1)); continue; fi
+      if kill -0 "$pid" 2> /dev/null; then
+        kill -9 "$pid"; wait "$pid" 2> /dev/null; kills=$((kills + 1))
+        # Temporaries the kill left mid-write (the next run must remove them: verify checks at the end).
+        left=$((left + $(find "$ds" -path "$ds/.sim" -prune -o -type f -name '*.tmp*' -print | wc -l)))
+        continue
+      fi
     fi
     wait "$pid"; rc=$?
     [ "$rc" -eq 0 ] && break
@@ -46,6 +51,7 @@ echo "views expected        $expected"
 echo "views in the manifest $rows (unique $unique)"
 echo "views off their pose  $off_pose"
 echo "capture runs          $runs ($kills killed with SIGKILL, $error_exits ended by an error and resumed)"
+echo "temporaries left      $left by the kills (removed by the resumes)"
 echo "camera retries        $cam_retries (logged reopenings)"
 echo "turntable retries     $table_retries (logged); faults injected in completed runs: $table_faults"
 echo "verify                $(tail -1 "$work/verify.txt")"

@@ -6,7 +6,8 @@
 //   DATASET/CLASS/INSTANCE/eLABEL/aANGLE.pcd  + _distance.png _amplitude.png _confidence.png .json
 //
 // A view exists once its manifest row does; files without a row are orphans
-// of an interrupted capture and are overwritten when that view is taken again.
+// of an interrupted capture and are replaced when that view is taken again.
+// Temporaries a killed write left (durable_file.h) are removed when the dataset is opened.
 #include <Eigen/Core>
 #include <optional>
 #include <string>
@@ -45,6 +46,9 @@ struct ViewMetadata {
 struct VerifyReport {
   std::size_t views = 0;
   std::vector<std::string> missing, corrupt, orphans, duplicates, bad_rows;
+  // Temporaries of a write a kill interrupted: never part of a view, removed by the next capture,
+  // so reported apart from the orphans and not a problem of the dataset's views.
+  std::vector<std::string> temporaries;
   bool ok() const { return missing.empty() && corrupt.empty() && orphans.empty() && duplicates.empty() && bad_rows.empty(); }
   // A dataset without views is not a good one (a capture that never took its first view).
   bool good() const { return ok() && views > 0; }
@@ -54,9 +58,11 @@ struct VerifyReport {
 
 class Dataset {
  public:
-  // Opens or creates the dataset folder; reads an existing manifest.
+  // Opens or creates the dataset folder; removes the temporaries an interrupted write left in its
+  // view folders; reads an existing manifest.
   explicit Dataset(std::string root);
   const std::string& root() const { return root_; }
+  std::size_t temporariesRemoved() const { return temporaries_removed_; }  // by the constructor
   const std::vector<ViewRecord>& views() const { return views_; }
   bool has(const ViewKey& key) const;
   // Writes the view's files durably, then appends its manifest row. Returns the record.
@@ -75,9 +81,11 @@ class Dataset {
 
  private:
   ViewRecord beginView(const ViewKey& key, const ViewMetadata& meta, std::string& abs_stem) const;
+  void removeFilesWithoutRow(const std::string& abs_stem) const;
   ViewRecord commitView(ViewRecord r, const std::string& abs_stem, const std::string& sidecar_json);
   std::string root_;
   std::vector<ViewRecord> views_;
+  std::size_t temporaries_removed_ = 0;
 };
 
 // Removes a dataset folder that holds no views (no manifest, or one without rows): what a capture
