@@ -6,9 +6,9 @@
 #include <QMessageBox>
 #include <QStatusBar>
 
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/frame_files.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 
 namespace keyturn::studio {
 
@@ -26,7 +26,7 @@ void StudioWindow::Impl::startCapture() {
   // Views of this sequence already in the dataset are kept and skipped: say so first.
   std::size_t existing = 0;
   try {
-    for (const auto& v : rig::Dataset::readManifest(root))
+    for (const auto& v : dataset::Dataset::readManifest(root))
       existing += v.key.cls == o.cls && v.key.instance == o.instance && v.key.elevation == o.elevation_label;
   } catch (const std::exception&) {
   }
@@ -51,7 +51,7 @@ void StudioWindow::Impl::startCapture() {
   o.camera_from_turntable_zero = factory.cameraFromTurntable();
   if (!capture->calibration().empty()) {
     try {
-      o.camera_from_turntable_zero = rig::adoptAxisCalibration(capture->calibration(), root);
+      o.camera_from_turntable_zero = dataset::adoptAxisCalibration(capture->calibration(), root);
     } catch (const std::exception& e) {
       capture->finished(0, 0, false, QString::fromUtf8(e.what()));
       return;

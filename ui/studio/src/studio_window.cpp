@@ -14,7 +14,7 @@
 #include <QToolBar>
 #include <QVBoxLayout>
 
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "studio_window_impl.h"
 
 namespace keyturn::studio {
@@ -163,7 +163,7 @@ StudioWindow::StudioWindow(RigFactory& factory, StudioOptions options, QWidget* 
     d_->devices->setPlayback(d_->options.playback);
     // A capture from the recording is labelled as its first view until the user says otherwise.
     try {
-      const auto views = rig::Dataset::readManifest(d_->options.playback.dataset);
+      const auto views = dataset::Dataset::readManifest(d_->options.playback.dataset);
       if (!views.empty())
         d_->capture->setObject(QString::fromStdString(views.front().key.cls), QString::fromStdString(views.front().key.instance));
     } catch (const std::exception&) {

@@ -1,19 +1,21 @@
-#include "keyturn/rig/dataset_views.h"
+#include "keyturn/dataset/dataset_views.h"
 
 #include <filesystem>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 namespace fs = std::filesystem;
 
-std::vector<learning::LabelledView> datasetViews(const std::string& root, std::vector<std::string>* skipped,
-                                                 std::vector<ViewRecord>* records) {
-  if (!fs::is_regular_file(fs::path(root) / "manifest.csv"))
+bool isDataset(const std::string& path) { return fs::is_regular_file(fs::path(path) / "manifest.csv"); }
+
+std::vector<LabelledView> datasetViews(const std::string& root, std::vector<std::string>* skipped,
+                                       std::vector<ViewRecord>* records) {
+  if (!isDataset(root))
     throw Error(root + ": not a keyturn dataset (no manifest.csv)");
-  std::vector<learning::LabelledView> out;
+  std::vector<LabelledView> out;
   for (const auto& r : Dataset::readManifest(root, skipped)) {
     const std::string pcd = r.pcd();
     if (pcd.empty()) continue;
@@ -25,4 +27,4 @@ std::vector<learning::LabelledView> datasetViews(const std::string& root, std::v
   return out;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -7,7 +7,7 @@
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 std::vector<LayoutFile> layoutFiles(const std::string& source, std::vector<std::string>& problems) {
   std::error_code ec;
@@ -35,4 +35,4 @@ std::vector<LayoutFile> layoutFiles(const std::string& source, std::vector<std::
   return out;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -9,12 +9,12 @@
 #include <set>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset_import.h"
+#include "keyturn/dataset/dataset_import.h"
 #include "layout_walk.h"
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 struct Frame {
@@ -128,4 +128,4 @@ ImportPlan planWashingtonImport(const std::string& source) {
   return plan;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

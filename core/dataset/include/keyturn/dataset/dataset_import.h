@@ -13,9 +13,9 @@
 
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/depth_image.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct ImportedView {
   ViewKey key;
@@ -69,4 +69,4 @@ struct ImportReport {
 // neither new, empty nor a keyturn dataset, depth images without intrinsics, or no view at all.
 ImportReport importDataset(const ImportOptions& options);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -8,12 +8,12 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
-#include "keyturn/rig/dataset_import.h"
+#include "keyturn/dataset/dataset_import.h"
 #include "layout_walk.h"
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 std::string lowerExtension(const std::string& name) {
@@ -118,4 +118,4 @@ ImportPlan planFoldersImport(const std::string& source) {
   return plan;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -7,9 +7,9 @@
 #include "keyturn/core/pose_list.h"
 #include "keyturn/core/repeatability_study.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 // A dataset folder, or a pose file (docs/repeatability.md); throws keyturn::Error.
 std::vector<StudyView> studyViews(const std::string& input, const PoseReadOptions& poses);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct DepthPixels {
   std::vector<std::uint16_t> values;  // row-major
@@ -34,4 +34,4 @@ class H5File {
   std::int64_t id_ = -1;  // hid_t
 };
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

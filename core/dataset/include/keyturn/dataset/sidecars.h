@@ -5,23 +5,22 @@
 #include <optional>
 #include <string>
 
-#include "keyturn/drivers/tof_camera.h"
+#include "keyturn/dataset/dataset.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 // The sidecar's camera ← turntable transform; nullopt when the rig was not calibrated.
 std::optional<Eigen::Matrix4d> readViewTransform(const std::string& sidecar_path);
 
 // The camera a view was taken with, as its sidecar records it (device string, serial, and the
-// settings it keeps: modulation, integration time, auto exposure, amplitude threshold, acquire mode).
-// A view imported from another tool (keyturn import) records none: the defaults, and imported set.
-struct ViewCamera {
-  std::string device;
-  std::uint32_t serial = 0;
-  drivers::TofSettings settings;
+// settings it keeps: modulation, integration time, auto exposure, amplitude threshold, acquire mode;
+// rig::readViewCamera makes them a camera's settings). A view imported from another tool (keyturn
+// import) records none: every field empty, and imported set.
+struct SidecarCameraRecord {
+  SidecarCamera camera;
   bool imported = false;  // its captured_at is when it was imported, not taken
 };
-ViewCamera readViewCamera(const std::string& sidecar_path);
+SidecarCameraRecord readSidecarCamera(const std::string& sidecar_path);
 
 // A keyturn-axis-calibration file's camera ← turntable at 0°.
 Eigen::Matrix4d readAxisCalibration(const std::string& path);
@@ -30,4 +29,4 @@ Eigen::Matrix4d readAxisCalibration(const std::string& path);
 // dataset as DATASET/calibration.json (written durably). Returns camera ← turntable at 0°.
 Eigen::Matrix4d adoptAxisCalibration(const std::string& path, const std::string& dataset_root);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct LayoutFile {
   std::string path;                // source/…/name
@@ -15,4 +15,4 @@ struct LayoutFile {
 // Throws keyturn::Error when the source is not a folder; an unreadable folder is one problem line.
 std::vector<LayoutFile> layoutFiles(const std::string& source, std::vector<std::string>& problems);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

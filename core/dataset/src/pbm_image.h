@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct Bitmap {
   std::vector<std::uint8_t> black;  // row-major, 1 where the pixel is black
@@ -14,4 +14,4 @@ struct Bitmap {
 
 Bitmap readPbm(const std::string& path);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -12,8 +12,8 @@
 #include <fstream>
 
 #include "keyturn/core/cloud_io.h"
-#include "keyturn/rig/dataset_import.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/dataset_import.h"
+#include "keyturn/dataset/sidecars.h"
 #include "support/bigbird_files.h"
 #include "support/scratch_path.h"
 
@@ -58,13 +58,13 @@ fs::path fresh(const std::string& name) {
   return d;
 }
 
-rig::ImportReport run(const fs::path& src, const fs::path& out, const std::string& categories = "") {
-  rig::ImportOptions o;
+dataset::ImportReport run(const fs::path& src, const fs::path& out, const std::string& categories = "") {
+  dataset::ImportOptions o;
   o.format = "bigbird";
   o.source = src.string();
   o.out = out.string();
   o.categories = categories;
-  return rig::importDataset(o);
+  return dataset::importDataset(o);
 }
 
 }  // namespace
@@ -83,7 +83,7 @@ TEST(BigbirdImport, AViewsPointsAreMetresFromItsDepthAndIntrinsicsAndItsPoseFrom
   fs::create_directories(obj / "masks");
   writePbm((obj / "masks" / "NP2_3_mask.pbm").string(), left, 1280, 1024);
 
-  const rig::ImportReport r = run(d / "src", d / "ds");
+  const dataset::ImportReport r = run(d / "src", d / "ds");
   EXPECT_TRUE(r.problems.empty()) << r.problems.front();
   EXPECT_EQ(r.imported, 2u);
 
@@ -101,7 +101,7 @@ TEST(BigbirdImport, AViewsPointsAreMetresFromItsDepthAndIntrinsicsAndItsPoseFrom
   // The depth camera ← turntable at each angle: H_NP2_ir_from_NP5 · (H_table_from_NP5)⁻¹.
   for (int angle : {0, 3}) {
     const std::string stem = (d / "ds/mug_7/mug_7/eNP2/a").string() + std::to_string(angle) + ".0";
-    const auto m = rig::readViewTransform(stem + ".json");
+    const auto m = dataset::readViewTransform(stem + ".json");
     ASSERT_TRUE(m.has_value());
     EXPECT_TRUE(m->isApprox(cameraFromTable(angle, kCam.elevation_deg), 1e-9)) << *m;
   }
@@ -109,7 +109,7 @@ TEST(BigbirdImport, AViewsPointsAreMetresFromItsDepthAndIntrinsicsAndItsPoseFrom
   const Eigen::Matrix4d m = cameraFromTable(0, kCam.elevation_deg);
   const Eigen::Vector3d t = m.topRightCorner<3, 1>();
   const double elevation = std::asin(m.block<3, 1>(0, 2).dot(-t) / t.norm()) * 180 / M_PI;
-  const auto rows = rig::Dataset::readManifest((d / "ds").string());
+  const auto rows = dataset::Dataset::readManifest((d / "ds").string());
   ASSERT_EQ(rows.size(), 2u);
   EXPECT_EQ(rows[0].key.cls, "mug_7");
   EXPECT_EQ(rows[0].key.elevation, "NP2");
@@ -136,7 +136,7 @@ TEST(BigbirdImport, CategoriesGiveTheClassAndAnObjectNotListedIsOneLine) {
     view(obj, "NP2_0", {h5Depth(wall(), kW, kH)});
   }
   std::ofstream(d / "categories.csv") << "class,instance,mesh\nmug,mug_7,\nmug,mug_9,\n";
-  const rig::ImportReport r = run(d / "src", d / "ds", (d / "categories.csv").string());
+  const dataset::ImportReport r = run(d / "src", d / "ds", (d / "categories.csv").string());
   EXPECT_EQ(r.imported, 1u);
   ASSERT_EQ(r.problems.size(), 1u);
   EXPECT_EQ(r.problems[0], (d / "src" / "cup_2").string() + ": not in " + (d / "categories.csv").string() +
@@ -172,7 +172,7 @@ TEST(BigbirdImport, EachBadFileIsOneLineNamingItAndTheRestIsImported) {
   cal.erase(cal.begin());  // NP2_depth_K
   writeH5((src / "half_calibrated" / "calibration.h5").string(), cal);
 
-  const rig::ImportReport r = run(src, d / "ds");
+  const dataset::ImportReport r = run(src, d / "ds");
   EXPECT_EQ(r.imported, 1u);
   const std::string g = good.string() + "/";
   const std::vector<std::string> expected = {
@@ -210,7 +210,7 @@ TEST(BigbirdImport, ABadMaskIsOneLineAndItsViewNotImported) {
   fs::resize_file(truncated, fs::file_size(truncated) / 3);
   std::ofstream(png, std::ios::binary) << "\x89PNG\r\n\x1a\n" << std::string(64, '\0');
 
-  const rig::ImportReport r = run(d / "src", d / "ds");
+  const dataset::ImportReport r = run(d / "src", d / "ds");
   EXPECT_EQ(r.imported, 1u);
   ASSERT_EQ(r.problems.size(), 2u);
   std::vector<std::string> got = r.problems;

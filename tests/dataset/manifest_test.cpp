@@ -6,8 +6,9 @@
 #include <fstream>
 #include <sstream>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -17,17 +18,16 @@ namespace {
 fs::path datasetWithTwoViews(const std::string& name) {
   const fs::path root = fs::temp_directory_path() / ("keyturn_manifest_" + name + "_" + std::to_string(::getpid()));
   fs::remove_all(root);
-  rig::Dataset ds(root.string());
-  drivers::TofFrame f;
-  f.width = 2;
-  f.height = 2;
-  f.distance.assign(4, 1000);
-  f.amplitude.assign(4, 500);
-  f.confidence.assign(4, 65535);
-  f.cloud.width = 2;
-  f.cloud.height = 2;
-  f.cloud.points.assign(4, Eigen::Vector3f(0.f, 0.f, 1.f));
-  for (double a : {0.0, 90.0}) ds.write({"box", "b1", "30", a}, rig::ViewMetadata(), f);
+  dataset::Dataset ds(root.string());
+  Cloud cloud;
+  cloud.width = 2;
+  cloud.height = 2;
+  cloud.points.assign(4, Eigen::Vector3f(0.f, 0.f, 1.f));
+  const auto writePcd = [&cloud](const std::string& pcd) {
+    saveCloud(pcd, cloud, PcdEncoding::BinaryCompressed);
+    return std::vector<std::string>{pcd};
+  };
+  for (double a : {0.0, 90.0}) ds.writeCaptured({"box", "b1", "30", a}, dataset::ViewMetadata(), {}, writePcd);
   return root;
 }
 
@@ -46,7 +46,7 @@ std::string withCrlf(const std::string& lf) {
 
 std::string refusal(const fs::path& root) {
   try {
-    (void)rig::Dataset::verify(root.string());
+    (void)dataset::Dataset::verify(root.string());
   } catch (const Error& e) {
     return e.what();
   }
@@ -57,12 +57,12 @@ std::string refusal(const fs::path& root) {
 
 TEST(Manifest, CrlfEndingsAndAByteOrderMarkReadAsTheOriginal) {
   const fs::path root = datasetWithTwoViews("crlf");
-  const auto original = rig::Dataset::readManifest(root.string());
+  const auto original = dataset::Dataset::readManifest(root.string());
   ASSERT_EQ(original.size(), 2u);
   writeText(root / "manifest.csv", "\xEF\xBB\xBF" + withCrlf(readText(root / "manifest.csv")));
 
   std::vector<std::string> bad;
-  const auto read = rig::Dataset::readManifest(root.string(), &bad);
+  const auto read = dataset::Dataset::readManifest(root.string(), &bad);
   EXPECT_TRUE(bad.empty());
   ASSERT_EQ(read.size(), 2u);
   for (std::size_t i = 0; i < read.size(); ++i) {
@@ -70,13 +70,13 @@ TEST(Manifest, CrlfEndingsAndAByteOrderMarkReadAsTheOriginal) {
     EXPECT_EQ(read[i].sha256, original[i].sha256);  // the last column carries no '\r'
     EXPECT_EQ(read[i].captured_at, original[i].captured_at);
   }
-  const auto report = rig::Dataset::verify(root.string());
+  const auto report = dataset::Dataset::verify(root.string());
   EXPECT_TRUE(report.good()) << report.text(root.string());
   EXPECT_EQ(report.views, 2u);
   EXPECT_TRUE(report.orphans.empty());
 
   // A capture resumed on it appends to it and still finds both views.
-  rig::Dataset reopened(root.string());
+  dataset::Dataset reopened(root.string());
   EXPECT_EQ(reopened.views().size(), 2u);
   EXPECT_TRUE(reopened.has({"box", "b1", "30", 90.0}));
 }
@@ -103,7 +103,7 @@ TEST(Manifest, AnotherHeaderIsRefusedWithTheReason) {
   writeText(root / "manifest.csv", "\n" + rows);
   why = refusal(root);
   EXPECT_EQ(why.rfind(file + ": line 1 is empty", 0), 0u) << why;
-  EXPECT_THROW(rig::Dataset reopened(root.string()), Error);
+  EXPECT_THROW(dataset::Dataset reopened(root.string()), Error);
 }
 
 // evaluate, train and describe --cache keep the features in DATASET/.keyturn/: keyturn's own file,
@@ -113,7 +113,7 @@ TEST(Manifest, TheFeatureCacheIsNoOrphan) {
   fs::create_directories(root / ".keyturn");
   writeText(root / ".keyturn" / "features-0123456789abcdef.csv", "# keyturn-features 1\n");
   writeText(root / "box" / "stray.pcd", "x");
-  const auto report = rig::Dataset::verify(root.string());
+  const auto report = dataset::Dataset::verify(root.string());
   EXPECT_EQ(report.orphans, std::vector<std::string>{"box/stray.pcd"});
 }
 
@@ -125,7 +125,7 @@ TEST(Manifest, AFileOutsideTheDatasetIsABadRowAndTheRestIsVerified) {
   std::ofstream(root / "manifest.csv", std::ios::app)
       << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,../../../../etc/hostname," << sha << "\n"
       << "box,b1,30,30.000,270.000,270.0000,2026-01-01T00:00:00.000Z,/etc/hostname," << sha << "\n";
-  const auto report = rig::Dataset::verify(root.string());
+  const auto report = dataset::Dataset::verify(root.string());
   EXPECT_EQ(report.views, 2u);
   EXPECT_EQ(report.bad_rows,
             (std::vector<std::string>{"line 4: file '../../../../etc/hostname' leaves the dataset folder ('..')",
@@ -140,7 +140,7 @@ TEST(Manifest, AFileNameLongerThanTheFileSystemAllowsIsABadRowAndTheRestIsVerifi
   const fs::path root = datasetWithTwoViews("longname");
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,box/"
                                                       << std::string(300, 'a') << ".pcd," << std::string(64, '0') << "\n";
-  const auto report = rig::Dataset::verify(root.string());
+  const auto report = dataset::Dataset::verify(root.string());
   EXPECT_EQ(report.views, 2u);
   ASSERT_EQ(report.bad_rows.size(), 1u);
   EXPECT_EQ(report.bad_rows[0].rfind("line 4: file name 'box/aaaa", 0), 0u) << report.bad_rows[0];
@@ -158,7 +158,7 @@ TEST(Manifest, APathTheSystemRefusesIsThatFilesProblem) {
   for (int i = 0; i < 30; ++i) deep += std::string(200, 'd') + "/";
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,"
                                                       << deep << "v.pcd," << std::string(64, '0') << "\n";
-  const auto report = rig::Dataset::verify(root.string());
+  const auto report = dataset::Dataset::verify(root.string());
   EXPECT_EQ(report.views, 3u);
   ASSERT_EQ(report.corrupt.size(), 1u);
   EXPECT_NE(report.corrupt[0].find("(cannot be read: File name too long)"), std::string::npos) << report.corrupt[0];

@@ -1,15 +1,15 @@
-#include "keyturn/rig/study_views.h"
+#include "keyturn/dataset/study_views.h"
 
 #include <Eigen/LU>
 #include <filesystem>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/dataset/sidecars.h"
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 std::vector<StudyView> studyViews(const std::string& input, const PoseReadOptions& poses) {
   std::vector<StudyView> out;
@@ -34,4 +34,4 @@ std::vector<StudyView> studyViews(const std::string& input, const PoseReadOption
   return out;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

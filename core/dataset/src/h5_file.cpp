@@ -6,7 +6,7 @@
 
 #include "keyturn/core/error.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 // One HDF5 handle, closed by the function that fits its kind.
@@ -97,4 +97,4 @@ DepthPixels H5File::depth(const std::string& name) const {
   return d;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -8,7 +8,7 @@
 
 // By hand, not OpenCV's Netpbm decoder: OpenCV 4.6 prints its own line on stderr for a truncated
 // file (imread catches its exception and writes to std::cerr), and a bad mask must be one line.
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 constexpr std::uint32_t kMaxSide = 1 << 14;
@@ -68,4 +68,4 @@ Bitmap readPbm(const std::string& path) {
   return b;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

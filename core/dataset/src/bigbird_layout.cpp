@@ -12,12 +12,12 @@
 
 #include "h5_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset_import.h"
-#include "keyturn/rig/object_list.h"
+#include "keyturn/dataset/dataset_import.h"
+#include "keyturn/dataset/object_list.h"
 #include "layout_walk.h"
 #include "pbm_image.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 constexpr double kDepthUnit = 1e-4;  // metres: BigBIRD's depth images count 100 µm
@@ -228,4 +228,4 @@ ImportPlan planBigbirdImport(const std::string& source, const std::string& categ
   return plan;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -1,4 +1,4 @@
-#include "keyturn/rig/object_list.h"
+#include "keyturn/dataset/object_list.h"
 
 #include <algorithm>
 #include <filesystem>
@@ -9,7 +9,7 @@
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 namespace {
 
@@ -87,4 +87,4 @@ std::map<std::string, std::string> readInstanceClasses(const std::string& path) 
   return out;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct ObjectRow {
   std::string cls, instance, mesh;
@@ -19,4 +19,4 @@ std::vector<ObjectRow> readObjectList(const std::string& path);
 // --categories). Throws keyturn::Error naming the file for a missing column or an instance in two classes.
 std::map<std::string, std::string> readInstanceClasses(const std::string& path);
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -1,4 +1,4 @@
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
 #include <openssl/evp.h>
 
@@ -17,9 +17,8 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
-#include "keyturn/drivers/tof_camera.h"
 #include "keyturn/core/durable_file.h"
-#include "keyturn/rig/frame_files.h"
+#include "keyturn/dataset/feature_cache_files.h"
 
 #ifndef KEYTURN_VERSION
 #define KEYTURN_VERSION "unknown"
@@ -27,7 +26,7 @@
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 constexpr const char* kManifest = "manifest.csv";
@@ -251,18 +250,19 @@ ViewRecord Dataset::commitView(ViewRecord r, const std::string& abs_stem, const 
   return r;
 }
 
-ViewRecord Dataset::write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame) {
+ViewRecord Dataset::writeCaptured(const ViewKey& key, const ViewMetadata& meta, const SidecarCamera& camera,
+                                  const FileWriter& write_files) {
   std::string abs_stem;
   ViewRecord r = beginView(key, meta, abs_stem);
-  for (const auto& f : writeFrameFiles(abs_stem + ".pcd", frame)) r.files.push_back(f.substr(root_.size() + 1));
+  for (const auto& f : write_files(abs_stem + ".pcd")) r.files.push_back(f.substr(root_.size() + 1));
   nlohmann::json j = baseSidecar(key, meta);
-  j["camera"] = {{"device", frame.device},
-                 {"serial", frame.serial},
-                 {"modulation_mhz", drivers::modulationMHz(frame.settings.modulation_frequency)},
-                 {"integration_time", frame.settings.integration_time},
-                 {"auto_exposure", frame.settings.auto_exposure.enabled},
-                 {"amplitude_threshold", frame.settings.amplitude_threshold},
-                 {"acquire_mode", frame.settings.acquire_mode}};
+  nlohmann::json& c = j["camera"];
+  c = {{"device", camera.device}, {"serial", camera.serial}};
+  if (camera.modulation_mhz) c["modulation_mhz"] = *camera.modulation_mhz;
+  if (camera.integration_time) c["integration_time"] = *camera.integration_time;
+  if (camera.auto_exposure) c["auto_exposure"] = *camera.auto_exposure;
+  if (camera.amplitude_threshold) c["amplitude_threshold"] = *camera.amplitude_threshold;
+  if (camera.acquire_mode) c["acquire_mode"] = *camera.acquire_mode;
   j["frames"] = {{"discarded", meta.frames_discarded}, {"taken", meta.frames_taken}, {"redos", meta.redos}};
   j["captured_at"] = r.captured_at;
   j["keyturn_version"] = KEYTURN_VERSION;
@@ -361,7 +361,7 @@ VerifyReport Dataset::verify(const std::string& root) {
     if (rel_ec) continue;
     // keyturn's own files beside the views: the simulator's state and the feature cache (.keyturn/).
     if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
-        rel.rfind(".keyturn/", 0) == 0)
+        rel.rfind(std::string(kKeyturnFolder) + "/", 0) == 0)
       continue;
     if (!referenced.count(rel)) rep.orphans.push_back(rel);
   }
@@ -405,4 +405,4 @@ std::string VerifyReport::text(const std::string& root) const {
   return out.str();
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -1,4 +1,4 @@
-#include "keyturn/rig/dataset_import.h"
+#include "keyturn/dataset/dataset_import.h"
 
 #include <algorithm>
 #include <cmath>
@@ -11,7 +11,7 @@
 
 namespace fs = std::filesystem;
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 bool isPng(const std::string& file) {
@@ -101,4 +101,4 @@ ImportReport importDataset(const ImportOptions& o) {
   return rep;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

@@ -1,4 +1,4 @@
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 
 #include <cmath>
 #include <filesystem>
@@ -9,7 +9,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 namespace {
 
 nlohmann::json parse(const std::string& path, const char* what) {
@@ -45,23 +45,33 @@ std::optional<Eigen::Matrix4d> readViewTransform(const std::string& path) {
   return matrix(path, j["camera_from_turntable"]);
 }
 
-ViewCamera readViewCamera(const std::string& path) {
+namespace {
+
+// The key's value when the object has it; a value of another type throws (nlohmann's type_error).
+template <typename T>
+void readOptional(const nlohmann::json& c, const char* key, std::optional<T>& out) {
+  if (c.contains(key)) out = c[key].get<T>();
+}
+
+}  // namespace
+
+SidecarCameraRecord readSidecarCamera(const std::string& path) {
   const auto j = parse(path, "view sidecar");
   if (!j.is_object()) throw Error(path + ": not a keyturn view sidecar");
-  ViewCamera out;
+  SidecarCameraRecord out;
   out.imported = j.contains("imported_by");
   if (!j.contains("camera")) return out;  // imported from another tool: no camera recorded
   const auto& c = j["camera"];
   if (!c.is_object()) throw Error(path + ": camera is not an object");
   try {
-    out.device = c.value("device", std::string());
-    out.serial = c.value("serial", std::uint32_t{0});
-    drivers::TofSettings& s = out.settings;
-    if (c.contains("modulation_mhz")) s.modulation_frequency = drivers::modulationIndex(c["modulation_mhz"].get<double>());
-    s.integration_time = c.value("integration_time", s.integration_time);
-    s.auto_exposure.enabled = c.value("auto_exposure", s.auto_exposure.enabled);
-    s.amplitude_threshold = c.value("amplitude_threshold", s.amplitude_threshold);
-    s.acquire_mode = c.value("acquire_mode", s.acquire_mode);
+    SidecarCamera& cam = out.camera;
+    cam.device = c.value("device", std::string());
+    cam.serial = c.value("serial", std::uint32_t{0});
+    readOptional(c, "modulation_mhz", cam.modulation_mhz);
+    readOptional(c, "integration_time", cam.integration_time);
+    readOptional(c, "auto_exposure", cam.auto_exposure);
+    readOptional(c, "amplitude_threshold", cam.amplitude_threshold);
+    readOptional(c, "acquire_mode", cam.acquire_mode);
   } catch (const std::exception& e) {
     throw Error(path + ": camera: " + e.what());
   }
@@ -86,4 +96,4 @@ Eigen::Matrix4d adoptAxisCalibration(const std::string& path, const std::string&
   return m;
 }
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset

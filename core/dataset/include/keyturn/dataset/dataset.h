@@ -8,13 +8,15 @@
 // A view exists once its manifest row does; files without a row are orphans
 // of an interrupted capture and are overwritten when that view is taken again.
 #include <Eigen/Core>
+#include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include "keyturn/drivers/tof_camera.h"
+#include "keyturn/core/cloud.h"
 
-namespace keyturn::rig {
+namespace keyturn::dataset {
 
 struct ViewKey {
   std::string cls, instance, elevation;  // elevation label, e.g. "30"
@@ -42,6 +44,18 @@ struct ViewMetadata {
   int frames_discarded = 0, frames_taken = 1, redos = 0;
 };
 
+// The camera a captured view's sidecar records (its "camera" object): what playback needs to
+// take the view again as that camera. A field the sidecar lacks is empty.
+struct SidecarCamera {
+  std::string device;
+  std::uint32_t serial = 0;
+  std::optional<double> modulation_mhz;
+  std::optional<std::uint8_t> integration_time;
+  std::optional<bool> auto_exposure;
+  std::optional<std::uint16_t> amplitude_threshold;
+  std::optional<std::uint32_t> acquire_mode;
+};
+
 struct VerifyReport {
   std::size_t views = 0;
   std::vector<std::string> missing, corrupt, orphans, duplicates, bad_rows;
@@ -59,8 +73,13 @@ class Dataset {
   const std::string& root() const { return root_; }
   const std::vector<ViewRecord>& views() const { return views_; }
   bool has(const ViewKey& key) const;
-  // Writes the view's files durably, then appends its manifest row. Returns the record.
-  ViewRecord write(const ViewKey& key, const ViewMetadata& meta, const drivers::TofFrame& frame);
+  // A captured view: write_files writes the view's files durably (given the absolute path of its
+  // PCD, DATASET/CLASS/INSTANCE/eLABEL/aANGLE.pcd) and returns every path it wrote; then the sidecar
+  // (recording the camera) and the manifest row. Returns the record. rig::writeFrameView writes a
+  // camera frame this way.
+  using FileWriter = std::function<std::vector<std::string>(const std::string& pcd_path)>;
+  ViewRecord writeCaptured(const ViewKey& key, const ViewMetadata& meta, const SidecarCamera& camera,
+                           const FileWriter& write_files);
   // A view from another tool's files (keyturn import): its cloud as the view's PCD and a sidecar
   // naming the source file and the importer (no camera settings, no raw images), then its row.
   ViewRecord writeImported(const ViewKey& key, const ViewMetadata& meta, const Cloud& cloud, const std::string& source,
@@ -88,4 +107,4 @@ void removeDatasetWithoutViews(const std::string& root);
 std::string manifestHeader();
 std::string sha256File(const std::string& path);  // lowercase hex; throws keyturn::Error
 
-}  // namespace keyturn::rig
+}  // namespace keyturn::dataset
