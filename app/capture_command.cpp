@@ -12,7 +12,7 @@
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/capture.h"
 #include "keyturn/rig/capture_rig.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -33,7 +33,7 @@ struct CaptureArgs {
 // dataset is created, so a bad one is named before anything is written.
 int captureSequence(CaptureArgs a) {
   rig::CaptureOptions& o = a.o;
-  if (!a.calibration.empty()) (void)rig::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
+  if (!a.calibration.empty()) (void)dataset::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
   a.devices.camera = cameraSpec(a.camera, "", "");
   a.devices.pose = poseSpec(a.pose, a.profile);
   rig::refusePlaybackInto(a.devices, a.out);
@@ -41,13 +41,13 @@ int captureSequence(CaptureArgs a) {
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
   rig::CaptureRig capture_rig(a.devices);
   o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
-  rig::Dataset dataset(a.out);
+  dataset::Dataset dataset(a.out);
   if (const std::size_t n = dataset.temporariesRemoved())
     std::cerr << "keyturn capture: removed " << n << " leftover temporary file" << (n == 1 ? "" : "s")
               << " of an interrupted write\n";
   if (!a.calibration.empty()) {
     // A measured axis overrides even the simulator's exact one; it is kept with the dataset.
-    o.camera_from_turntable_zero = rig::adoptAxisCalibration(a.calibration, a.out);
+    o.camera_from_turntable_zero = dataset::adoptAxisCalibration(a.calibration, a.out);
   }
   if (o.elevation_label.empty()) o.elevation_label = std::to_string(static_cast<int>(std::lround(o.elevation_deg)));
   o.stop = &g_stop;
@@ -80,13 +80,13 @@ int runCapture(const CaptureArgs& a) {
   try {
     return captureSequence(a);
   } catch (const Error&) {
-    if (fresh) rig::removeDatasetWithoutViews(a.out);
+    if (fresh) dataset::removeDatasetWithoutViews(a.out);
     throw;
   }
 }
 
 int runVerify(const std::string& root) {
-  const rig::VerifyReport r = rig::Dataset::verify(root);
+  const dataset::VerifyReport r = dataset::Dataset::verify(root);
   std::cout << r.text(root);
   return r.good() ? 0 : 1;
 }

@@ -1,19 +1,14 @@
 #include "dataset_features.h"
 
-#include <filesystem>
 #include <iostream>
 
-#include "keyturn/rig/dataset_views.h"
+#include "keyturn/learning/dataset_features.h"
 
 namespace keyturn::app {
 
-bool isDataset(const std::string& path) {
-  return std::filesystem::is_regular_file(std::filesystem::path(path) / "manifest.csv");
-}
-
-std::vector<learning::LabelledView> datasetViews(const std::string& root) {
+std::vector<dataset::LabelledView> datasetViews(const std::string& root) {
   std::vector<std::string> bad;
-  auto views = rig::datasetViews(root, &bad);
+  auto views = dataset::datasetViews(root, &bad);
   for (const auto& b : bad) std::cerr << "keyturn: " << root << "/manifest.csv: skipped " << b << "\n";
   return views;
 }
@@ -33,7 +28,8 @@ void DescribeProgressLine::warning(const std::string& line) { std::cerr << "keyt
 learning::FeatureTable datasetFeatures(const std::string& dataset, const DescriptorOptions& options, int jobs,
                                        bool quiet) {
   DescribeProgressLine progress(quiet);
-  return learning::loadOrDescribeCache({dataset, datasetViews(dataset), options, jobs, &progress});
+  return learning::datasetFeatures({dataset, datasetViews(dataset), options, jobs, &progress},
+                                   learning::CacheWrite::Fill).table;
 }
 
 }  // namespace keyturn::app

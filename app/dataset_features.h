@@ -1,21 +1,21 @@
 #pragma once
 // A dataset's feature cache as the commands use it: the views of its manifest
-// (rig) described by learning's feature cache, progress and notes on stderr.
+// (keyturn_dataset) described by learning::datasetFeatures, progress and notes on stderr.
 #include <memory>
 #include <string>
 #include <vector>
 
 #include "keyturn/core/descriptor.h"
+#include "keyturn/dataset/dataset_views.h"
 #include "keyturn/learning/feature_cache.h"
 #include "progress.h"
 
 namespace keyturn::app {
 
-// A keyturn dataset folder: one holding manifest.csv.
-bool isDataset(const std::string& path);
+using dataset::isDataset;  // a keyturn dataset folder: one holding manifest.csv
 
 // Throws keyturn::Error for a folder without a manifest or views; skipped rows are reported.
-std::vector<learning::LabelledView> datasetViews(const std::string& dataset);
+std::vector<dataset::LabelledView> datasetViews(const std::string& dataset);
 
 // stderr: a progress line (unless quiet), notes (unless quiet) and warnings.
 class DescribeProgressLine final : public learning::DescribeProgress {

@@ -6,14 +6,14 @@
 
 #include "commands.h"
 #include "depth_image_options.h"
-#include "keyturn/rig/dataset_import.h"
+#include "keyturn/dataset/dataset_import.h"
 #include "progress.h"
 
 namespace keyturn::app {
 namespace {
 
 struct ImportArgs {
-  rig::ImportOptions options;
+  dataset::ImportOptions options;
   DepthImageFlags depth;
   bool quiet = false;
 };
@@ -26,7 +26,7 @@ int runImport(ImportArgs a) {
     bar->advance();
     if (done == total) bar->finish();
   };
-  const rig::ImportReport r = rig::importDataset(a.options);
+  const dataset::ImportReport r = dataset::importDataset(a.options);
   std::cout << r.text(a.options);
   return r.problems.empty() ? 0 : 1;
 }

@@ -9,7 +9,7 @@
 #include "depth_image_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/repeatability_study.h"
-#include "keyturn/rig/study_views.h"
+#include "keyturn/dataset/study_views.h"
 #include "keyturn/plots/report_plots.h"
 #include "progress.h"
 
@@ -36,7 +36,7 @@ int runRepeatability(RepArgs a) {
   std::unique_ptr<Progress> bar;
   StudyProgress progress{[&](const std::string& stage, std::size_t n) { bar = std::make_unique<Progress>(stage, n, !a.json); },
                          [&] { bar->advance(); }, [&] { bar->finish(); }};
-  const Study s = runRepeatabilityStudy(rig::studyViews(a.input, a.poses), a.study, progress);
+  const Study s = runRepeatabilityStudy(dataset::studyViews(a.input, a.poses), a.study, progress);
 
   std::filesystem::create_directories(a.out);
   const std::string md = studyMarkdown(s, a.input), json = studyJson(s, a.input);

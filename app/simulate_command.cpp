@@ -47,7 +47,7 @@ void parseIntegrationRange(const std::string& text, rig::ViewJitter& j) {
 int runSimulate(const SimulateArgs& a) {
   rig::DatasetSimulation sim;
   sim.out = a.out;
-  sim.objects = rig::readObjectList(a.objects);
+  sim.objects = dataset::readObjectList(a.objects);
   sim.elevations = parseNumberList(a.elevations, "--elevations");
   sim.step_deg = a.step;
   sim.seed = a.seed;

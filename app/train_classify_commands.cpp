@@ -95,7 +95,7 @@ int runClassify(const ClassifyArgs& a) {
     const DepthImageOptions depth = a.depth.toOptions();
     ViewFileList list = collectViewFiles(a.inputs, depth.intrinsics.has_value());
     errors = list.errors;
-    std::vector<learning::LabelledView> views;
+    std::vector<dataset::LabelledView> views;
     for (const auto& f : list.files) views.push_back({f, f, "?", "?", "?", depth});
     DescribeProgressLine progress(a.quiet || views.size() < 2);
     t = learning::describeForModel(m, views, a.jobs, &progress, a.model);

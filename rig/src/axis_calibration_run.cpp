@@ -6,7 +6,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
 namespace keyturn::rig {
 namespace {
@@ -28,8 +28,8 @@ nlohmann::json matrixJson(const Eigen::Matrix4d& m) {
 DatasetAxisCalibration calibrateAxisFromDataset(const AxisSequence& a,
                                                 const std::function<void(const std::string&, const std::string&)>& skipped,
                                                 const std::function<void(std::size_t, std::size_t)>& view_done) {
-  std::vector<ViewRecord> views;
-  for (const auto& v : Dataset::readManifest(a.dataset))
+  std::vector<dataset::ViewRecord> views;
+  for (const auto& v : dataset::Dataset::readManifest(a.dataset))
     if ((a.cls.empty() || v.key.cls == a.cls) && (a.instance.empty() || v.key.instance == a.instance) &&
         (a.elevation.empty() || v.key.elevation == a.elevation))
       views.push_back(v);

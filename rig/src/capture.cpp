@@ -6,6 +6,7 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "keyturn/rig/captured_views.h"
 
 namespace keyturn::rig {
 namespace {
@@ -48,7 +49,7 @@ std::vector<double> sequenceAngles(const CaptureOptions& o) {
   return out;
 }
 
-CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, Dataset& dataset,
+CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, dataset::Dataset& dataset,
                          const CaptureOptions& o, const std::function<void(const CaptureProgress&)>& progress) {
   CaptureReport rep;
   const auto angles = sequenceAngles(o);
@@ -61,7 +62,7 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
       rep.stopped = true;
       break;
     }
-    const ViewKey key{o.cls, o.instance, o.elevation_label, angle};
+    const dataset::ViewKey key{o.cls, o.instance, o.elevation_label, angle};
     prog.angle_deg = angle;
     if (dataset.has(key)) {
       ++rep.skipped;
@@ -83,7 +84,7 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
           throw Error(pose.describe() + ": the pose kept moving during acquisition at " + std::to_string(angle) + "°");
         continue;
       }
-      ViewMetadata meta;
+      dataset::ViewMetadata meta;
       meta.elevation_deg = o.elevation_deg;
       meta.measured_deg = 0.5 * (before.turntable_deg + after.turntable_deg);
       if (std::abs(before.turntable_deg - after.turntable_deg) > 180) meta.measured_deg = before.turntable_deg;
@@ -98,7 +99,7 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
       meta.frames_taken = o.frames;
       meta.redos = redos;
       const drivers::TofFrame median = drivers::medianFrame(frames);
-      const ViewRecord record = dataset.write(key, meta, median);
+      const dataset::ViewRecord record = writeFrameView(dataset, key, meta, median);
       rep.redos += static_cast<std::size_t>(redos);
       ++rep.written;
       ++prog.done;

@@ -12,7 +12,8 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/rig/frame_files.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
+#include "keyturn/rig/captured_views.h"
 
 namespace fs = std::filesystem;
 
@@ -35,7 +36,7 @@ double capturedAtSeconds(const std::string& iso) {
 
 // The recorded rate: the median of the positive intervals between consecutive views' capture
 // times (a capture paused and resumed, or a second elevation a day later, does not slow it down).
-double recordedRate(const std::vector<ViewRecord>& views) {
+double recordedRate(const std::vector<dataset::ViewRecord>& views) {
   std::vector<double> gaps;
   for (std::size_t i = 1; i < views.size(); ++i) {
     const double d = capturedAtSeconds(views[i].captured_at) - capturedAtSeconds(views[i - 1].captured_at);
@@ -51,7 +52,7 @@ double angleDiff(double a, double b) {
   return d > 180 ? 360 - d : d;
 }
 
-std::string viewName(const ViewRecord& r) {
+std::string viewName(const dataset::ViewRecord& r) {
   char angle[32];
   std::snprintf(angle, sizeof angle, "%.1f", r.key.commanded_deg);
   return r.key.cls + "/" + r.key.instance + "/e" + r.key.elevation + "/a" + angle;
@@ -64,7 +65,7 @@ Recording::Recording(std::string root, PlaybackOptions options) : root_(std::mov
   const std::string manifest = root_ + "/manifest.csv";
   if (!fs::is_directory(root_)) throw Error(root_ + ": no such dataset to play back");
   if (!fs::is_regular_file(manifest)) throw Error(manifest + ": missing (not a keyturn dataset to play back)");
-  views_ = Dataset::readManifest(root_);
+  views_ = dataset::Dataset::readManifest(root_);
   if (views_.empty()) throw Error(manifest + ": no views to play back");
   if (!(options_.rate_fps >= 0) || !std::isfinite(options_.rate_fps))
     throw Error(root_ + ": playback rate " + std::to_string(options_.rate_fps) + " frames/s is not a rate");
@@ -77,7 +78,7 @@ Recording::Recording(std::string root, PlaybackOptions options) : root_(std::mov
     throw Error(manifest + ": the views' capture times give no rate (fewer than two distinct): choose a playback rate");
   if (!sidecar.empty()) {
     const std::string path = root_ + "/" + sidecar;
-    if (const auto t = readViewTransform(path)) {
+    if (const auto t = dataset::readViewTransform(path)) {
       // Back to the table at 0°: the sidecar's transform is at the view's measured angle.
       Eigen::Matrix4d rz = Eigen::Matrix4d::Identity();
       rz.topLeftCorner<3, 3>() =
@@ -96,7 +97,7 @@ std::string Recording::describe() const {
 }
 
 drivers::TofFrame Recording::load(std::size_t index) const {
-  const ViewRecord& r = views_[index];
+  const dataset::ViewRecord& r = views_[index];
   // Every file the row lists, not only those read: a view with a file gone is not the recorded one.
   for (const auto& f : r.files)
     if (!fs::exists(root_ + "/" + f)) throw Error(root_ + "/" + f + ": missing (view " + viewName(r) + " of the recording)");

@@ -25,14 +25,14 @@ CaptureOptions baseOptions(const DatasetSimulation& s) {
 
 // FNV-1a over the view's identity (unit-separated fields), keyed by the seed: a draw that depends
 // on nothing else.
-std::uint64_t viewHash(std::uint64_t seed, const ViewKey& v) {
+std::uint64_t viewHash(std::uint64_t seed, const dataset::ViewKey& v) {
   char angle[32];
   std::snprintf(angle, sizeof angle, "%.3f", v.commanded_deg);
   const std::string identity = v.cls + '\x1f' + v.instance + '\x1f' + v.elevation + '\x1f' + angle + '\x1f';
   return fnv1a(identity, 1469598103934665603ull ^ seed);
 }
 
-CaptureOptions viewOptions(const CaptureOptions& base, const ObjectRow& obj, double el, const std::string& label) {
+CaptureOptions viewOptions(const CaptureOptions& base, const dataset::ObjectRow& obj, double el, const std::string& label) {
   CaptureOptions o = base;
   o.cls = obj.cls;
   o.instance = obj.instance;
@@ -44,7 +44,7 @@ CaptureOptions viewOptions(const CaptureOptions& base, const ObjectRow& obj, dou
 std::string elevationLabel(double el) { return std::to_string(static_cast<int>(std::lround(el))); }
 
 // Without jitter: one rig per object and elevation, the whole turn captured in one sequence.
-void simulateSequences(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base, CaptureReport& total,
+void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, const CaptureOptions& base, CaptureReport& total,
                        const std::function<void()>& view_done) {
   for (const auto& obj : s.objects) {
     for (double el : s.elevations) {
@@ -69,8 +69,8 @@ void simulateSequences(const DatasetSimulation& s, Dataset& dataset, const Captu
 }
 
 // One jittered view: a rig opened with the view's draw, capturing that view only.
-CaptureReport captureJitteredView(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base,
-                                  const ObjectRow& obj, const sim::Mesh& mesh, const ViewKey& key, double el) {
+CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& dataset, const CaptureOptions& base,
+                                  const dataset::ObjectRow& obj, const sim::Mesh& mesh, const dataset::ViewKey& key, double el) {
   const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
   SimulatedRigOptions so;
   so.dir = s.out + "/.sim";
@@ -96,14 +96,14 @@ CaptureReport captureJitteredView(const DatasetSimulation& s, Dataset& dataset, 
 }
 
 // With jitter: every view its own rig (captureJitteredView); views already there are skipped unopened.
-void simulateJitteredViews(const DatasetSimulation& s, Dataset& dataset, const CaptureOptions& base,
+void simulateJitteredViews(const DatasetSimulation& s, dataset::Dataset& dataset, const CaptureOptions& base,
                            CaptureReport& total, const std::function<void()>& view_done) {
   for (const auto& obj : s.objects) {
     const sim::Mesh mesh = sim::loadMeshOrBuiltin(obj.mesh);
     for (double el : s.elevations)
       for (double angle : sequenceAngles(base)) {
         if (s.stop && *s.stop) return;
-        const ViewKey key{obj.cls, obj.instance, elevationLabel(el), angle};
+        const dataset::ViewKey key{obj.cls, obj.instance, elevationLabel(el), angle};
         if (dataset.has(key)) {
           ++total.skipped;
         } else {
@@ -128,7 +128,7 @@ void ViewJitter::check() const {
     throw Error("jitter: the integration codes must satisfy 1 <= MIN <= MAX <= 255");
 }
 
-JitteredView drawJitter(const ViewJitter& j, std::uint64_t seed, const ViewKey& view, double elevation_deg) {
+JitteredView drawJitter(const ViewJitter& j, std::uint64_t seed, const dataset::ViewKey& view, double elevation_deg) {
   std::mt19937_64 rng(viewHash(seed, view));
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   JitteredView d;
@@ -152,7 +152,7 @@ std::size_t DatasetSimulation::views() const {
 
 CaptureReport simulateDataset(const DatasetSimulation& s, const std::function<void()>& view_done) {
   s.jitter.check();
-  Dataset dataset(s.out);
+  dataset::Dataset dataset(s.out);
   const CaptureOptions base = baseOptions(s);
   CaptureReport total;
   if (s.jitter.any()) simulateJitteredViews(s, dataset, base, total, view_done);

@@ -2,8 +2,8 @@
 // repeatability read them. The first byte picks the file.
 #include "fuzz_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/dataset/sidecars.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   if (size < 1) return 0;
@@ -13,15 +13,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         const std::string path = keyturn::fuzz::writeInput(data + 1, size - 1, "manifest.csv");
         const std::string root = path.substr(0, path.rfind('/'));
         std::vector<std::string> bad;
-        (void)keyturn::rig::Dataset::readManifest(root, &bad);
-        (void)keyturn::rig::Dataset::verify(root);
+        (void)keyturn::dataset::Dataset::readManifest(root, &bad);
+        (void)keyturn::dataset::Dataset::verify(root);
         break;
       }
       case 1:
-        (void)keyturn::rig::readViewTransform(keyturn::fuzz::writeInput(data + 1, size - 1, "view.json"));
+        (void)keyturn::dataset::readViewTransform(keyturn::fuzz::writeInput(data + 1, size - 1, "view.json"));
         break;
       default:
-        (void)keyturn::rig::readAxisCalibration(keyturn::fuzz::writeInput(data + 1, size - 1, "calibration.json"));
+        (void)keyturn::dataset::readAxisCalibration(keyturn::fuzz::writeInput(data + 1, size - 1, "calibration.json"));
     }
   } catch (const keyturn::Error&) {
   }

@@ -2,6 +2,7 @@
 // stay valid), layouts of some blocks computing the same values as the whole cache,
 // and the cache reused, refilled and merged from shards.
 #include "keyturn/learning/feature_cache.h"
+#include "keyturn/learning/dataset_features.h"
 
 #include <gtest/gtest.h>
 
@@ -163,4 +164,49 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   ASSERT_EQ(merged.rows.size(), 3u);
   for (std::size_t v = 0; v < 3; ++v) EXPECT_TRUE(sameValues(merged.rows[v].values, t3.rows[v].values)) << v;
   EXPECT_THROW(describeCacheShard({sharded.string(), views, o, 1, nullptr}, 2, 2), Error);
+}
+
+// learning::datasetFeatures, the one path from a dataset to its table (the CLI and Python): Never
+// describes in memory the blocks asked for and writes nothing while the cache lacks a view, then
+// reads the cache Fill wrote once it holds every view, values equal to those described.
+TEST(DatasetFeatures, NeverWritesTheCacheAndReadsItOnceFilled) {
+  const fs::path root = keyturn::test::scratchPath("dataset_features");
+  fs::remove_all(root);
+  const auto views = writeViews(root);
+  const DescriptorOptions o;
+  const FeatureCache c{root.string(), views, o, 2, nullptr};
+  const std::string path = featureCachePath(root.string(), o);
+
+  const DatasetFeatures memory = datasetFeatures(c, CacheWrite::Never, {"kpd2", "size", "kpd2"});
+  EXPECT_EQ(memory.cache, "");
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(root / ".keyturn"));
+  EXPECT_EQ(memory.table.blocks, (std::vector<std::string>{"kpd2", "size"}));  // named twice, described once
+  ASSERT_EQ(memory.table.rows.size(), 3u);
+
+  Counting progress;
+  const DatasetFeatures filled = datasetFeatures({root.string(), views, o, 2, &progress}, CacheWrite::Fill);
+  EXPECT_EQ(filled.cache, path);
+  EXPECT_TRUE(fs::exists(path));
+  EXPECT_EQ(progress.done.load(), 3u);
+  EXPECT_EQ(filled.table.blocks, cacheBlocks());
+
+  const DatasetFeatures read = datasetFeatures(c, CacheWrite::Never, {"kpd2"});
+  EXPECT_EQ(read.cache, path);
+  EXPECT_EQ(read.table.blocks, cacheBlocks());  // the cache's table, every block
+  ASSERT_EQ(read.table.rows.size(), 3u);
+  for (std::size_t i = 0; i < 3; ++i) {
+    EXPECT_EQ(read.table.rows[i].id, views[i].id);
+    EXPECT_TRUE(sameValues(block(read.table, read.table.rows[i], "kpd2"), block(memory.table, memory.table.rows[i], "kpd2")));
+  }
+
+  // A view the cache lacks: described in memory again, the cache left as it was.
+  auto more = views;
+  more.push_back(views.front());
+  more.back().id = "mug/again";
+  const auto before = fs::last_write_time(path);
+  const DatasetFeatures partial = datasetFeatures({root.string(), more, o, 2, nullptr}, CacheWrite::Never, {"kpd2"});
+  EXPECT_EQ(partial.cache, "");
+  EXPECT_EQ(partial.table.rows.size(), 4u);
+  EXPECT_EQ(fs::last_write_time(path), before);
 }

@@ -10,8 +10,9 @@
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/drivers/sr4000_camera.h"
+#include "keyturn/rig/captured_views.h"
 #include "keyturn/rig/capture.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/turntable_sim.h"
 
@@ -79,7 +80,7 @@ class SimulatedRig : public ::testing::Test {
 
 TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
   start();
-  rig::Dataset ds((dir_ / "ds").string());
+  dataset::Dataset ds((dir_ / "ds").string());
   auto o = options();
   o.camera_from_turntable_zero = Eigen::Matrix4d::Identity();
   std::vector<std::string> shown;  // what a GUI would show as thumbnails, in order
@@ -93,7 +94,7 @@ TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
   EXPECT_EQ(rep.written, 4u);
   EXPECT_EQ(shown, (std::vector<std::string>{"mug/builtin/e30/a0.0.pcd", "mug/builtin/e30/a10.0.pcd",
                                              "mug/builtin/e30/a20.0.pcd", "mug/builtin/e30/a30.0.pcd"}));
-  const auto views = rig::Dataset::readManifest(ds.root());
+  const auto views = dataset::Dataset::readManifest(ds.root());
   ASSERT_EQ(views.size(), 4u);
   for (std::size_t i = 0; i < views.size(); ++i) {
     EXPECT_DOUBLE_EQ(views[i].key.commanded_deg, 10.0 * i);
@@ -105,14 +106,14 @@ TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
   EXPECT_EQ(j["class"], "mug");
   EXPECT_EQ(j["camera"]["serial"], 4000123);
   EXPECT_NEAR(j["camera_from_turntable"][0][0].get<double>(), std::cos(20 * M_PI / 180), 2e-3);
-  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+  EXPECT_TRUE(dataset::Dataset::verify(ds.root()).ok());
 }
 
 TEST_F(SimulatedRig, AStoppedCaptureResumesWithoutDuplicates) {
   start();
   std::atomic<bool> stop{false};
   {
-    rig::Dataset ds((dir_ / "ds").string());
+    dataset::Dataset ds((dir_ / "ds").string());
     auto o = options();
     o.stop = &stop;
     const auto rep = rig::runCapture(*camera_, *table_, ds, o, [&](const rig::CaptureProgress& p) {
@@ -121,12 +122,12 @@ TEST_F(SimulatedRig, AStoppedCaptureResumesWithoutDuplicates) {
     EXPECT_TRUE(rep.stopped);
     EXPECT_EQ(rep.written, 2u);
   }
-  rig::Dataset again((dir_ / "ds").string());
+  dataset::Dataset again((dir_ / "ds").string());
   const auto rep = rig::runCapture(*camera_, *table_, again, options());
   EXPECT_EQ(rep.skipped, 2u);
   EXPECT_EQ(rep.written, 2u);
-  EXPECT_EQ(rig::Dataset::readManifest(again.root()).size(), 4u);
-  EXPECT_TRUE(rig::Dataset::verify(again.root()).ok());
+  EXPECT_EQ(dataset::Dataset::readManifest(again.root()).size(), 4u);
+  EXPECT_TRUE(dataset::Dataset::verify(again.root()).ok());
 }
 
 TEST_F(SimulatedRig, TurntableFaultsAreRetriedDuringCapture) {
@@ -134,11 +135,11 @@ TEST_F(SimulatedRig, TurntableFaultsAreRetriedDuringCapture) {
   f.no_reply_every = 7;
   f.drop_every = 11;
   start(f);
-  rig::Dataset ds((dir_ / "ds").string());
+  dataset::Dataset ds((dir_ / "ds").string());
   const auto rep = rig::runCapture(*camera_, *table_, ds, options());
   EXPECT_EQ(rep.written, 4u);
   EXPECT_GT(server_->faultsInjected(), 2);
-  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+  EXPECT_TRUE(dataset::Dataset::verify(ds.root()).ok());
 }
 
 TEST_F(SimulatedRig, CameraTimeoutsAndDisconnectsAreRecoveredDuringCapture) {
@@ -146,22 +147,22 @@ TEST_F(SimulatedRig, CameraTimeoutsAndDisconnectsAreRecoveredDuringCapture) {
   cf.timeout_every = 3;
   cf.disconnect_after = 5;
   start({}, cf);
-  rig::Dataset ds((dir_ / "ds").string());
+  dataset::Dataset ds((dir_ / "ds").string());
   auto o = options();
   o.discard_frames = 1;
   const auto rep = rig::runCapture(*camera_, *table_, ds, o);
   EXPECT_EQ(rep.written, 4u);
   EXPECT_GE(camera_->reconnects(), 2);
-  EXPECT_TRUE(rig::Dataset::verify(ds.root()).ok());
+  EXPECT_TRUE(dataset::Dataset::verify(ds.root()).ok());
 }
 
 TEST_F(SimulatedRig, ACameraThatKeepsFailingStopsTheCaptureWithNothingHalfWritten) {
   sim::MesaSrSimFaults cf;
   cf.corrupt_every = 1;
   start({}, cf);
-  rig::Dataset ds((dir_ / "ds").string());
+  dataset::Dataset ds((dir_ / "ds").string());
   EXPECT_THROW(rig::runCapture(*camera_, *table_, ds, options()), Error);
-  const auto v = rig::Dataset::verify(ds.root());
+  const auto v = dataset::Dataset::verify(ds.root());
   EXPECT_EQ(v.views, 0u);
   EXPECT_TRUE(v.ok());  // no orphan files either
 }
@@ -170,7 +171,7 @@ TEST_F(SimulatedRig, ATableThatNeverSettlesIsAClearError) {
   sim::TurntableFaults f;
   f.never_reach = true;
   start(f);
-  rig::Dataset ds((dir_ / "ds").string());
+  dataset::Dataset ds((dir_ / "ds").string());
   auto o = options();
   o.move_timeout_s = 0.5;
   try {
@@ -180,14 +181,14 @@ TEST_F(SimulatedRig, ATableThatNeverSettlesIsAClearError) {
     EXPECT_NE(std::string(e.what()).find("not stable within 0.100000° of 0.000000°"), std::string::npos) << e.what();
   }
   // Even 0° is missed by 0.5°: no view was written, and nothing was left behind.
-  EXPECT_TRUE(rig::Dataset::readManifest(ds.root()).empty());
-  EXPECT_TRUE(rig::Dataset::verify(ds.root()).orphans.empty());
+  EXPECT_TRUE(dataset::Dataset::readManifest(ds.root()).empty());
+  EXPECT_TRUE(dataset::Dataset::verify(ds.root()).orphans.empty());
 }
 
 TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
   const fs::path root = fs::temp_directory_path() / ("keyturn_ds_" + std::to_string(::getpid()));
   fs::remove_all(root);
-  rig::Dataset ds(root.string());
+  dataset::Dataset ds(root.string());
   drivers::TofFrame f;
   f.width = 4;
   f.height = 2;
@@ -198,14 +199,14 @@ TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
   f.cloud.height = 2;
   f.cloud.points.assign(8, Eigen::Vector3f(0.f, 0.f, 1.f));
   f.cloud.amplitude.assign(8, 500.f);
-  for (double a : {0.0, 5.0, 10.0}) ds.write({"box", "b1", "45", a}, rig::ViewMetadata(), f);
-  EXPECT_TRUE(rig::Dataset::verify(root.string()).ok());
-  EXPECT_THROW(ds.write({"box", "b1", "45", 5.0}, rig::ViewMetadata(), f), Error);  // never twice
+  for (double a : {0.0, 5.0, 10.0}) rig::writeFrameView(ds, {"box", "b1", "45", a}, dataset::ViewMetadata(), f);
+  EXPECT_TRUE(dataset::Dataset::verify(root.string()).ok());
+  EXPECT_THROW(rig::writeFrameView(ds, {"box", "b1", "45", 5.0}, dataset::ViewMetadata(), f), Error);  // never twice
 
   fs::remove(root / "box/b1/e45/a5.0_amplitude.png");
   std::ofstream(root / "box/b1/e45/a10.0.json", std::ios::app) << " ";
   std::ofstream(root / "box/b1/e45/stray.pcd") << "x";
-  const auto r = rig::Dataset::verify(root.string());
+  const auto r = dataset::Dataset::verify(root.string());
   EXPECT_EQ(r.views, 3u);
   EXPECT_EQ(r.missing, std::vector<std::string>{"box/b1/e45/a5.0_amplitude.png"});
   EXPECT_EQ(r.corrupt, std::vector<std::string>{"box/b1/e45/a10.0.json"});
@@ -216,10 +217,10 @@ TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
 TEST(Dataset, AnAppendCutOffByACrashIsDroppedOnReopen) {
   const fs::path root = fs::temp_directory_path() / ("keyturn_ds_cut_" + std::to_string(::getpid()));
   fs::remove_all(root);
-  { rig::Dataset ds(root.string()); }
+  { dataset::Dataset ds(root.string()); }
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,45,45.000,0.000,0.0";  // no newline
-  EXPECT_EQ(rig::Dataset::verify(root.string()).bad_rows.size(), 1u);
-  rig::Dataset reopened(root.string());
+  EXPECT_EQ(dataset::Dataset::verify(root.string()).bad_rows.size(), 1u);
+  dataset::Dataset reopened(root.string());
   EXPECT_TRUE(reopened.views().empty());
-  EXPECT_TRUE(rig::Dataset::verify(root.string()).ok());
+  EXPECT_TRUE(dataset::Dataset::verify(root.string()).ok());
 }

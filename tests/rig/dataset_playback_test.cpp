@@ -9,7 +9,8 @@
 #include <sstream>
 
 #include "support/error_of.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/rig/captured_views.h"
 #include "keyturn/rig/dataset_playback.h"
 
 namespace fs = std::filesystem;
@@ -50,12 +51,12 @@ class Playback : public ::testing::Test {
                                           ::testing::UnitTest::GetInstance()->current_test_info()->name()))
                 .string();
     fs::remove_all(root_);
-    rig::Dataset ds(root_);
+    dataset::Dataset ds(root_);
     for (int k = 0; k < 4; ++k) {
-      rig::ViewMetadata m;
+      dataset::ViewMetadata m;
       m.elevation_deg = 30;
       m.measured_deg = kAngles[k] + 0.03 * (k + 1);
-      ds.write({"mug", "m1", "30", kAngles[k]}, m, frame(k));
+      rig::writeFrameView(ds, {"mug", "m1", "30", kAngles[k]}, m, frame(k));
     }
     stampViews({0.0, 0.25, 0.5, 0.75});
   }
@@ -94,7 +95,7 @@ TEST_F(Playback, DeliversTheViewsInManifestOrderWithTheirRecordedPoses) {
   auto rec = recording();
   rig::PlaybackCamera camera(rec);
   rig::PlaybackPose pose(rec);
-  const auto views = rig::Dataset::readManifest(root_);
+  const auto views = dataset::Dataset::readManifest(root_);
   for (int k = 0; k < 4; ++k) {
     const drivers::TofFrame f = camera.acquire();
     EXPECT_EQ(f.sequence, static_cast<std::uint64_t>(k + 1));
@@ -184,7 +185,7 @@ TEST_F(Playback, NamesAMissingDatasetAViewFileGoneAndAnEmptyRecording) {
   fs::create_directories(root_ + "/empty");
   EXPECT_EQ(errorOf([&] { rig::Recording r(root_ + "/empty", {}); }),
             root_ + "/empty/manifest.csv: missing (not a keyturn dataset to play back)");
-  rig::Dataset(root_ + "/empty");  // a manifest without rows
+  dataset::Dataset(root_ + "/empty");  // a manifest without rows
   EXPECT_EQ(errorOf([&] { rig::Recording r(root_ + "/empty", {}); }),
             root_ + "/empty/manifest.csv: no views to play back");
 
@@ -207,7 +208,7 @@ TEST_F(Playback, AViewWithoutImagesGetsThemFromItsCloud) {
   std::stringstream s(first);
   for (std::string cell; std::getline(s, cell, ',');) c.push_back(cell);
   c[7] = "mug/m1/e30/a0.0.pcd";
-  c[8] = rig::sha256File(root_ + "/" + c[7]);
+  c[8] = dataset::sha256File(root_ + "/" + c[7]);
   std::string row;
   for (std::size_t j = 0; j < c.size(); ++j) row += (j ? "," : "") + c[j];
   std::ofstream(root_ + "/manifest.csv") << header << "\n" << row << "\n" << rest;

@@ -11,10 +11,11 @@
 #include <set>
 
 #include "keyturn/core/error.h"
+#include "keyturn/rig/captured_views.h"
 #include "keyturn/rig/axis_calibration_run.h"
 #include "keyturn/rig/capture_rig.h"
 #include "keyturn/rig/dataset_simulation.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 #include "support/error_of.h"
 
 namespace fs = std::filesystem;
@@ -48,10 +49,10 @@ TEST(DatasetSimulation, WritesEveryViewOnceAndResumes) {
   const rig::CaptureReport first = rig::simulateDataset(s, [&] { ++told; });
   EXPECT_EQ(first.written, 6u);
   EXPECT_EQ(told, 6u);
-  const rig::VerifyReport v = rig::Dataset::verify(out.string());
+  const dataset::VerifyReport v = dataset::Dataset::verify(out.string());
   EXPECT_TRUE(v.ok());
   EXPECT_EQ(v.views, 6u);
-  const auto rows = rig::Dataset::readManifest(out.string());
+  const auto rows = dataset::Dataset::readManifest(out.string());
   ASSERT_EQ(rows.size(), 6u);
   EXPECT_EQ(rows.back().key.elevation, "45");
   const rig::CaptureReport again = rig::simulateDataset(s);
@@ -72,14 +73,14 @@ TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
   s.jitter.scale = 0.2;
   s.jitter.integration_min = 15;
   s.jitter.integration_max = 60;
-  const rig::ViewKey first{"mug", "builtin", "30", 0};
+  const dataset::ViewKey first{"mug", "builtin", "30", 0};
   const rig::JitteredView d = rig::drawJitter(s.jitter, s.seed, first, 30);
   EXPECT_EQ(rig::drawJitter(s.jitter, s.seed, first, 30).roll_deg, d.roll_deg) << "a view's draw is its own";
   EXPECT_NE(rig::drawJitter(s.jitter, s.seed + 1, first, 30).roll_deg, d.roll_deg);
   std::size_t told = 0;
   EXPECT_EQ(rig::simulateDataset(s, [&] { ++told; }).written, 3u);
   EXPECT_EQ(told, 3u);
-  const auto rows = rig::Dataset::readManifest(out.string());
+  const auto rows = dataset::Dataset::readManifest(out.string());
   ASSERT_EQ(rows.size(), 3u);
   std::set<double> elevations;
   std::set<int> integrations;
@@ -94,7 +95,7 @@ TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
     integrations.insert(cam.settings.integration_time);
     // The pose is the jittered camera's: its roll tilts the table's normal out of the image's
     // vertical plane (x = 0) by sin(roll) of its length.
-    const auto pose = rig::readViewTransform((out / r.sidecar()).string());
+    const auto pose = dataset::readViewTransform((out / r.sidecar()).string());
     ASSERT_TRUE(pose.has_value());
     const Eigen::Vector3d up_in_camera = pose->topLeftCorner<3, 3>() * Eigen::Vector3d::UnitZ();
     const double roll = rig::drawJitter(s.jitter, s.seed, r.key, 30).roll_deg;
@@ -102,7 +103,7 @@ TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
   }
   EXPECT_EQ(elevations.size(), 3u);
   EXPECT_GE(integrations.size(), 2u);
-  EXPECT_TRUE(rig::Dataset::verify(out.string()).ok());
+  EXPECT_TRUE(dataset::Dataset::verify(out.string()).ok());
   EXPECT_EQ(rig::simulateDataset(s).skipped, 3u) << "a jittered dataset resumes like any other";
   s.jitter.elevation_deg = 30;
   EXPECT_EQ(errorOf([&] { rig::simulateDataset(s); }), "jitter: the elevation must be within 0–20°");
@@ -135,26 +136,26 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
 
 TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
   const fs::path empty = freshDir("empty");
-  { rig::Dataset d(empty.string()); }  // dataset.json and an empty manifest, as a failed capture leaves them
+  { dataset::Dataset d(empty.string()); }  // dataset.json and an empty manifest, as a failed capture leaves them
   ASSERT_TRUE(fs::exists(empty));
-  rig::removeDatasetWithoutViews(empty.string());
+  dataset::removeDatasetWithoutViews(empty.string());
   EXPECT_FALSE(fs::exists(empty));
   const fs::path full = freshDir("full");
   rig::DatasetSimulation s = mugAt(full);
   s.elevations = {30};
   rig::simulateDataset(s);
-  rig::removeDatasetWithoutViews(full.string());
-  EXPECT_EQ(rig::Dataset::readManifest(full.string()).size(), 3u);
+  dataset::removeDatasetWithoutViews(full.string());
+  EXPECT_EQ(dataset::Dataset::readManifest(full.string()).size(), 3u);
   fs::remove_all(full);
   // A user's folder with files of its own, or a manifest keyturn did not write, is never removed.
   const fs::path theirs = freshDir("theirs");
-  { rig::Dataset d(theirs.string()); }
+  { dataset::Dataset d(theirs.string()); }
   std::ofstream(theirs / "notes.txt") << "mine";
-  rig::removeDatasetWithoutViews(theirs.string());
+  dataset::removeDatasetWithoutViews(theirs.string());
   EXPECT_TRUE(fs::exists(theirs / "notes.txt"));
   fs::remove(theirs / "notes.txt");
   std::ofstream(theirs / "manifest.csv", std::ios::trunc) << "id;label\n1;mug\n";
-  rig::removeDatasetWithoutViews(theirs.string());
+  dataset::removeDatasetWithoutViews(theirs.string());
   EXPECT_TRUE(fs::exists(theirs / "manifest.csv"));
   fs::remove_all(theirs);
 }

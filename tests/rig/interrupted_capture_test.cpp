@@ -8,7 +8,8 @@
 
 #include <unistd.h>
 
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/rig/captured_views.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -43,12 +44,12 @@ TEST(InterruptedCapture, AResumeRemovesTheLeftoversAndRetakesTheViewCleanly) {
   fs::remove_all(root);
   const fs::path e30 = root / "mug/builtin/e30";
   {
-    rig::Dataset ds(root.string());
-    for (double a : {35.0, 40.0}) ds.write({"mug", "builtin", "30", a}, rig::ViewMetadata(), frame(true, 1.f));
+    dataset::Dataset ds(root.string());
+    for (double a : {35.0, 40.0}) rig::writeFrameView(ds, {"mug", "builtin", "30", a}, dataset::ViewMetadata(), frame(true, 1.f));
     // An earlier take of 45° that got as far as its files (one of them a confidence map), then a
     // second take killed in each writer: the files of the first are under their final names
     // without a row, the second's temporaries half written.
-    ds.write({"mug", "builtin", "30", 45.0}, rig::ViewMetadata(), frame(true, 2.f));
+    rig::writeFrameView(ds, {"mug", "builtin", "30", 45.0}, dataset::ViewMetadata(), frame(true, 2.f));
   }
   {
     // Cut 45°'s row, as a kill between its files and its row leaves the dataset.
@@ -63,37 +64,40 @@ TEST(InterruptedCapture, AResumeRemovesTheLeftoversAndRetakesTheViewCleanly) {
   plant(root / "manifest.csv.tmp.Zz00Yy", "class,instance");  // the repair of a cut row
   plant(e30 / "a40.0_distance.tmp.png", "\x89PNG");            // an older keyturn's fixed name
 
-  const rig::VerifyReport before = rig::Dataset::verify(root.string());
+  const dataset::VerifyReport before = dataset::Dataset::verify(root.string());
   EXPECT_EQ(before.views, 2u);
   EXPECT_EQ(before.temporaries.size(), 5u) << "named apart from the orphans";
   EXPECT_EQ(before.orphans.size(), 5u) << "45°'s files from the first take: its pcd, three PNGs and sidecar";
   EXPECT_NE(before.text(root.string()).find("5 leftover temporary files from an interrupted write"), std::string::npos)
       << before.text(root.string());
 
-  rig::Dataset resumed(root.string());
+  dataset::Dataset resumed(root.string());
   EXPECT_EQ(resumed.temporariesRemoved(), 5u);
   ASSERT_FALSE(resumed.has({"mug", "builtin", "30", 45.0}));
   // The retake's camera gives no confidence map: the first take's must not stay behind as an orphan.
-  const rig::ViewRecord r = resumed.write({"mug", "builtin", "30", 45.0}, rig::ViewMetadata(), frame(false, 3.f));
+  const dataset::ViewRecord r = rig::writeFrameView(resumed, {"mug", "builtin", "30", 45.0}, dataset::ViewMetadata(), frame(false, 3.f));
   EXPECT_EQ(r.files.size(), 4u);
   EXPECT_FALSE(fs::exists(e30 / "a45.0_confidence.png"));
   EXPECT_EQ(filesIn(e30), 5u + 5u + 4u) << "35° and 40° whole, 45° retaken, nothing else";
 
-  const rig::VerifyReport after = rig::Dataset::verify(root.string());
+  const dataset::VerifyReport after = dataset::Dataset::verify(root.string());
   EXPECT_TRUE(after.good()) << after.text(root.string());
   EXPECT_EQ(after.views, 3u);
   EXPECT_TRUE(after.temporaries.empty());
   EXPECT_TRUE(after.orphans.empty());
-  EXPECT_EQ(rig::Dataset::readManifest(root.string()).size(), 3u) << "one row a view";
+  EXPECT_EQ(dataset::Dataset::readManifest(root.string()).size(), 3u) << "one row a view";
   fs::remove_all(root);
 }
 
 TEST(InterruptedCapture, LeftoverTemporariesAloneLeaveTheViewsVerified) {
   const fs::path root = fs::temp_directory_path() / ("keyturn_interrupted_only_" + std::to_string(::getpid()));
   fs::remove_all(root);
-  { rig::Dataset(root.string()).write({"mug", "builtin", "30", 0.0}, rig::ViewMetadata(), frame(true, 1.f)); }
+  {
+    dataset::Dataset d(root.string());
+    rig::writeFrameView(d, {"mug", "builtin", "30", 0.0}, dataset::ViewMetadata(), frame(true, 1.f));
+  }
   plant(root / "mug/builtin/e30/a5.0.json.tmp.Ab12Cd", "{");
-  const rig::VerifyReport r = rig::Dataset::verify(root.string());
+  const dataset::VerifyReport r = dataset::Dataset::verify(root.string());
   EXPECT_TRUE(r.good()) << "every view whole: the leftover is not part of the dataset";
   EXPECT_TRUE(r.orphans.empty());
   EXPECT_EQ(r.temporaries, std::vector<std::string>{"mug/builtin/e30/a5.0.json.tmp.Ab12Cd"});

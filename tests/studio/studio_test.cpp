@@ -18,9 +18,9 @@
 #include <atomic>
 #include <utility>
 
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/dataset_simulation.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 #include "keyturn/studio/studio_window.h"
 #include "keyturn/studio/studio_rig_factory.h"
 
@@ -186,7 +186,7 @@ class StudioTest : public QObject {
     QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QCOMPARE(eta->text(), QString("done: 3 views written, 0 were already there"));
     QCOMPARE(w.findChild<QListWidget*>("captureThumbnails")->count(), 3);
-    const auto views = rig::Dataset::readManifest(dataset.toStdString());
+    const auto views = dataset::Dataset::readManifest(dataset.toStdString());
     QCOMPARE(views.size(), std::size_t(3));
     for (std::size_t i = 0; i < views.size(); ++i) {
       QCOMPARE(views[i].key.cls, std::string("mug"));
@@ -194,7 +194,7 @@ class StudioTest : public QObject {
       QCOMPARE(views[i].key.commanded_deg, 5.0 * static_cast<double>(i));
       QVERIFY(std::abs(views[i].measured_deg - 5.0 * static_cast<double>(i)) < 0.2);
     }
-    const auto report = rig::Dataset::verify(dataset.toStdString());
+    const auto report = dataset::Dataset::verify(dataset.toStdString());
     QVERIFY(report.ok());
     QVERIFY(QFile::exists(dataset + "/mug/ycb_025_mug/e30/a10.0_distance.png"));
   }
@@ -231,9 +231,9 @@ class StudioTest : public QObject {
     QTest::mouseClick(start, Qt::LeftButton);
     QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QVERIFY(QFile::exists(dataset + "/calibration.json"));
-    const auto views = rig::Dataset::readManifest(dataset.toStdString());
+    const auto views = dataset::Dataset::readManifest(dataset.toStdString());
     QCOMPARE(views.size(), std::size_t(2));
-    const auto t5 = rig::readViewTransform((dataset + "/mug/ycb_025_mug/e30/a5.0.json").toStdString());
+    const auto t5 = dataset::readViewTransform((dataset + "/mug/ycb_025_mug/e30/a5.0.json").toStdString());
     QVERIFY(t5.has_value());
     QVERIFY(std::abs((*t5)(2, 3) - 0.8) < 1e-9);  // the calibration's translation
     const double a = views[1].measured_deg * M_PI / 180.0;
@@ -284,14 +284,14 @@ class StudioTest : public QObject {
     QTest::mouseClick(w.findChild<QPushButton*>("capturePause"), Qt::LeftButton);
     auto* eta = w.findChild<QLabel*>("captureEta");
     QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("paused"), waitMs(20000));
-    const std::size_t before = rig::Dataset::readManifest(dataset.toStdString()).size();
+    const std::size_t before = dataset::Dataset::readManifest(dataset.toStdString()).size();
     QVERIFY(before >= 1 && before < 6);
     QCOMPARE(start->text(), QString("Resume"));
     QTest::mouseClick(start, Qt::LeftButton);
     QTRY_VERIFY_WITH_TIMEOUT(eta->text().startsWith("done"), waitMs(30000));
     QCOMPARE(eta->text(), QString("done: %1 views written, %2 were already there").arg(6 - before).arg(before));
-    QCOMPARE(rig::Dataset::readManifest(dataset.toStdString()).size(), std::size_t(6));
-    QVERIFY(rig::Dataset::verify(dataset.toStdString()).ok());
+    QCOMPARE(dataset::Dataset::readManifest(dataset.toStdString()).size(), std::size_t(6));
+    QVERIFY(dataset::Dataset::verify(dataset.toStdString()).ok());
   }
 
   void aPulledCableShowsTheBannerAndTheSessionRecovers() {

@@ -1,20 +1,19 @@
-// keyturn.Dataset: a dataset's views with their labels and poses, and its feature
-// cache (core/learning/feature_cache.h) read, or filled, as evaluate and train use it.
+// keyturn.Dataset: a dataset's views with their labels and poses (core/dataset), and its feature
+// cache read, or filled, as evaluate and train use it (learning::datasetFeatures).
 #include <pybind11/eigen.h>
 #include <pybind11/stl.h>
 
 #include <algorithm>
 #include <filesystem>
-#include <map>
 #include <optional>
 
 #include "bindings.h"
-#include "keyturn/learning/feature_cache.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/dataset/dataset_views.h"
+#include "keyturn/dataset/sidecars.h"
+#include "keyturn/learning/dataset_features.h"
 #include "keyturn/learning/feature_spec.h"
 #include "keyturn/learning/model_training.h"
-#include "keyturn/rig/dataset.h"
-#include "keyturn/rig/dataset_views.h"
-#include "keyturn/rig/sidecars.h"
 
 namespace keyturn::python {
 namespace {
@@ -22,8 +21,8 @@ namespace {
 namespace fs = std::filesystem;
 
 struct View {
-  learning::LabelledView labels;  // id, path, class, instance, elevation label
-  rig::ViewRecord record;         // angles, capture time, files
+  dataset::LabelledView labels;  // id, path, class, instance, elevation label
+  dataset::ViewRecord record;     // angles, capture time, files
   std::string root;
 };
 
@@ -33,26 +32,12 @@ struct Features {
   std::optional<std::string> cache;  // the cache file read or written; none when described in memory
 };
 
-// The cache's rows for exactly these views, in their order; none when the cache lacks one.
-std::optional<std::vector<learning::FeatureRow>> cachedRows(const learning::FeatureTable& t,
-                                                            const std::vector<learning::LabelledView>& views) {
-  std::map<std::string, const learning::FeatureRow*> by_id;
-  for (const auto& r : t.rows) by_id[r.id] = &r;
-  std::vector<learning::FeatureRow> rows;
-  for (const auto& v : views) {
-    const auto it = by_id.find(v.id);
-    if (it == by_id.end()) return std::nullopt;
-    rows.push_back(*it->second);
-  }
-  return rows;
-}
-
 class PyDataset {
  public:
   explicit PyDataset(std::string root) : root_(std::move(root)) {
     requireFile(root_);
     py::gil_scoped_release release;
-    views_ = rig::datasetViews(root_, &skipped_, &records_);
+    views_ = dataset::datasetViews(root_, &skipped_, &records_);
   }
 
   const std::string& root() const { return root_; }
@@ -75,39 +60,17 @@ class PyDataset {
       throw py::value_error(std::string("Dataset.features: ") + e.what());
     }
     py::gil_scoped_release release;
-    const std::string path = learning::featureCachePath(root_, options);
-    if (cache) {
-      f.table = learning::loadOrDescribeCache({root_, views_, options, jobs, nullptr});
-      f.cache = path;
-      return f;
-    }
-    std::error_code ec;
-    if (fs::exists(path, ec)) {
-      try {
-        learning::FeatureTable t = learning::loadFeatureTable(path);
-        if (t.blocks == full.blocks && t.spec == full.spec)
-          if (auto rows = cachedRows(t, views_)) {
-            t.rows = std::move(*rows);
-            f.table = std::move(t);
-            f.cache = path;
-            return f;
-          }
-      } catch (const Error&) {
-        // An unreadable cache is described again, as evaluate does; it is left as it is.
-      }
-    }
-    std::vector<std::string> unique;
-    for (const auto& b : f.blocks)
-      if (std::find(unique.begin(), unique.end(), b) == unique.end()) unique.push_back(b);
-    f.table = learning::featureLayout(unique, options);
-    f.table.rows = learning::describeViews(views_, options, f.table, jobs, nullptr);
+    auto got = learning::datasetFeatures({root_, views_, options, jobs, nullptr},
+                                         cache ? learning::CacheWrite::Fill : learning::CacheWrite::Never, f.blocks);
+    f.table = std::move(got.table);
+    if (!got.cache.empty()) f.cache = got.cache;
     return f;
   }
 
  private:
   std::string root_;
-  std::vector<learning::LabelledView> views_;
-  std::vector<rig::ViewRecord> records_;
+  std::vector<dataset::LabelledView> views_;
+  std::vector<dataset::ViewRecord> records_;
   std::vector<std::string> skipped_;
 };
 
@@ -235,7 +198,7 @@ void bindDataset(py::module_& m) {
           [](const View& v) -> py::object {
             const std::string sidecar = v.record.sidecar();
             if (sidecar.empty()) return py::none();
-            const auto t = rig::readViewTransform((fs::path(v.root) / sidecar).string());
+            const auto t = dataset::readViewTransform((fs::path(v.root) / sidecar).string());
             if (!t) return py::none();
             return py::cast(*t);
           },

@@ -7,7 +7,6 @@
 #include <filesystem>
 #include <functional>
 #include <map>
-#include <regex>
 #include <sstream>
 #include <thread>
 
@@ -18,6 +17,7 @@
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
+#include "keyturn/dataset/feature_cache_files.h"
 #include "keyturn/learning/feature_spec.h"
 
 namespace keyturn::learning {
@@ -148,20 +148,10 @@ void save(const std::string& path, const FeatureTable& t) {
   saveFeatureTable(path, t);
 }
 
-// The merged rows of a complete set of shard files of the cache at `path`, if there is one.
-bool mergeShards(const std::string& path, FeatureTable& out, DescribeProgress* progress) {
-  const std::string stem = fs::path(path).stem().string();
-  std::map<int, std::vector<std::string>> sets;
-  const std::regex shard_re(stem + R"(\.shard-(\d+)-of-(\d+)\.csv)");
-  std::error_code ec;
-  for (const auto& e : fs::directory_iterator(fs::path(path).parent_path(), ec)) {
-    std::smatch m;
-    const std::string name = e.path().filename().string();
-    if (std::regex_match(name, m, shard_re)) sets[std::stoi(m[2])].push_back(e.path().string());
-  }
-  for (auto& [n, files] : sets) {
+// The merged rows of a complete set of shard files of the cache with this hash, if there is one.
+bool mergeShards(const std::string& root, const std::string& hash, FeatureTable& out, DescribeProgress* progress) {
+  for (auto& [n, files] : dataset::featureCacheShards(root, hash)) {
     if (static_cast<int>(files.size()) != n) continue;
-    std::sort(files.begin(), files.end());
     std::vector<FeatureTable> shards;
     for (const auto& f : files) shards.push_back(loadFeatureTable(f));
     out = mergeFeatureTables(shards, files);
@@ -169,6 +159,15 @@ bool mergeShards(const std::string& path, FeatureTable& out, DescribeProgress* p
     return true;
   }
   return false;
+}
+
+// The cache's name for these options: a hash of their feature specification.
+std::string specHash(const DescriptorOptions& options) {
+  std::string key;
+  for (const auto& [k, v] : featureSpec(options)) key += k + "=" + v + "\n";
+  char hash[17];
+  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
+  return hash;
 }
 
 }  // namespace
@@ -221,14 +220,8 @@ FeatureTable featureLayout(const std::vector<std::string>& blocks, const Descrip
   return t;
 }
 
-std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard, int shards) {
-  std::string key;
-  for (const auto& [k, v] : featureSpec(options)) key += k + "=" + v + "\n";
-  char hash[17];
-  std::snprintf(hash, sizeof hash, "%016llx", static_cast<unsigned long long>(fnv1a(key)));
-  std::string name = std::string("features-") + hash;
-  if (shards > 1) name += ".shard-" + std::to_string(shard + 1) + "-of-" + std::to_string(shards);
-  return (fs::path(dataset) / ".keyturn" / (name + ".csv")).string();
+std::string featureCachePath(const std::string& root, const DescriptorOptions& options, int shard, int shards) {
+  return dataset::featureCacheFile(root, specHash(options), shard, shards);
 }
 
 std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, const DescriptorOptions& options,
@@ -275,7 +268,7 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
       t = layout;
     }
   } else {
-    mergeShards(path, t, c.progress);
+    mergeShards(c.dataset, specHash(c.options), t, c.progress);
   }
   if (t.blocks != layout.blocks || t.spec != layout.spec) t = layout;
   // Keep cached rows of views still listed; describe the rest.

@@ -3,7 +3,7 @@
 #include <QDateTime>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/dataset_playback.h"
 
 namespace keyturn::studio {
@@ -121,7 +121,7 @@ void CameraWorker::capture(const CaptureRequest& request, std::shared_ptr<driver
   rig::CaptureOptions o = request.options;
   o.stop = &capture_stop_;
   try {
-    rig::Dataset dataset(request.dataset);
+    dataset::Dataset dataset(request.dataset);
     const auto report = rig::runCapture(*camera_, *pose, dataset, o, [&](const rig::CaptureProgress& p) {
       FramePtr frame;
       QString view;

@@ -6,9 +6,9 @@
 
 #include "capture_panel.h"
 #include "device_controller.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/frame_files.h"
-#include "keyturn/rig/sidecars.h"
+#include "keyturn/dataset/sidecars.h"
 
 namespace keyturn::studio {
 
@@ -31,7 +31,7 @@ void CaptureController::labelAsSimObject(const QString& instance) {
 
 void CaptureController::labelAsPlayback(const std::string& dataset) {
   try {
-    const auto views = rig::Dataset::readManifest(dataset);
+    const auto views = dataset::Dataset::readManifest(dataset);
     if (!views.empty())
       panel_->setObject(QString::fromStdString(views.front().key.cls), QString::fromStdString(views.front().key.instance));
   } catch (const std::exception&) {
@@ -53,7 +53,7 @@ void CaptureController::start() {
   // Views of this sequence already in the dataset are kept and skipped: say so first.
   std::size_t existing = 0;
   try {
-    for (const auto& v : rig::Dataset::readManifest(root))
+    for (const auto& v : dataset::Dataset::readManifest(root))
       existing += v.key.cls == o.cls && v.key.instance == o.instance && v.key.elevation == o.elevation_label;
   } catch (const std::exception&) {
   }
@@ -78,7 +78,7 @@ void CaptureController::start() {
   o.camera_from_turntable_zero = factory_.cameraFromTurntable();
   if (!panel_->calibration().empty()) {
     try {
-      o.camera_from_turntable_zero = rig::adoptAxisCalibration(panel_->calibration(), root);
+      o.camera_from_turntable_zero = dataset::adoptAxisCalibration(panel_->calibration(), root);
     } catch (const std::exception& e) {
       panel_->finished(0, 0, false, QString::fromUtf8(e.what()));
       return;

@@ -6,7 +6,7 @@
 #include <fstream>
 
 #include "keyturn/core/error.h"
-#include "keyturn/rig/object_list.h"
+#include "keyturn/dataset/object_list.h"
 
 namespace fs = std::filesystem;
 
@@ -20,7 +20,7 @@ constexpr double kSimFrameRate = 50.0;
 
 StudioRigFactory::StudioRigFactory(std::string objects_csv) {
   try {
-    for (const auto& o : rig::readObjectList(objects_csv)) objects_.push_back({o.cls, o.instance, o.mesh});
+    for (const auto& o : dataset::readObjectList(objects_csv)) objects_.push_back({o.cls, o.instance, o.mesh});
   } catch (const Error&) {
     // Without the object list the simulated camera still has its built-in mug.
   }

@@ -12,7 +12,7 @@
 
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
 namespace keyturn::rig {
 
@@ -37,7 +37,7 @@ struct CaptureProgress {
   double angle_deg = 0;
   // The view just written (valid during the callback only); null for a skipped view.
   const drivers::TofFrame* frame = nullptr;
-  const ViewRecord* record = nullptr;
+  const dataset::ViewRecord* record = nullptr;
 };
 
 struct CaptureReport {
@@ -47,7 +47,7 @@ struct CaptureReport {
 
 std::vector<double> sequenceAngles(const CaptureOptions& o);
 
-CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, Dataset& dataset,
+CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, dataset::Dataset& dataset,
                          const CaptureOptions& options,
                          const std::function<void(const CaptureProgress&)>& progress = {});
 

@@ -21,7 +21,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
-#include "keyturn/rig/dataset.h"
+#include "keyturn/dataset/dataset.h"
 
 namespace keyturn::rig {
 
@@ -42,7 +42,7 @@ class Recording {
   Recording(std::string root, PlaybackOptions options);
 
   const std::string& root() const { return root_; }
-  const std::vector<ViewRecord>& views() const { return views_; }
+  const std::vector<dataset::ViewRecord>& views() const { return views_; }
   double frameRate() const { return rate_fps_; }
   bool looping() const { return options_.loop; }
   // Camera ← turntable at 0°, from the first view's sidecar (none when the rig was not calibrated).
@@ -68,7 +68,7 @@ class Recording {
 
   std::string root_;
   PlaybackOptions options_;
-  std::vector<ViewRecord> views_;
+  std::vector<dataset::ViewRecord> views_;
   double rate_fps_ = 0;
   std::optional<Eigen::Matrix4d> camera_from_turntable_;
 

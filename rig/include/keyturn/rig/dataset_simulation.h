@@ -10,7 +10,7 @@
 #include <vector>
 
 #include "keyturn/rig/capture.h"
-#include "keyturn/rig/object_list.h"
+#include "keyturn/dataset/object_list.h"
 
 namespace keyturn::rig {
 
@@ -33,11 +33,11 @@ struct JitteredView {
   double distance_scale = 1, elevation_deg = 0, roll_deg = 0, scale = 1;
   int integration = 0;  // 0: left as the camera has it
 };
-JitteredView drawJitter(const ViewJitter& jitter, std::uint64_t seed, const ViewKey& view, double elevation_deg);
+JitteredView drawJitter(const ViewJitter& jitter, std::uint64_t seed, const dataset::ViewKey& view, double elevation_deg);
 
 struct DatasetSimulation {
   std::string out;                  // the dataset folder (its rig's files in OUT/.sim)
-  std::vector<ObjectRow> objects;
+  std::vector<dataset::ObjectRow> objects;
   std::vector<double> elevations;   // degrees; labelled by their whole degrees
   double step_deg = 5;
   std::uint64_t seed = 1;           // sensor noise (and, with jitter, each view's draw)

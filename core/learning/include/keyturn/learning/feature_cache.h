@@ -12,17 +12,13 @@
 
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/descriptor.h"
+#include "keyturn/dataset/dataset_views.h"
 #include "keyturn/learning/feature_table.h"
 
 namespace keyturn::learning {
 
-// One view to describe: its file and its labels.
-struct LabelledView {
-  std::string id;    // the row id: the view's stem relative to the dataset root (or the file for loose views)
-  std::string path;  // the PCD/PLY file, or a depth image
-  std::string cls, instance, elevation;
-  DepthImageOptions depth;  // how a depth-image view is read (loadCloud)
-};
+// One view to describe: its file and its labels (a dataset's, keyturn/dataset/dataset_views.h).
+using dataset::LabelledView;
 
 // How a long describe run reports. view_done is called from the worker threads.
 class DescribeProgress {
@@ -48,7 +44,8 @@ BlockName parseBlockName(const std::string& name);
 const std::vector<std::string>& cacheBlocks();
 // An empty table of these blocks (sizes from the options' bins) carrying the options' specification.
 FeatureTable featureLayout(const std::vector<std::string>& blocks, const DescriptorOptions& options);
-// DATASET/.keyturn/features-<hash>[.shard-I-of-N].csv; shard counts from 0.
+// DATASET/.keyturn/features-<hash>[.shard-I-of-N].csv (dataset::featureCacheFile), the hash being of
+// the options' feature specification; shard counts from 0.
 std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard = 0,
                              int shards = 1);
 

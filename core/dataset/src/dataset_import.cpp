@@ -1,0 +1,104 @@
+#include "keyturn/dataset/dataset_import.h"
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <sstream>
+#include <tuple>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/error.h"
+
+namespace fs = std::filesystem;
+
+namespace keyturn::dataset {
+namespace {
+
+bool isPng(const std::string& file) {
+  std::string ext = fs::path(file).extension().string();
+  std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
+  return ext == ".png";
+}
+
+// A new folder, an empty one or a keyturn dataset (an earlier import to resume): anything else would
+// leave files verify calls orphans.
+void checkOut(const std::string& out) {
+  std::error_code ec;
+  if (!fs::exists(out, ec)) return;
+  if (!fs::is_directory(out, ec)) throw Error(out + ": exists and is not a folder");
+  if (fs::is_regular_file(fs::path(out) / "manifest.csv", ec)) return;
+  if (!fs::is_empty(out, ec)) throw Error(out + ": exists and is neither empty nor a keyturn dataset (no manifest.csv)");
+}
+
+}  // namespace
+
+std::string ImportReport::text(const ImportOptions& o) const {
+  std::ostringstream s;
+  for (const auto& p : problems) s << p << "\n";
+  s << o.source << " → " << o.out << ": " << imported << " views imported";
+  if (already) s << ", " << already << " already there";
+  s << ", " << problems.size() << (problems.size() == 1 ? " problem" : " problems") << "\n";
+  return s.str();
+}
+
+ImportReport importDataset(const ImportOptions& o) {
+  ImportPlan plan;
+  DepthImageOptions depth = o.depth;
+  std::string importer = "keyturn import " + o.format;
+  if (!o.categories.empty() && o.format != "bigbird")
+    throw Error("--categories is for bigbird (" + o.format + " names each view's class by its folder)");
+  if (o.format == "washington") {
+    plan = planWashingtonImport(o.source);
+    if (!depth.intrinsics) depth.intrinsics = washingtonIntrinsics();
+  } else if (o.format == "folders") {
+    plan = planFoldersImport(o.source);
+  } else if (o.format == "bigbird") {
+    plan = planBigbirdImport(o.source, o.categories);
+  } else {
+    throw Error("import format '" + o.format + "': expected washington, folders or bigbird");
+  }
+  if (plan.views.empty()) {
+    std::string why = o.source + ": no views in the " + o.format + " layout";
+    if (!plan.problems.empty()) why += " (" + std::to_string(plan.problems.size()) + " files not usable, first: " + plan.problems.front() + ")";
+    throw Error(why);
+  }
+  if (!depth.intrinsics)
+    for (const auto& v : plan.views)
+      if (isPng(v.file))
+        throw Error(v.file + ": depth images need the camera's intrinsics (--camera FILE, or --fx --fy --cx --cy)");
+  std::sort(plan.views.begin(), plan.views.end(), [](const ImportedView& a, const ImportedView& b) {
+    return std::tie(a.key.cls, a.key.instance, a.key.elevation, a.key.commanded_deg) <
+           std::tie(b.key.cls, b.key.instance, b.key.elevation, b.key.commanded_deg);
+  });
+
+  checkOut(o.out);
+  Dataset ds(o.out);
+  ImportReport rep;
+  rep.problems = plan.problems;
+  const std::size_t total = plan.views.size();
+  for (std::size_t i = 0; i < total; ++i) {
+    const ImportedView& v = plan.views[i];
+    if (ds.has(v.key)) {
+      ++rep.already;
+    } else {
+      try {
+        const Cloud cloud = v.read ? v.read() : loadCloud(v.file, depth);
+        if (cloud.validCount() == 0) throw Error(v.file + ": no valid point (every pixel without a return or masked out)");
+        ViewMetadata meta;
+        meta.elevation_deg = v.elevation_deg;
+        meta.measured_deg = v.key.commanded_deg;
+        meta.pose_source = v.angle_note;
+        meta.camera_from_turntable = v.camera_from_turntable;
+        ds.writeImported(v.key, meta, cloud, fs::absolute(v.file).lexically_normal().string(), importer);
+        ++rep.imported;
+      } catch (const Error& e) {
+        const std::string msg = e.what();
+        rep.problems.push_back(msg.rfind(v.file, 0) == 0 ? msg : v.file + ": " + msg);
+      }
+    }
+    if (o.progress) o.progress(i + 1, total);
+  }
+  return rep;
+}
+
+}  // namespace keyturn::dataset
