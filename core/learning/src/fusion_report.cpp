@@ -53,7 +53,7 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
     for (int n = 1; n <= o.max_views; ++n) md += " " + std::to_string(n) + " |", rule += "---|";
     md += " belief in truth, " + std::to_string(o.max_views) + " views |\n" + rule + "---|\n";
     CurvePlot plot;
-    plot.file = "fusion/accuracy_" + fileSafeName(r.protocol) + ".png";
+    plot.file = "accuracy_" + fileSafeName(r.protocol) + ".png";
     plot.title = "Fused accuracy against views, " + r.protocol + " (" + features + ", " + classifier + ")";
     plot.x_label = "views";
     plot.y_label = "accuracy (%)";
