@@ -2,9 +2,9 @@
 // against the number of views, per schedule and method, true and shuffled poses), CSV, and one
 // plot per protocol (accuracy against views beside single-view accuracy).
 #include <cmath>
+#include <cstdio>
 #include <nlohmann/json.hpp>
 
-#include <cstdio>
 #include "keyturn/learning/fusion_evaluation.h"
 
 namespace keyturn::learning {
@@ -54,14 +54,16 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
     md += " belief in truth, " + std::to_string(o.max_views) + " views |\n" + rule + "---|\n";
     CurvePlot plot;
     plot.file = "accuracy_" + fileSafeName(r.protocol) + ".png";
-    plot.title = "Fused accuracy against views, " + r.protocol + " (" + features + ", " + classifier + ")";
+    const std::string first = r.curves.empty() ? std::string() : r.curves.front().schedule;
+    plot.title = "Fused accuracy against views " + first + ", " + r.protocol + " (" + features + ", " + classifier + ")";
     plot.x_label = "views";
+    for (int n = 1; n <= o.max_views; ++n) plot.x_categories.push_back(std::to_string(n));
     plot.y_label = "accuracy (%)";
     for (const auto& c : r.curves) {
       nlohmann::json cj = {{"schedule", c.schedule}, {"method", c.method}, {"poses", c.shuffled ? "shuffled" : "true"},
                            {"views", nlohmann::json::array()}};
       md += "| " + c.schedule + " | " + c.method + " | " + (c.shuffled ? "shuffled" : "true") + " |";
-      CurveSeries series{c.schedule + ", " + c.method + (c.shuffled ? ", shuffled poses" : ""), {}, {}};
+      CurveSeries series{c.method + (c.shuffled ? ", shuffled poses" : ""), {}, {}};
       for (std::size_t n = 1; n <= c.sequences.size(); ++n) {
         cj["views"].push_back({{"n", n}, {"sequences", c.sequences[n - 1]}, {"accuracy", number(c.accuracy(n))},
                                {"mean_true_belief", number(c.meanTrueBelief(n))}});
@@ -69,15 +71,17 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
         rep.csv += r.protocol + "," + c.schedule + "," + c.method + "," + (c.shuffled ? "shuffled" : "true") + "," +
                    std::to_string(n) + "," + std::to_string(c.sequences[n - 1]) + "," +
                    formatString("%.6f", c.accuracy(n)) + "," + formatString("%.6f", c.meanTrueBelief(n)) + "\n";
-        if (std::isfinite(c.accuracy(n))) series.x.push_back(static_cast<double>(n)), series.y.push_back(100 * c.accuracy(n));
+        if (std::isfinite(c.accuracy(n))) series.x.push_back(static_cast<double>(n - 1)), series.y.push_back(100 * c.accuracy(n));
       }
-      md += " " + formatString("%.3f", c.meanTrueBelief(c.sequences.size())) + " |\n";
-      // Every true-pose curve, and the shuffled control of the first schedule's pose-using methods.
-      if (!c.shuffled || (c.schedule == r.curves.front().schedule && c.method != "independent"))
+      const double belief = c.meanTrueBelief(c.sequences.size());
+      md += " " + (std::isfinite(belief) ? formatString("%.3f", belief) : std::string("–")) + " |\n";
+      // The first schedule's methods, and the shuffled control of those that use the poses (the
+      // other schedules are in the table: a plot of them all has too many lines to read).
+      if (c.schedule == first && (!c.shuffled || c.method != "independent"))
         plot.series.push_back(std::move(series));
       pj["curves"].push_back(std::move(cj));
     }
-    CurveSeries single{"single view", {1.0, static_cast<double>(o.max_views)}, {}};
+    CurveSeries single{"single view", {0.0, static_cast<double>(o.max_views - 1)}, {}};
     single.y = {100 * singleView(r), 100 * singleView(r)};
     plot.series.push_back(std::move(single));
     rep.plots.curves.push_back(std::move(plot));
