@@ -34,10 +34,6 @@ struct FusionEvaluateArgs {
 // keyturn evaluate --protocol fusion: leave-instance and leave-elevation where the dataset has them.
 int runFusionEvaluate(const FusionEvaluateArgs& a);
 
-}  // namespace keyturn::app
-
-namespace keyturn::app {
-
 // keyturn classify --fuse: one object's views fused in order (app/classify_fusion.cpp).
 struct ClassifyFusionArgs {
   std::string model;

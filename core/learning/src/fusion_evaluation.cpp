@@ -137,7 +137,7 @@ FusionProtocolResult evaluateFusion(const FeatureTable& t, const std::vector<dou
   std::mutex lock;
   parallelFor(proto.folds.size(), jobs, [&](std::size_t f) {
     ClassifierParams p = params;
-    if (jobs > 0) p.xgboost.threads = 1;
+    p.xgboost.threads = 1;  // folds train in parallel; one thread each keeps a fold's model the same on any machine
     const FoldViews fv = prepareFold(t, az, blocks, proto.labels, proto.folds[f], p, o.fusion.bin_deg);
     std::map<std::string, std::vector<std::pair<double, int>>> groups;
     for (std::size_t i = 0; i < fv.views.size(); ++i)
