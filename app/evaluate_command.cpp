@@ -2,12 +2,14 @@
 // over folds) per feature set, classifier and protocol, the peers on the same
 // views and splits, with confusion matrices and per-class PDF plots
 // (learning/evaluation_report.h runs and writes it).
+#include <algorithm>
 #include <filesystem>
 #include <iostream>
 
 #include "commands.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
+#include "fusion_options.h"
 #include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
@@ -37,9 +39,27 @@ struct EvaluateArgs {
   DescriptorFlags flags;
   learning::ClassifierParams params;
   learning::OpenSetOptions open_set{learning::openSetMethods()};
+  FusionFlags fusion;
 };
 
+// --protocol fusion is a run of its own (app/fusion_evaluate.cpp): sequences of views, not folds of rows.
+int runFusion(const EvaluateArgs& a) {
+  if (!a.shard.empty() || a.merge || !a.train_extra.empty() || !a.label.empty())
+    throw Error("--protocol fusion takes none of --shard, --merge, --train-extra, --label");
+  FusionEvaluateArgs f{a.dataset, a.features, a.classifiers, a.out, a.params, a.flags.options, a.jobs, a.json, a.quiet, a.fusion};
+  if (!a.bins.empty()) {
+    if (splitList(a.bins).size() != 1) throw Error("--protocol fusion measures one bin count, not '" + a.bins + "'");
+    descriptorParameter("--bins").set(f.options, a.bins);
+  }
+  return runFusionEvaluate(f);
+}
+
 int runEvaluate(const EvaluateArgs& a) {
+  const auto protocols = splitList(a.protocols);
+  if (std::find(protocols.begin(), protocols.end(), "fusion") != protocols.end()) {
+    if (protocols.size() != 1) throw Error("--protocol fusion is a run of its own: give it alone, not '" + a.protocols + "'");
+    return runFusion(a);
+  }
   if (!a.shard.empty() && (a.merge || a.json))
     throw Error(std::string("--shard writes a part of the report; ") + (a.merge ? "--merge" : "--json") +
                 " belongs to the run that merges the parts");
@@ -120,7 +140,8 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
   cmd->add_option("--protocol", a->protocols,
                   "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
-                  "default 5), fixed:FILE")
+                  "default 5), fixed:FILE; or fusion alone (accuracy against the number of views of one object, "
+                  "one feature set and classifier, under leave-instance and leave-elevation)")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
   cmd->add_option("--inner-folds", a->inner_folds,
@@ -149,6 +170,7 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--bins", a->bins, "Histogram bins; a list sweeps them, e.g. 16,32,64")->default_str("32");
   addClassifierOptions(*cmd, a->params);
   addOpenSetOptions(*cmd, a->open_set);
+  a->fusion.addEvaluationOptions(*cmd);
   return {cmd, [a] { return runEvaluate(*a); }};
 }
 

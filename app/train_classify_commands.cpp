@@ -1,6 +1,7 @@
 // keyturn train / keyturn classify: a model trained on a whole dataset, saved
 // with its feature specification, and applied to new views (or to a feature
 // cache). Features computed another way than the model's are refused.
+#include <algorithm>
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -10,11 +11,14 @@
 #include "dataset_features.h"
 #include "depth_image_options.h"
 #include "descriptor_options.h"
+#include "fusion_options.h"
+#include "keyturn/learning/model_fusion.h"
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
 #include "learning_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
+#include "keyturn/dataset/view_poses.h"
 
 namespace keyturn::app {
 namespace {
@@ -37,7 +41,16 @@ int runTrain(const TrainArgs& a) {
   learning::ClassifierParams params = a.params;
   params.kind = a.classifier;
   double s = 0;
-  const learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
+  learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
+  // Pose fusion's references (classify --fuse), when every view has its turntable angle.
+  const auto poses = dataset::datasetAzimuths(a.dataset);
+  std::vector<double> azimuths;
+  for (const auto& row : t.rows) {
+    const auto it = poses.find(row.id);
+    azimuths.push_back(it == poses.end() ? std::nan("") : it->second);
+  }
+  const bool posed = std::all_of(azimuths.begin(), azimuths.end(), [](double v) { return std::isfinite(v); });
+  if (posed) learning::addPoseReferences(m, t, azimuths, kind, learning::FusionOptions().bin_deg);
   learning::saveModel(a.out, m);
   if (!a.quiet) {
     std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views, "
@@ -50,6 +63,7 @@ int runTrain(const TrainArgs& a) {
     else if (!open_set.methods.empty())
       std::cerr << "; closed-set (open-set calibration leaves categories out: it needs at least "
                 << learning::kOpenSetMinCategories << " categories)";
+    std::cerr << (posed ? "; pose references for fusion" : "; no pose references (a view without its turntable angle)");
     std::cerr << " → " << a.out << "\n";
   }
   return 0;
@@ -80,12 +94,20 @@ nlohmann::json predictionJson(const learning::ModelInfo& m, const learning::Pred
 struct ClassifyArgs {
   std::string model;
   std::vector<std::string> inputs;
-  bool json = false, quiet = false;
+  bool json = false, quiet = false, fuse = false;
   int jobs = 0;
   DepthImageFlags depth;
+  ClassifyFusionArgs fusion;  // --fuse
 };
 
 int runClassify(const ClassifyArgs& a) {
+  if (!a.fuse && (!a.fusion.object.empty() || !a.fusion.azimuths.empty()))
+    throw Error("--object and --azimuths pick the views of a fused sequence: give --fuse");
+  if (a.fuse) {
+    ClassifyFusionArgs f = a.fusion;
+    f.model = a.model, f.inputs = a.inputs, f.json = a.json, f.quiet = a.quiet, f.jobs = a.jobs;
+    return runClassifyFused(f, a.depth.toOptions());
+  }
   const learning::Model m = learning::loadModel(a.model);
   learning::FeatureTable t;
   std::vector<std::string> errors;
@@ -151,6 +173,18 @@ Command addClassifyCommand(CLI::App& app) {
   cmd->add_flag("--json", a->json,
                 "Answer (a class, unknown or no object), probabilities and open-set score per view as JSON");
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
+  cmd->add_flag("--fuse", a->fuse,
+                "The views are one object's as the turntable turned it: print the fused belief after each view "
+                "(poses from the views' sidecars, or the dataset's manifest with --object)");
+  cmd->add_option("--fusion-method", a->fusion.flags.fusion.method,
+                  "pose (the classifier's evidence and the views' match to the class's training views at the same "
+                  "relative angles) or independent (the classifier's probabilities multiplied; no poses needed)")
+      ->check(CLI::IsMember(learning::fusionMethods()))
+      ->capture_default_str();
+  cmd->add_option("--object", a->fusion.object,
+                  "With --fuse and a dataset folder: the views of CLASS/INSTANCE[/ELEVATION], in capture order");
+  cmd->add_option("--azimuths", a->fusion.azimuths, "With --object: only the views at these angles, e.g. 0,45,90");
+  a->fusion.flags.addStopBelief(*cmd);
   a->depth.add(*cmd);
   return {cmd, [a] { return runClassify(*a); }};
 }

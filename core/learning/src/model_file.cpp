@@ -9,6 +9,7 @@
 
 #include "classifier_params_json.h"
 #include "open_set_json.h"
+#include "pose_references_json.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
@@ -36,6 +37,7 @@ json toJson(const ModelInfo& m) {
             {"weights", weightsName(m.params.kind)},
             {"class_means", m.class_means}});
   if (m.open_set.enabled()) j["open_set"] = openSetJson(m.open_set);
+  if (!m.pose_references.empty()) j["pose_references"] = poseReferencesJson(m.pose_references);
   return j;
 }
 
@@ -95,6 +97,8 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
                 std::to_string(mp.layers) + ")");
   if (j.contains("open_set") && !j.at("open_set").is_null())
     m.open_set = parseOpenSetJson(j.at("open_set"), m.inputs, static_cast<int>(m.classes.size()), source);
+  if (j.contains("pose_references") && !j.at("pose_references").is_null())
+    m.pose_references = parsePoseReferencesJson(j.at("pose_references"), m.inputs, static_cast<int>(m.classes.size()), source);
   return m;
 }
 

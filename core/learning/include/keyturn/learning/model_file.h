@@ -11,6 +11,7 @@
 
 #include "keyturn/learning/classifier.h"
 #include "keyturn/learning/open_set.h"
+#include "keyturn/learning/view_fusion.h"
 
 namespace keyturn::learning {
 
@@ -26,6 +27,9 @@ struct ModelInfo {
   // Optional: the open-set score and threshold (open_set.h). A model without one (every model
   // written before issue 34) is closed-set: each view gets a class.
   OpenSet open_set;
+  // Optional: the training views by azimuth for pose fusion (view_fusion.h; "pose_references" in
+  // the sidecar). A model without them fuses views independently.
+  PoseReferences pose_references;
 };
 
 // The per-class mean of each column, ignoring NaN (a block a view lacks); 0 where a

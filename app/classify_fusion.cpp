@@ -1,0 +1,151 @@
+// keyturn classify --fuse: the views of one object, taken as the turntable turned it, fused into
+// the belief after each view (learning/model_fusion.h); the poses come from the dataset's
+// manifest (--object) or from each view's sidecar.
+#include <cmath>
+#include <iomanip>
+#include <iostream>
+#include <nlohmann/json.hpp>
+
+#include "dataset_features.h"
+#include "fusion_options.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
+#include "keyturn/core/view_files.h"
+#include "keyturn/learning/model_fusion.h"
+#include "keyturn/rig/dataset.h"
+#include "keyturn/rig/dataset_views.h"
+#include "keyturn/dataset/view_poses.h"
+
+namespace keyturn::app {
+namespace {
+
+struct PosedViews {
+  std::vector<learning::LabelledView> views;
+  std::vector<double> azimuths;  // NaN where not read (independent fusion needs none)
+};
+
+// --object CLASS/INSTANCE[/ELEVATION] of a dataset: its views in capture order, posed by the manifest.
+PosedViews datasetObject(const std::string& root, const std::string& object, const std::vector<double>& wanted,
+                         const DepthImageOptions& depth) {
+  const auto a = object.find('/');
+  const auto b = a == std::string::npos ? a : object.find('/', a + 1);
+  if (a == std::string::npos || a == 0 || a + 1 == object.size() || b + 1 == object.size())
+    throw Error("--object: '" + object + "' is not CLASS/INSTANCE or CLASS/INSTANCE/ELEVATION");
+  const std::string cls = object.substr(0, a);
+  const std::string instance = object.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
+  std::string elevation = b == std::string::npos ? "" : object.substr(b + 1);
+  if (elevation.size() > 1 && elevation[0] == 'e') elevation.erase(0, 1);  // the folder's name, e45, names label 45
+  std::vector<rig::ViewRecord> records;
+  const auto views = rig::datasetViews(root, nullptr, &records);
+  PosedViews out;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const auto& v = views[i];
+    if (v.cls != cls || v.instance != instance || (!elevation.empty() && v.elevation != elevation)) continue;
+    const double az = records[i].measured_deg;
+    if (!wanted.empty() && std::none_of(wanted.begin(), wanted.end(), [az](double w) {
+          const double d = std::fmod(std::fabs(az - w), 360.0);
+          return std::min(d, 360.0 - d) <= 2.5;
+        }))
+      continue;
+    learning::LabelledView lv = v;
+    lv.depth = depth;
+    out.views.push_back(lv);
+    out.azimuths.push_back(az);
+  }
+  if (out.views.empty())
+    throw Error(root + ": no view of " + object + (wanted.empty() ? std::string() : " at the azimuths asked for"));
+  return out;
+}
+
+nlohmann::json beliefJson(const learning::ModelInfo& m, const std::vector<double>& belief) {
+  nlohmann::json j = nlohmann::json::object();
+  for (std::size_t c = 0; c < belief.size() && c < m.classes.size(); ++c) j[m.classes[c]] = belief[c];
+  return j;
+}
+
+std::string fusedLabel(const learning::ModelInfo& m, const learning::FusedStep& s) {
+  return s.answer == learning::Answer::Class ? m.classes.at(static_cast<std::size_t>(s.best)) : learning::answerName(s.answer);
+}
+
+}  // namespace
+
+int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth) {
+  learning::FusionOptions options = a.flags.fusion;
+  learning::checkFusionMethod(options.method);
+  const learning::Model m = learning::loadModel(a.model);
+  if (options.method == "pose" && m.info.pose_references.empty()) {
+    if (!a.quiet)
+      std::cerr << "keyturn classify: " << a.model
+                << " holds no pose references (trained before them, or on views without poses): fusing independently\n";
+    options.method = "independent";
+  }
+  const bool need_poses = options.method == "pose";
+  PosedViews posed;
+  if (!a.object.empty()) {
+    if (a.inputs.size() != 1 || !isDataset(a.inputs[0]))
+      throw Error("--object picks an object of one dataset folder (manifest.csv), not of " + std::to_string(a.inputs.size()) + " inputs");
+    posed = datasetObject(a.inputs[0], a.object, a.azimuths.empty() ? std::vector<double>() : parseNumberList(a.azimuths, "--azimuths"), depth);
+  } else {
+    if (!a.azimuths.empty()) throw Error("--azimuths picks views of a dataset's --object");
+    ViewFileList list = collectViewFiles(a.inputs, depth.intrinsics.has_value());
+    if (!list.errors.empty()) throw Error(list.errors.front());
+    for (const auto& f : list.files) {
+      posed.views.push_back({f, f, "?", "?", "?", depth});
+      // A view without a pose is an error for pose fusion (the method needs every angle).
+      posed.azimuths.push_back(need_poses ? dataset::readViewAzimuth(dataset::sidecarPathOf(f)) : std::nan(""));
+    }
+  }
+  DescribeProgressLine progress(a.quiet || posed.views.size() < 2);
+  const learning::FeatureTable t = learning::describeForModel(m, posed.views, a.jobs, &progress, a.model);
+  for (const auto& row : t.rows)
+    if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) throw Error(row.id + ": " + row.problem);
+  const auto preds = learning::predictRows(m, t, a.model);
+  std::vector<double> az;
+  for (const auto& p : preds) az.push_back(std::isfinite(posed.azimuths[p.row]) ? posed.azimuths[p.row] : 0.0);
+  const learning::ModelFusion fused = learning::fusePredictions(m, t, preds, az, options);
+
+  if (a.json) {
+    nlohmann::json steps = nlohmann::json::array();
+    for (std::size_t i = 0; i < fused.steps.size(); ++i) {
+      const auto& s = fused.steps[i];
+      const auto& p = preds[i];
+      steps.push_back({{"view", t.rows[s.row].id},
+                       {"azimuth_deg", std::isfinite(posed.azimuths[s.row]) ? nlohmann::json(s.azimuth_deg) : nullptr},
+                       {"view_class", learning::answerLabel(m.info, p)},
+                       {"view_answer", learning::answerName(p.answer)},
+                       {"view_probability", p.best >= 0 ? nlohmann::json(p.probabilities[static_cast<std::size_t>(p.best)]) : nullptr},
+                       {"class", fusedLabel(m.info, s)},
+                       {"answer", learning::answerName(s.answer)},
+                       {"belief", s.best >= 0 ? nlohmann::json(s.belief[static_cast<std::size_t>(s.best)]) : nullptr},
+                       {"beliefs", beliefJson(m.info, s.belief)}});
+    }
+    std::cout << nlohmann::json{{"method", fused.method},
+                                {"stop_belief", options.stop_belief},
+                                {"stopped_after", fused.stopped_after ? nlohmann::json(fused.stopped_after) : nullptr},
+                                {"views", steps}}
+                     .dump(2)
+              << "\n";
+    return 0;
+  }
+  std::cout << "# view\tazimuth\tthis view\tp\tfused (" << fused.method << ")\tbelief\n";
+  for (std::size_t i = 0; i < fused.steps.size(); ++i) {
+    const auto& s = fused.steps[i];
+    const auto& p = preds[i];
+    std::cout << t.rows[s.row].id << "\t";
+    if (std::isfinite(posed.azimuths[s.row])) std::cout << std::fixed << std::setprecision(1) << s.azimuth_deg;
+    else std::cout << "-";
+    std::cout << "\t" << learning::answerLabel(m.info, p) << "\t" << std::setprecision(3);
+    if (p.best >= 0) std::cout << p.probabilities[static_cast<std::size_t>(p.best)];
+    else std::cout << "-";
+    std::cout << "\t" << fusedLabel(m.info, s) << "\t";
+    if (s.best >= 0) std::cout << s.belief[static_cast<std::size_t>(s.best)];
+    else std::cout << "-";
+    if (fused.stopped_after == i + 1) std::cout << "\tcertain (>= " << options.stop_belief << ")";
+    std::cout << "\n";
+  }
+  if (!a.quiet && fused.stopped_after == 0)
+    std::cerr << "keyturn classify: the fused belief never reached " << options.stop_belief << "\n";
+  return 0;
+}
+
+}  // namespace keyturn::app

@@ -1,0 +1,87 @@
+#include "keyturn/learning/model_fusion.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+
+void addPoseReferences(Model& m, const FeatureTable& t, const std::vector<double>& az, LabelKind kind, double bin_deg) {
+  if (az.size() != t.rows.size())
+    throw Error("pose references: " + std::to_string(t.rows.size()) + " views but " + std::to_string(az.size()) + " azimuths");
+  std::vector<std::size_t> rows;
+  std::vector<int> y;
+  std::vector<double> azimuths;
+  std::vector<std::string> groups;
+  const auto& classes = m.info.classes;
+  for (std::size_t i = 0; i < t.rows.size(); ++i) {
+    const auto& r = t.rows[i];
+    if (r.keypoints < 0 && !r.problem.empty()) continue;  // not described: not trained on either
+    const std::string& label = kind == LabelKind::Category ? r.cls : r.instance;
+    const auto c = std::find(classes.begin(), classes.end(), label);
+    if (c == classes.end()) throw Error("pose references: view " + r.id + " is labelled '" + label + "', not a class of the model");
+    if (!std::isfinite(az[i])) throw Error("pose references: view " + r.id + " has no azimuth");
+    rows.push_back(i);
+    y.push_back(static_cast<int>(c - classes.begin()));
+    azimuths.push_back(az[i]);
+    groups.push_back(r.instance + "/" + r.elevation);
+  }
+  m.info.pose_references = fitPoseReferences(t.select(m.info.blocks, rows), y, azimuths, groups,
+                                             static_cast<int>(classes.size()), bin_deg);
+}
+
+ModelFusion fusePredictions(const Model& m, const FeatureTable& t, const std::vector<Prediction>& preds,
+                            const std::vector<double>& az, const FusionOptions& o) {
+  checkFusionMethod(o.method);
+  if (az.size() != preds.size())
+    throw Error("fusion: " + std::to_string(preds.size()) + " views but " + std::to_string(az.size()) + " azimuths");
+  const bool pose = o.method == "pose";
+  if (pose && m.info.pose_references.empty())
+    throw Error("fusion: the model holds no pose references (trained without the views' poses): fuse independently");
+  const bool open = m.info.open_set.enabled();
+  // The views that add evidence, in order, and for each step how many of them it has seen.
+  std::vector<FusionView> evidence;
+  std::vector<std::size_t> seen;
+  std::vector<std::size_t> unknowns;
+  std::size_t unknown = 0;
+  for (std::size_t i = 0; i < preds.size(); ++i) {
+    const Prediction& p = preds[i];
+    const bool adds = p.answer == Answer::Class || (!open && p.answer == Answer::Unknown);
+    if (p.answer == Answer::Unknown) ++unknown;
+    if (adds) {
+      FusionView v;
+      v.probabilities = p.probabilities;
+      v.azimuth_deg = az[i];
+      if (pose) v.pose = poseEvidence(m.info.pose_references, t.select(m.info.blocks, {p.row}).row(0));
+      evidence.push_back(std::move(v));
+    }
+    seen.push_back(evidence.size());
+    unknowns.push_back(unknown);
+  }
+  if (evidence.empty() && unknown == 0) throw Error("fusion: none of the sequence's views could be described");
+  ModelFusion out;
+  out.method = o.method;
+  const FusedSequence fused = evidence.empty() ? FusedSequence{} : fuseViews(evidence, o);
+  const std::size_t classes = m.info.classes.size();
+  for (std::size_t i = 0; i < preds.size(); ++i) {
+    FusedStep s;
+    s.row = preds[i].row;
+    s.azimuth_deg = az[i];
+    s.view_answer = preds[i].answer;
+    if (seen[i] > 0) {
+      s.belief = fused.belief[seen[i] - 1];
+      s.best = fused.best[seen[i] - 1];
+    } else {
+      s.belief.assign(classes, 1.0 / static_cast<double>(std::max<std::size_t>(1, classes)));
+    }
+    const bool mostly_unknown = open && 2 * unknowns[i] >= i + 1;
+    s.answer = s.best < 0 ? (unknowns[i] ? Answer::Unknown : Answer::NoObject) : mostly_unknown ? Answer::Unknown : Answer::Class;
+    if (out.stopped_after == 0 && s.answer == Answer::Class && s.belief[static_cast<std::size_t>(s.best)] >= o.stop_belief)
+      out.stopped_after = i + 1;
+    out.steps.push_back(std::move(s));
+  }
+  return out;
+}
+
+}  // namespace keyturn::learning

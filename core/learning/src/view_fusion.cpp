@@ -1,0 +1,187 @@
+#include "keyturn/learning/view_fusion.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "keyturn/core/error.h"
+
+namespace keyturn::learning {
+namespace {
+
+constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
+
+int binOf(double azimuth_deg, double bin_deg, int bins) {
+  const long b = std::lround(azimuth_deg / bin_deg);
+  return static_cast<int>(((b % bins) + bins) % bins);
+}
+
+double medianOf(std::vector<double> v) {
+  if (v.empty()) return std::nan("");
+  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
+  std::nth_element(v.begin(), mid, v.end());
+  return *mid;
+}
+
+double rmsDistance(const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
+  return std::sqrt(static_cast<double>((a - b).squaredNorm()) / static_cast<double>(std::max<Eigen::Index>(1, a.size())));
+}
+
+// Log of a probability, floored so that one view cannot rule a class out alone.
+double flooredLog(float p, double floor) { return std::log(std::max(static_cast<double>(p), floor)); }
+
+std::vector<double> normalised(const std::vector<double>& score) {
+  const double top = *std::max_element(score.begin(), score.end());
+  std::vector<double> b(score.size(), 0.0);
+  if (!std::isfinite(top)) {  // every class ruled out: nothing to prefer
+    std::fill(b.begin(), b.end(), 1.0 / static_cast<double>(b.size()));
+    return b;
+  }
+  double sum = 0;
+  for (std::size_t c = 0; c < score.size(); ++c) sum += b[c] = std::exp(score[c] - top);
+  for (double& v : b) v /= sum;
+  return b;
+}
+
+}  // namespace
+
+const std::vector<std::string>& fusionMethods() {
+  static const std::vector<std::string> methods = {"independent", "pose"};
+  return methods;
+}
+
+void checkFusionMethod(const std::string& method) {
+  const auto& m = fusionMethods();
+  if (std::find(m.begin(), m.end(), method) == m.end())
+    throw Error("fusion method '" + method + "' is not one of independent, pose");
+}
+
+PoseReferences fitPoseReferences(const Matrix& x, const std::vector<int>& y, const std::vector<double>& azimuth_deg,
+                                 const std::vector<std::string>& group, int classes, double bin_deg) {
+  const auto n = static_cast<std::size_t>(x.rows());
+  if (y.size() != n || azimuth_deg.size() != n || group.size() != n)
+    throw Error("pose references: " + std::to_string(n) + " training views but " + std::to_string(y.size()) +
+                " labels, " + std::to_string(azimuth_deg.size()) + " azimuths and " + std::to_string(group.size()) +
+                " groups");
+  if (!(bin_deg > 0) || 360.0 / bin_deg < 4)
+    throw Error("pose fusion's azimuth bin of " + std::to_string(bin_deg) + "° does not divide the turn into 4 or more bins");
+  PoseReferences r;
+  r.classes = classes;
+  r.bins = static_cast<int>(std::lround(360.0 / bin_deg));
+  const Eigen::Index cols = x.cols();
+  r.mean.assign(static_cast<std::size_t>(cols), 0.f);
+  r.scale.assign(static_cast<std::size_t>(cols), 1.f);
+  for (Eigen::Index k = 0; k < cols; ++k) {
+    double sum = 0, sq = 0;
+    int m = 0;
+    for (Eigen::Index i = 0; i < x.rows(); ++i)
+      if (std::isfinite(x(i, k))) sum += x(i, k), sq += static_cast<double>(x(i, k)) * x(i, k), ++m;
+    const double mu = m ? sum / m : 0.0, sd = m ? std::sqrt(std::max(0.0, sq / m - mu * mu)) : 0.0;
+    r.mean[static_cast<std::size_t>(k)] = static_cast<float>(mu);
+    r.scale[static_cast<std::size_t>(k)] = sd > 1e-9 ? static_cast<float>(sd) : 1.f;
+  }
+  r.references.resize(x.rows(), cols);
+  for (Eigen::Index i = 0; i < x.rows(); ++i)
+    for (Eigen::Index k = 0; k < cols; ++k) {
+      const auto kk = static_cast<std::size_t>(k);
+      r.references(i, k) = std::isfinite(x(i, k)) ? (x(i, k) - r.mean[kk]) / r.scale[kk] : 0.f;
+    }
+  r.reference_class = y;
+  for (double a : azimuth_deg) r.reference_bin.push_back(binOf(a, bin_deg, r.bins));
+  // sigma: how far a training view lies from its class seen another way (another instance or
+  // elevation) at the same angle — the spread a test view of a known class shows.
+  std::vector<double> across, within;
+  for (std::size_t i = 0; i < n; ++i) {
+    double best_across = std::numeric_limits<double>::infinity(), best_within = best_across;
+    for (std::size_t j = 0; j < n; ++j) {
+      if (j == i || y[j] != y[i]) continue;
+      const double d = rmsDistance(r.references.row(static_cast<Eigen::Index>(i)), r.references.row(static_cast<Eigen::Index>(j)));
+      best_within = std::min(best_within, d);
+      if (group[j] != group[i] && r.reference_bin[j] == r.reference_bin[i]) best_across = std::min(best_across, d);
+    }
+    if (std::isfinite(best_across)) across.push_back(best_across);
+    if (std::isfinite(best_within)) within.push_back(best_within);
+  }
+  const double s = !across.empty() ? medianOf(across) : medianOf(within);
+  r.sigma = std::isfinite(s) && s > 1e-9 ? s : 1.0;
+  return r;
+}
+
+Matrix poseEvidence(const PoseReferences& r, const Eigen::RowVectorXf& x) {
+  if (x.size() != static_cast<Eigen::Index>(r.mean.size()))
+    throw Error("pose evidence: the references have " + std::to_string(r.mean.size()) + " features, the view " +
+                std::to_string(x.size()));
+  Eigen::RowVectorXf v(x.size());
+  for (Eigen::Index k = 0; k < x.size(); ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    v(k) = std::isfinite(x(k)) ? (x(k) - r.mean[kk]) / r.scale[kk] : 0.f;
+  }
+  const double inf = std::numeric_limits<double>::infinity();
+  std::vector<std::vector<double>> nearest(static_cast<std::size_t>(r.classes), std::vector<double>(static_cast<std::size_t>(r.bins), inf));
+  for (Eigen::Index i = 0; i < r.references.rows(); ++i) {
+    const auto c = static_cast<std::size_t>(r.reference_class[static_cast<std::size_t>(i)]);
+    auto& d = nearest[c][static_cast<std::size_t>(r.reference_bin[static_cast<std::size_t>(i)])];
+    d = std::min(d, rmsDistance(v, r.references.row(i)));
+  }
+  Matrix e(r.classes, r.bins);
+  const double two_s2 = 2 * r.sigma * r.sigma;
+  for (int c = 0; c < r.classes; ++c) {
+    const auto& row = nearest[static_cast<std::size_t>(c)];
+    for (int b = 0; b < r.bins; ++b) {
+      double d = inf;  // the bin, or its circularly nearest non-empty neighbour
+      for (int off = 0; off <= r.bins / 2 && !std::isfinite(d); ++off)
+        d = std::min(row[static_cast<std::size_t>((b + off) % r.bins)], row[static_cast<std::size_t>((b - off + r.bins) % r.bins)]);
+      e(c, b) = std::isfinite(d) ? static_cast<float>(-d * d / two_s2) : -std::numeric_limits<float>::infinity();
+    }
+  }
+  return e;
+}
+
+FusedSequence fuseViews(const std::vector<FusionView>& views, const FusionOptions& o) {
+  checkFusionMethod(o.method);
+  if (views.empty()) throw Error("fusion: a sequence needs at least one view");
+  const std::size_t classes = views[0].probabilities.size();
+  if (classes == 0) throw Error("fusion: the first view has no class probabilities");
+  const bool pose = o.method == "pose";
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    if (views[i].probabilities.size() != classes)
+      throw Error("fusion: view " + std::to_string(i + 1) + " has " + std::to_string(views[i].probabilities.size()) +
+                  " class probabilities, the first " + std::to_string(classes));
+    if (pose && (views[i].pose.rows() != static_cast<Eigen::Index>(classes) || views[i].pose.cols() < 4))
+      throw Error("fusion: view " + std::to_string(i + 1) + " has no pose evidence for its " + std::to_string(classes) +
+                  " classes");
+    if (!std::isfinite(views[i].azimuth_deg))
+      throw Error("fusion: view " + std::to_string(i + 1) + " has no azimuth");
+  }
+  FusedSequence out;
+  std::vector<double> evidence(classes, 0.0);  // summed log-probabilities
+  const int bins = pose ? static_cast<int>(views[0].pose.cols()) : 0;
+  const double bin_deg = pose ? 360.0 / bins : 0;
+  // aligned[c][φ]: Σ_i pose(c, φ + Δθ_i) over the views so far, for every rotation φ.
+  std::vector<std::vector<double>> aligned(pose ? classes : 0, std::vector<double>(static_cast<std::size_t>(bins), 0.0));
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    const FusionView& v = views[i];
+    for (std::size_t c = 0; c < classes; ++c) evidence[c] += flooredLog(v.probabilities[c], o.probability_floor);
+    std::vector<double> score = evidence;
+    if (pose) {
+      const int shift = binOf(v.azimuth_deg - views[0].azimuth_deg, bin_deg, bins);
+      for (std::size_t c = 0; c < classes; ++c) {
+        double best = kMinusInf;
+        for (int phi = 0; phi < bins; ++phi) {
+          auto& a = aligned[c][static_cast<std::size_t>(phi)];
+          a += v.pose(static_cast<Eigen::Index>(c), (phi + shift) % bins);
+          best = std::max(best, a);
+        }
+        score[c] += best;
+      }
+    }
+    out.belief.push_back(normalised(score));
+    const auto& b = out.belief.back();
+    out.best.push_back(static_cast<int>(std::max_element(b.begin(), b.end()) - b.begin()));
+    if (out.stopped_after == 0 && b[static_cast<std::size_t>(out.best.back())] >= o.stop_belief) out.stopped_after = i + 1;
+  }
+  if (out.stopped_after == 0) out.stopped_after = views.size();
+  return out;
+}
+
+}  // namespace keyturn::learning
