@@ -12,8 +12,8 @@
 #include "keyturn/core/string_format.h"
 #include "keyturn/core/view_files.h"
 #include "keyturn/learning/model_fusion.h"
-#include "keyturn/rig/dataset.h"
-#include "keyturn/rig/dataset_views.h"
+#include "keyturn/dataset/dataset.h"
+#include "keyturn/dataset/dataset_views.h"
 #include "keyturn/dataset/view_poses.h"
 
 namespace keyturn::app {
@@ -35,8 +35,8 @@ PosedViews datasetObject(const std::string& root, const std::string& object, con
   const std::string instance = object.substr(a + 1, b == std::string::npos ? std::string::npos : b - a - 1);
   std::string elevation = b == std::string::npos ? "" : object.substr(b + 1);
   if (elevation.size() > 1 && elevation[0] == 'e') elevation.erase(0, 1);  // the folder's name, e45, names label 45
-  std::vector<rig::ViewRecord> records;
-  const auto views = rig::datasetViews(root, nullptr, &records);
+  std::vector<dataset::ViewRecord> records;
+  const auto views = dataset::datasetViews(root, nullptr, &records);
   PosedViews out;
   for (std::size_t i = 0; i < views.size(); ++i) {
     const auto& v = views[i];

@@ -14,7 +14,7 @@
 #include "keyturn/core/string_format.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/dataset/view_poses.h"
-#include "keyturn/ui/report_plots.h"
+#include "keyturn/plots/report_plots.h"
 
 namespace keyturn::app {
 
@@ -90,7 +90,7 @@ int runFusionEvaluate(const FusionEvaluateArgs& a) {
   std::filesystem::create_directories(out);
   writeFileDurably((out / "report.csv").string(), report.csv);
   writeFileDurably((out / "report.json").string(), report.json);
-  ui::saveReportPlots(report.plots, a.out);
+  plots::saveReportPlots(report.plots, a.out);
   writeFileDurably((out / "report.md").string(), report.markdown);
   if (a.json) std::cout << report.json;
   if (!a.quiet) std::cerr << "keyturn evaluate: fusion → " << (out / "report.md").string() << "\n";
