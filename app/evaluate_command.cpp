@@ -51,7 +51,7 @@ int runEvaluate(const EvaluateArgs& a) {
   for (const auto& b : splitList(a.bins)) {  // each value checked as --bins is
     DescriptorOptions checked;
     try {
-      descriptorParameter("--bins").set(checked, b);
+      descriptorParameter("bins").set(checked, b);
     } catch (const Error& e) {
       throw Error(std::string("--bins: ") + e.what());
     }
