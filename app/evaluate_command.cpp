@@ -75,7 +75,7 @@ int runEvaluate(const EvaluateArgs& a) {
       plan, [&](int bins) { return describe(a.dataset, bins); }, describe);
   const std::filesystem::path out(a.out);
   if (!a.shard.empty()) {
-    const auto [shard, shards] = learning::parseShard(a.shard);
+    const auto [shard, shards] = parseShard(a.shard);
     Progress progress("evaluate", learning::foldJobs(run, shard, shards).size(), !a.quiet);
     learning::evaluateRows(run, [&] { progress.advance(); }, shard, shards);
     progress.finish();
