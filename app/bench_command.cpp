@@ -90,7 +90,7 @@ int runScalingCommand(const BenchArgs& a) {
   s.warn = [](const std::string& line) { std::cerr << "keyturn bench --scaling: " << line << "\n"; };
   const nlohmann::json out = bench::runScaling(s, a.flags.toOptions());
   if (a.json) std::cout << out.dump(2) << "\n";
-  else std::fputs(bench::scalingTable(out).c_str(), stdout);
+  else std::fputs(("keyturn bench --scaling " + bench::scalingTable(out)).c_str(), stdout);
   if (!a.plot.empty()) {
     plots::saveReportPlots({{bench::scalingPlot(out, a.plot)}, {}}, "");
     if (!a.json) std::printf("\nplot: %s\n", a.plot.c_str());

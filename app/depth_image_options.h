@@ -19,4 +19,7 @@ struct DepthImageFlags {
   DepthImageOptions toOptions() const;
 };
 
+// How a depth image gets its intrinsics here, said after core's MissingIntrinsicsError.
+inline const char* const kIntrinsicsHint = "--camera FILE, or --fx --fy --cx --cy";
+
 }  // namespace keyturn::app

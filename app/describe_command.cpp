@@ -13,6 +13,7 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
+#include "learning_options.h"
 #include "progress.h"
 
 namespace keyturn::app {
@@ -32,7 +33,7 @@ struct DescribeArgs {
 
 // A dataset folder: fill its feature cache (or this shard of it) for evaluate/train/consistency.
 int runDescribeDataset(const DescribeArgs& a) {
-  const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : learning::parseShard(a.shard);
+  const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : parseShard(a.shard);
   const std::string& dataset = a.inputs.front();
   DescribeProgressLine progress(a.quiet);
   const learning::FeatureCache cache{dataset, datasetViews(dataset), a.flags.options, a.jobs, &progress};
@@ -55,6 +56,8 @@ int runDescribe(const DescribeArgs& a) {
   o.warn_low = !a.quiet;
   o.jobs = a.jobs;
   o.prefix = "keyturn describe: ";
+  o.explain_hint = "--explain shows why";
+  o.intrinsics_hint = kIntrinsicsHint;
   ViewFileList list = collectViewFiles(a.inputs, o.depth.intrinsics.has_value());
   for (const auto& e : list.errors) std::cerr << o.prefix << e << "\n";
   const std::size_t n = list.files.size();

@@ -1,13 +1,12 @@
 #include "descriptor_options.h"
 
-#include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::app {
 namespace {
 
 // A row's own check, reported by CLI11 as "--flag: reason".
-CLI::Validator checkWith(const DescriptorParameter& p) {
+CLI::Validator checkWith(const DescriptorParameter& p, const std::string& flag) {
   return CLI::Validator(
       [&p](std::string& text) {
         DescriptorOptions scratch;
@@ -18,7 +17,7 @@ CLI::Validator checkWith(const DescriptorParameter& p) {
         }
         return std::string();
       },
-      "", p.flag);
+      "", flag);
 }
 
 std::string featureList(const std::vector<Feature>& features) {
@@ -28,6 +27,25 @@ std::string featureList(const std::vector<Feature>& features) {
 }
 
 }  // namespace
+
+const std::map<std::string, std::string>& descriptorFlagExceptions() {
+  // Shorter words than the specification's (its keys name units and groups), and flags older
+  // than the keys they set.
+  static const std::map<std::string, std::string> flags = {
+      {"extent_m", "--extent"},         {"plane_removal", "--no-plane"},
+      {"max_range_m", "--max-range"},   {"jump_edge_deg", "--jump-edge-angle"},
+      {"working_samples_across", "--samples-across"}, {"working_grid", "--voxel-grid"},
+      {"working_points", "--voxel-points"}};
+  return flags;
+}
+
+std::string descriptorFlag(const DescriptorParameter& p) {
+  const auto it = descriptorFlagExceptions().find(p.name);
+  if (it != descriptorFlagExceptions().end()) return it->second;
+  std::string flag = p.kind == DescriptorParameter::Kind::Switch ? "--no-" : "--";
+  for (char c : p.name) flag += c == '_' ? '-' : c;
+  return flag;
+}
 
 void DescriptorFlags::add(CLI::App& cmd, bool with_features) {
   if (with_features)
@@ -47,13 +65,14 @@ void DescriptorFlags::add(CLI::App& cmd, bool with_features) {
             },
             "", "features"));
   for (const DescriptorParameter& p : descriptorParameters()) {
+    const std::string flag = descriptorFlag(p);
     if (p.kind == DescriptorParameter::Kind::Switch) {
-      cmd.add_flag_callback(p.flag, [this, &p] { p.set(options, "off"); }, p.help);
+      cmd.add_flag_callback(flag, [this, &p] { p.set(options, "off"); }, p.help);
       continue;
     }
-    cmd.add_option_function<std::string>(p.flag, [this, &p](const std::string& v) { p.set(options, v); }, p.help)
+    cmd.add_option_function<std::string>(flag, [this, &p](const std::string& v) { p.set(options, v); }, p.help)
         ->default_str(p.get(options))
-        ->check(checkWith(p));
+        ->check(checkWith(p, flag));
   }
 }
 

@@ -63,6 +63,8 @@ int runEvaluate(const EvaluateArgs& a) {
   if (!a.shard.empty() && (a.merge || a.json))
     throw Error(std::string("--shard writes a part of the report; ") + (a.merge ? "--merge" : "--json") +
                 " belongs to the run that merges the parts");
+  // A bad I/N is said before the dataset is described.
+  const auto [shard, shards] = a.shard.empty() ? std::pair<int, int>{0, 1} : parseShard(a.shard);
   learning::EvaluationPlan plan;
   plan.dataset = a.dataset;
   plan.feature_sets = splitList(a.features);
@@ -71,7 +73,7 @@ int runEvaluate(const EvaluateArgs& a) {
   for (const auto& b : splitList(a.bins)) {  // each value checked as --bins is
     DescriptorOptions checked;
     try {
-      descriptorParameter("--bins").set(checked, b);
+      descriptorParameter("bins").set(checked, b);
     } catch (const Error& e) {
       throw Error(std::string("--bins: ") + e.what());
     }
@@ -95,7 +97,6 @@ int runEvaluate(const EvaluateArgs& a) {
       plan, [&](int bins) { return describe(a.dataset, bins); }, describe);
   const std::filesystem::path out(a.out);
   if (!a.shard.empty()) {
-    const auto [shard, shards] = learning::parseShard(a.shard);
     Progress progress("evaluate", learning::foldJobs(run, shard, shards).size(), !a.quiet);
     learning::evaluateRows(run, [&] { progress.advance(); }, shard, shards);
     progress.finish();

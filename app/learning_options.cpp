@@ -1,8 +1,20 @@
 #include "learning_options.h"
 
+#include <sstream>
+
 #include "keyturn/core/error.h"
 
 namespace keyturn::app {
+
+std::pair<int, int> parseShard(const std::string& text) {
+  int shard = 0, shards = 1;
+  char slash = 0;
+  std::istringstream in(text);
+  if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
+    throw Error("--shard " + text + ": expected I/N, e.g. 3/16");
+  if (shards < 1 || shard < 1 || shard > shards) throw Error("--shard " + text + ": expected I/N with 1 <= I <= N");
+  return {shard - 1, shards};
+}
 
 void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
   cmd.add_option("--model-seed", p.seed, "Seed of the classifiers")->capture_default_str();

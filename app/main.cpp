@@ -4,6 +4,8 @@
 #include <iostream>
 
 #include "commands.h"
+#include "depth_image_options.h"
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
 
 #ifndef KEYTURN_VERSION
@@ -36,6 +38,9 @@ int main(int argc, char** argv) {
   try {
     for (const auto& c : commands)
       if (c.cli->parsed()) return c.run();
+  } catch (const keyturn::MissingIntrinsicsError& e) {  // core names no flag; this is how to give them
+    std::cerr << "keyturn: " << e.what() << " (" << kIntrinsicsHint << ")\n";
+    return 1;
   } catch (const keyturn::Error& e) {
     std::cerr << "keyturn: " << e.what() << "\n";
     return 1;

@@ -8,10 +8,12 @@
 #include "commands.h"
 #include "depth_image_options.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/core/pose_list.h"
 #include "keyturn/core/repeatability_study.h"
 #include "keyturn/dataset/study_views.h"
 #include "keyturn/plots/report_plots.h"
 #include "progress.h"
+#include "study_options.h"
 
 namespace keyturn::app {
 namespace {
@@ -20,6 +22,7 @@ struct RepArgs {
   std::string input, out, pose_format = "auto", views;
   std::string detectors = "iss,harris3d,sift3d,uniform";
   std::string eps = "0.5:3:0.25";
+  std::string pairs = pairRuleName(PairRule());
   StudyOptions study;
   PoseReadOptions poses;
   DepthImageFlags depth;
@@ -29,6 +32,7 @@ struct RepArgs {
 int runRepeatability(RepArgs a) {
   a.study.detectors = parseDetectorList(a.detectors);
   a.study.eps_res = parseEpsList(a.eps);
+  a.study.pairs = parsePairRule(a.pairs);
   a.study.filter = !a.no_filter;
   a.study.depth = a.depth.toOptions();
   a.poses.format = parsePoseFormat(a.pose_format);
@@ -36,7 +40,19 @@ int runRepeatability(RepArgs a) {
   std::unique_ptr<Progress> bar;
   StudyProgress progress{[&](const std::string& stage, std::size_t n) { bar = std::make_unique<Progress>(stage, n, !a.json); },
                          [&] { bar->advance(); }, [&] { bar->finish(); }};
-  const Study s = runRepeatabilityStudy(dataset::studyViews(a.input, a.poses), a.study, progress);
+  std::vector<StudyView> views;
+  try {
+    views = dataset::studyViews(a.input, a.poses);
+  } catch (const MissingViewListError& e) {
+    throw Error(std::string(e.what()) + " (--views LIST)");
+  }
+  Study s;
+  try {
+    s = runRepeatabilityStudy(std::move(views), a.study, progress);
+  } catch (const NoOverlapError& e) {  // the remedies are this command's flags
+    throw Error(std::string(e.what()) + (e.inverse_overlaps ? " (--invert-poses)" : " (--pose-format)") +
+                "; --force scores anyway");
+  }
 
   std::filesystem::create_directories(a.out);
   const std::string md = studyMarkdown(s, a.input), json = studyJson(s, a.input);
@@ -60,7 +76,7 @@ Command addRepeatabilityCommand(CLI::App& app) {
   cmd->add_flag("--invert-poses", a->poses.invert, "The poses map the common frame into each view: invert them");
   cmd->add_option("--detectors", a->detectors, "Comma list: iss, harris3d, sift3d, uniform, iss-chain (ISS on describe's working-resolution view)")->capture_default_str();
   cmd->add_option("--eps", a->eps, "ε as START:STOP:STEP or a list, in multiples of the resolution")->capture_default_str();
-  cmd->add_option("--pairs", a->study.pairs, "consecutive, from-first or all-within:DEG")->capture_default_str();
+  cmd->add_option("--pairs", a->pairs, "consecutive, from-first or all-within:DEG")->capture_default_str();
   cmd->add_option("--keypoints", a->study.keypoints, "Equal budget K for every detector (0: ISS's count per view)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   auto& iss = a->study.detector.iss;

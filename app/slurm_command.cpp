@@ -1,5 +1,5 @@
 // keyturn slurm: writes a dataset's describe (and evaluate) as Slurm array jobs — sbatch files
-// and a submit.sh chaining them — for a cluster (learning/slurm_scripts.h; docs/slurm.md).
+// and a submit.sh chaining them — for a cluster (slurm_scripts.h; docs/slurm.md).
 #include <sys/stat.h>
 
 #include <filesystem>
@@ -8,32 +8,32 @@
 #include "commands.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/learning/slurm_scripts.h"
+#include "slurm_scripts.h"
 
 namespace keyturn::app {
 namespace {
 
 namespace fs = std::filesystem;
 
-int runSlurm(learning::SlurmPlan p) {
+int runSlurm(SlurmPlan p) {
   if (!fs::is_regular_file(fs::path(p.dataset) / "manifest.csv"))
     throw Error(p.dataset + ": not a dataset folder (no manifest.csv)");
   p.keyturn = fs::canonical("/proc/self/exe").string();
   p.dataset = fs::absolute(p.dataset).lexically_normal().string();
   p.out = fs::absolute(p.out).lexically_normal().string();
-  for (const auto& [name, text] : learning::slurmScripts(p)) {
+  for (const auto& [name, text] : slurmScripts(p)) {
     const std::string path = (fs::path(p.out) / name).string();
     writeFileDurably(path, text);
     ::chmod(path.c_str(), 0755);
   }
-  std::cout << "bash " << learning::shellQuote((fs::path(p.out) / "submit.sh").string()) << "\n";
+  std::cout << "bash " << shellQuote((fs::path(p.out) / "submit.sh").string()) << "\n";
   return 0;
 }
 
 }  // namespace
 
 Command addSlurmCommand(CLI::App& app) {
-  auto p = std::make_shared<learning::SlurmPlan>();
+  auto p = std::make_shared<SlurmPlan>();
   auto* cmd = app.add_subcommand(
       "slurm", "Write a dataset's describe and evaluate as Slurm array jobs: sbatch files and submit.sh (docs/slurm.md)");
   cmd->add_option("dataset", p->dataset, "Dataset folder (manifest.csv)")->required();

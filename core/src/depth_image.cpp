@@ -225,7 +225,7 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
 
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
   if (!o.intrinsics)
-    fail(png, "a depth image needs the camera's intrinsics (--camera FILE, or --fx --fy --cx --cy)");
+    throw MissingIntrinsicsError(png + ": a depth image needs the camera's intrinsics (a camera file, or fx, fy, cx and cy)");
   const detail::DecodedImage m = readPng(png, "16-bit depth");
   if (m.channels != 1) fail(png, std::to_string(m.channels) + "-channel image; a depth image has one channel");
   if (m.bits != 16)

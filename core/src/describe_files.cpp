@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/empty_view.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/view_explanation.h"
@@ -30,6 +31,10 @@ FileResult describeFile(const std::string& file, const DescribeFilesOptions& o) 
   } catch (const Error& e) {
     const std::string msg = e.what();
     r.error = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;  // name the file once
+    const std::string& hint = dynamic_cast<const FilteredAwayError*>(&e)        ? o.explain_hint
+                              : dynamic_cast<const MissingIntrinsicsError*>(&e) ? o.intrinsics_hint
+                                                                                : std::string();
+    if (!hint.empty()) r.error += " (" + hint + ")";
   } catch (const std::exception& e) {
     r.error = file + ": unexpected failure: " + e.what();
   }
@@ -60,7 +65,7 @@ DescribedFiles describeFiles(const std::vector<std::string>& files, const Descri
     if (!r.explained.empty()) out.messages.push_back(r.explained);
     if (!r.error.empty()) out.messages.push_back(o.prefix + r.error + "\n");
     if (!r.flags.empty())
-      out.messages.push_back(o.prefix + "warning: " + files[i] + ": " + r.flags + " (--explain shows why)\n");
+      out.messages.push_back(o.prefix + "warning: " + files[i] + ": " + r.flags + (o.explain_hint.empty() ? "" : " (" + o.explain_hint + ")") + "\n");
     if (r.low_keypoints) {
       ++out.flagged;
       if (o.warn_low)

@@ -62,9 +62,9 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
     std::string why;
     for (const auto& s : v.filter.steps)
       if (s.removed() > 0) why += (why.empty() ? "" : ", ") + s.name + " −" + std::to_string(s.removed());
-    throw EmptyViewError("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +
-                " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
-                (why.empty() ? "nothing removed" : why) + "; --explain shows each step)");
+    throw FilteredAwayError("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +
+                            " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
+                            (why.empty() ? "nothing removed" : why) + ")");
   }
   if (!o.filter) subsampleToWorkingResolution(cloud, o.working, &v.working);
   v.points = PointSet::fromCloud(cloud);

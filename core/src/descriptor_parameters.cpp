@@ -46,10 +46,10 @@ T parseWhole(const std::string& t) {
 
 // `field` is a generic lambda returning a reference to the field in a DescriptorOptions.
 template <typename Field>
-DescriptorParameter whole(std::string key, std::string flag, std::string help, Field field, long long lo,
+DescriptorParameter whole(std::string name, std::string help, Field field, long long lo,
                           long long hi = std::numeric_limits<long long>::max()) {
   using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
-  return {std::move(key), std::move(flag), std::move(help), Kind::Integer,
+  return {std::move(name), std::move(help), Kind::Integer,
           [field](const DescriptorOptions& o) { return std::to_string(field(o)); },
           [field, lo, hi](DescriptorOptions& o, const std::string& t) {
             const T v = parseWhole<T>(t);
@@ -65,9 +65,9 @@ DescriptorParameter whole(std::string key, std::string flag, std::string help, F
 enum class Sign { Any, Positive };
 
 template <typename Field>
-DescriptorParameter number(std::string key, std::string flag, std::string help, Field field, Sign sign) {
+DescriptorParameter number(std::string name, std::string help, Field field, Sign sign) {
   using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
-  return {std::move(key), std::move(flag), std::move(help), Kind::Number,
+  return {std::move(name), std::move(help), Kind::Number,
           [field](const DescriptorOptions& o) { return cacheNumberText(static_cast<double>(field(o))); },
           [field, sign](DescriptorOptions& o, const std::string& t) {
             const double v = parseNumber(t);
@@ -78,13 +78,13 @@ DescriptorParameter number(std::string key, std::string flag, std::string help, 
 
 // Radii of the chain are multiples of the cloud resolution.
 template <typename Field>
-DescriptorParameter radius(std::string key, std::string flag, std::string help, Field field) {
-  return number(std::move(key), std::move(flag), std::move(help) + " (× resolution)", field, Sign::Positive);
+DescriptorParameter radius(std::string name, std::string help, Field field) {
+  return number(std::move(name), std::move(help) + " (× resolution)", field, Sign::Positive);
 }
 
 template <typename Field>
-DescriptorParameter onOff(std::string key, std::string flag, std::string help, Field field) {
-  return {std::move(key), std::move(flag), std::move(help), Kind::Switch,
+DescriptorParameter onOff(std::string name, std::string help, Field field) {
+  return {std::move(name), std::move(help), Kind::Switch,
           [field](const DescriptorOptions& o) -> std::string { return field(o) ? "on" : "off"; },
           [field](DescriptorOptions& o, const std::string& t) {
             if (t != "on" && t != "off") throw Error("must be on or off, not '" + t + "'");
@@ -94,9 +94,9 @@ DescriptorParameter onOff(std::string key, std::string flag, std::string help, F
 
 std::vector<DescriptorParameter> makeTable() {
   std::vector<DescriptorParameter> t;
-  t.push_back(whole("bins", "--bins", "Histogram bins per feature", [](auto& o) -> auto& { return o.histogram.bins; },
+  t.push_back(whole("bins", "Histogram bins per feature", [](auto& o) -> auto& { return o.histogram.bins; },
                     2, 4096));
-  t.push_back({"range", "--range", "Histogram range rule: fixed (metric, from --extent) or per-view", Kind::Choice,
+  t.push_back({"range", "Histogram range rule: fixed (metric, from the extent) or per-view", Kind::Choice,
                [](const DescriptorOptions& o) -> std::string {
                  return o.histogram.mode == RangeMode::Fixed ? "fixed" : "per-view";
                },
@@ -104,21 +104,21 @@ std::vector<DescriptorParameter> makeTable() {
                  if (t != "fixed" && t != "per-view") throw Error("must be fixed or per-view, not '" + t + "'");
                  o.histogram.mode = t == "fixed" ? RangeMode::Fixed : RangeMode::PerView;
                }});
-  t.push_back({"binning", "--binning",
+  t.push_back({"binning",
                "How a value is counted: hard (all in its bin) or linear (shared between the two nearest bin "
                "centres: the PDF moves continuously with the values)",
                Kind::Choice, [](const DescriptorOptions& o) -> std::string { return binningName(o.histogram.binning); },
                [](DescriptorOptions& o, const std::string& t) { o.histogram.binning = parseBinning(t); }, "hard"});
-  t.push_back(number("extent_m", "--extent", "Object extent E in metres for fixed ranges (distances span [0,E])",
+  t.push_back(number("extent_m", "Object extent E in metres for fixed ranges (distances span [0,E])",
                      [](auto& o) -> auto& { return o.histogram.extent; }, Sign::Positive));
-  t.push_back(onOff("filter", "--no-filter", "Use the cloud as it is (already segmented)",
+  t.push_back(onOff("filter", "Use the cloud as it is (already segmented)",
                     [](auto& o) -> auto& { return o.filter; }));
-  t.push_back(onOff("plane_removal", "--no-plane", "Keep the dominant plane",
+  t.push_back(onOff("plane_removal", "Keep the dominant plane",
                     [](auto& o) -> auto& { return o.filter_options.remove_plane; }));
-  t.push_back(number("max_range_m", "--max-range", "Drop points farther than this from the camera (m)",
+  t.push_back(number("max_range_m", "Drop points farther than this from the camera (m)",
                      [](auto& o) -> auto& { return o.filter_options.max_range; }, Sign::Any));
   // One number for two fields: 0 turns the step off.
-  t.push_back({"jump_edge_deg", "--jump-edge-angle",
+  t.push_back({"jump_edge_deg",
                "Remove pixels whose segment to a neighbour is within this angle of the viewing ray (degrees, 0 = off)",
                Kind::Number,
                [](const DescriptorOptions& o) {
@@ -130,15 +130,15 @@ std::vector<DescriptorParameter> makeTable() {
                  o.filter_options.jump_edge = v > 0;
                  o.filter_options.jump_edge_angle_deg = static_cast<float>(v);
                }});
-  t.push_back(radius("iss_frame", "--iss-frame", "ISS scatter radius r_frame",
+  t.push_back(radius("iss_frame", "ISS scatter radius r_frame",
                      [](auto& o) -> auto& { return o.iss.frame_radius; }));
-  t.push_back(radius("iss_nms", "--iss-nms", "ISS non-maximum radius", [](auto& o) -> auto& { return o.iss.nms_radius; }));
-  t.push_back(radius("iss_density", "--iss-density", "ISS density radius",
+  t.push_back(radius("iss_nms", "ISS non-maximum radius", [](auto& o) -> auto& { return o.iss.nms_radius; }));
+  t.push_back(radius("iss_density", "ISS density radius",
                      [](auto& o) -> auto& { return o.iss.density_radius; }));
-  t.push_back(radius("graph_radius", "--graph-radius", "Local complete graph radius",
+  t.push_back(radius("graph_radius", "Local complete graph radius",
                      [](auto& o) -> auto& { return o.graph.radius; }));
   // One number for two fields: 0 describes at the sensor's own spacing.
-  t.push_back({"working_samples_across", "--samples-across",
+  t.push_back({"working_samples_across",
                "Working resolution: describe at spacing (view extent / this); 0 = the sensor's own spacing",
                Kind::Number,
                [](const DescriptorOptions& o) { return cacheNumberText(o.working.enabled ? o.working.samples_across : 0.0); },
@@ -148,19 +148,19 @@ std::vector<DescriptorParameter> makeTable() {
                  o.working.enabled = v > 0;
                  if (v > 0) o.working.samples_across = v;
                }});
-  t.push_back({"working_grid", "--voxel-grid",
+  t.push_back({"working_grid",
                "Working resolution's voxel grid: object (at the view's centroid and principal axes: moving the "
                "view keeps the same points) or camera (the camera frame's, before issue 30)",
                Kind::Choice, [](const DescriptorOptions& o) -> std::string { return voxelAnchorName(o.working.anchor); },
                [](DescriptorOptions& o, const std::string& t) { o.working.anchor = parseVoxelAnchor(t); }, "camera"});
-  t.push_back({"working_points", "--voxel-points",
+  t.push_back({"working_points",
                "Working resolution's points: means (each voxel's mean) or thinned (the nearest measured points "
                "thinned to the spacing, before issue 30)",
                Kind::Choice, [](const DescriptorOptions& o) -> std::string { return voxelPointsName(o.working.points); },
                [](DescriptorOptions& o, const std::string& t) { o.working.points = parseVoxelPoints(t); }, "thinned"});
-  t.push_back(whole("max_keypoints", "--max-keypoints", "Keypoint budget: keep the K most salient ISS keypoints (0 = all)",
+  t.push_back(whole("max_keypoints", "Keypoint budget: keep the K most salient ISS keypoints (0 = all)",
                     [](auto& o) -> auto& { return o.iss.max_keypoints; }, 0));
-  t.push_back({"budget_taper", "--budget-taper",
+  t.push_back({"budget_taper",
                "Weighted keypoint budget: the least salient fraction of the budget weighs less the less salient it "
                "is, down to 0 at the first keypoint left out (0 = a hard budget)",
                Kind::Number, [](const DescriptorOptions& o) { return cacheNumberText(o.iss.budget_taper); },
@@ -170,12 +170,15 @@ std::vector<DescriptorParameter> makeTable() {
                  o.iss.budget_taper = v;
                },
                "0"});
-  t.push_back(whole("osada_samples", "--osada-samples", "Samples per Osada shape distribution",
+  t.push_back(whole("osada_samples", "Samples per Osada shape distribution",
                     [](auto& o) -> auto& { return o.osada.samples; }, 1));
-  t.push_back(whole("seed", "--seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",
+  t.push_back(whole("seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",
                     [](auto& o) -> auto& { return o.osada.seed; }, 0));
-  t.push_back(whole("", "--low-keypoints", "Flag views with fewer keypoints than this",
-                    [](auto& o) -> auto& { return o.low_keypoints; }, 0));
+  // A warning's threshold: it changes no feature, so it stays out of the specification.
+  DescriptorParameter low = whole("low_keypoints", "Flag views with fewer keypoints than this",
+                                  [](auto& o) -> auto& { return o.low_keypoints; }, 0);
+  low.in_spec = false;
+  t.push_back(low);
   return t;
 }
 
@@ -186,35 +189,35 @@ const std::vector<DescriptorParameter>& descriptorParameters() {
   return table;
 }
 
-const DescriptorParameter& descriptorParameter(const std::string& flag) {
+const DescriptorParameter& descriptorParameter(const std::string& name) {
   for (const auto& p : descriptorParameters())
-    if (p.flag == flag) return p;
-  throw Error("no descriptor parameter " + flag);
+    if (p.name == name) return p;
+  throw Error("no descriptor parameter named '" + name + "'");
 }
 
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options) {
   std::map<std::string, std::string> spec;
   for (const auto& p : descriptorParameters())
-    if (!p.key.empty()) spec[p.key] = p.get(options);
+    if (p.in_spec) spec[p.name] = p.get(options);
   return spec;
 }
 
 std::map<std::string, std::string> completedParameterSpec(std::map<std::string, std::string> spec) {
   for (const auto& p : descriptorParameters())
-    if (!p.key.empty() && !p.absent_means.empty()) spec.emplace(p.key, p.absent_means);
+    if (p.in_spec && !p.absent_means.empty()) spec.emplace(p.name, p.absent_means);
   return spec;
 }
 
 DescriptorOptions optionsFromParameterSpec(const std::map<std::string, std::string>& spec, const std::string& source) {
   DescriptorOptions o;
   for (const auto& p : descriptorParameters()) {
-    if (p.key.empty()) continue;
-    const auto it = spec.find(p.key);
-    if (it == spec.end() && p.absent_means.empty()) throw Error(source + ": feature spec has no '" + p.key + "'");
+    if (!p.in_spec) continue;
+    const auto it = spec.find(p.name);
+    if (it == spec.end() && p.absent_means.empty()) throw Error(source + ": feature spec has no '" + p.name + "'");
     try {
       p.set(o, it == spec.end() ? p.absent_means : it->second);
     } catch (const Error& e) {
-      throw Error(source + ": feature spec '" + p.key + "' " + e.what());
+      throw Error(source + ": feature spec '" + p.name + "' " + e.what());
     }
   }
   return o;

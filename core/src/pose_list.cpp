@@ -19,7 +19,7 @@ PoseFormat parsePoseFormat(const std::string& n) {
   if (n == "stanford") return PoseFormat::Stanford;
   if (n == "tum") return PoseFormat::Tum;
   if (n == "matrix") return PoseFormat::Matrix;
-  throw Error("--pose-format: expected auto, keyturn, stanford, tum or matrix, got '" + n + "'");
+  throw Error("pose format '" + n + "': expected auto, keyturn, stanford, tum or matrix");
 }
 
 std::string poseFormatName(PoseFormat f) {
@@ -205,7 +205,7 @@ std::vector<PoseListEntry> readTum(const std::string& path, const std::vector<Li
     }
     std::sort(stamped.begin(), stamped.end());
     if (stamped.empty())
-      throw Error(path + ": a TUM trajectory needs its views: --views LIST, or TIMESTAMP.pcd/.ply files beside it");
+      throw MissingViewListError(path + ": a TUM trajectory needs its views: a view list, or TIMESTAMP.pcd/.ply files beside it");
   }
   std::vector<PoseListEntry> out;
   for (const auto& [t, file] : stamped) {
@@ -246,7 +246,7 @@ std::vector<PoseListEntry> readPoses(const std::string& path, const PoseReadOpti
   if (lines.empty()) throw Error(path + ": no poses listed");
   const PoseFormat f = o.format == PoseFormat::Auto ? formatOf(path, lines[0]) : o.format;
   if (!o.views.empty() && f != PoseFormat::Tum)
-    throw Error("--views: only a TUM trajectory needs a view list (" + path + " is " + poseFormatName(f) + ")");
+    throw Error(path + ": a view list is for a TUM trajectory only; this is " + poseFormatName(f));
   std::vector<PoseListEntry> out = f == PoseFormat::Stanford ? readStanford(path, lines)
                                    : f == PoseFormat::Tum    ? readTum(path, lines, o)
                                    : f == PoseFormat::Matrix ? readMatrix(path, lines)

@@ -58,7 +58,7 @@ std::string studyMarkdown(const Study& s, const std::string& input) {
   std::ostringstream md;
   const auto ov = overlapStats(s);
   md << "# Keypoint repeatability\n\n" << input << ": " << s.views.size() << " views, " << s.pairs.size() << " pairs ("
-     << o.pairs << "), mean resolution " << rounded(s.mean_resolution_m * 1000, 100) << " mm"
+     << pairRuleName(o.pairs) << "), mean resolution " << rounded(s.mean_resolution_m * 1000, 100) << " mm"
      << (o.icp ? ", ground truth refined by ICP" : "") << ". Overlap (points within " << o.overlap_radius_res
      << " × resolution of the other view): median " << rounded(ov[0] * 100, 10) << " %, " << rounded(ov[1] * 100, 10)
      << "–" << rounded(ov[2] * 100, 10) << " %.\n\n";
@@ -102,7 +102,7 @@ std::string studyJson(const Study& s, const std::string& input) {
   nlohmann::json j = {{"input", input},
                       {"views", s.views.size()},
                       {"pairs", s.pairs.size()},
-                      {"pair_rule", o.pairs},
+                      {"pair_rule", pairRuleName(o.pairs)},
                       {"resolution_mm", s.mean_resolution_m * 1000},
                       {"eps_res", o.eps_res},
                       {"icp", o.icp},

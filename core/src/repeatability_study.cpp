@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
-#include <sstream>
+#include <cstdlib>
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
@@ -16,29 +16,35 @@
 
 namespace keyturn {
 
-std::vector<double> parseEpsList(const std::string& s) {
-  std::vector<double> out;
-  if (s.find(':') != std::string::npos) {
-    std::string list = s;
-    std::replace(list.begin(), list.end(), ':', ',');
-    const std::vector<double> abc = parseNumberList(list, "--eps");
-    if (abc.size() != 3 || !(abc[2] > 0) || abc[1] < abc[0])
-      throw Error("--eps: expected START:STOP:STEP with START <= STOP and STEP > 0, got '" + s + "'");
-    for (int i = 0; abc[0] + i * abc[2] <= abc[1] + 1e-9; ++i) out.push_back(abc[0] + i * abc[2]);  // no summed rounding
-  } else {
-    out = parseNumberList(s, "--eps");
+PairRule parsePairRule(const std::string& text) {
+  PairRule r;
+  if (text == "consecutive") return r;
+  if (text == "from-first") {
+    r.kind = PairRule::Kind::FromFirst;
+    return r;
   }
-  for (double e : out)
-    if (!(e > 0) || !std::isfinite(e)) throw Error("--eps: each ε must be a positive multiple of the resolution, got '" + s + "'");
-  return out;
+  if (text.rfind("all-within:", 0) == 0) {
+    const std::string deg = text.substr(11);
+    char* end = nullptr;
+    const double v = std::strtod(deg.c_str(), &end);
+    if (deg.empty() || *end != '\0' || !std::isfinite(v) || v < 0)
+      throw Error("pair rule '" + text + "': all-within needs degrees (0 or more)");
+    r.kind = PairRule::Kind::AllWithin;
+    r.within_deg = v;
+    return r;
+  }
+  throw Error("pair rule '" + text + "': expected consecutive, from-first or all-within:DEG");
 }
 
-std::vector<Detector> parseDetectorList(const std::string& text) {
-  std::vector<Detector> out;
-  std::istringstream ss(text);
-  for (std::string t; std::getline(ss, t, ',');) out.push_back(parseDetector(t));
-  if (out.empty()) throw Error("--detectors: no detector named");
-  return out;
+std::string pairRuleName(const PairRule& r) {
+  switch (r.kind) {
+    case PairRule::Kind::Consecutive: return "consecutive";
+    case PairRule::Kind::FromFirst: return "from-first";
+    default: break;
+  }
+  char b[48];
+  std::snprintf(b, sizeof b, "all-within:%g", r.within_deg);
+  return b;
 }
 
 double rotationBetween(const StudyView& a, const StudyView& b) {
@@ -50,19 +56,7 @@ double rotationBetween(const StudyView& a, const StudyView& b) {
   return Eigen::AngleAxisd(r).angle() * 180 / M_PI;
 }
 
-std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views, const std::string& rule_text) {
-  double within = 360;
-  std::string rule = rule_text;
-  if (rule.rfind("all-within:", 0) == 0) {
-    try {
-      within = std::stod(rule.substr(11));
-    } catch (const std::exception&) {
-      throw Error("--pairs: all-within needs degrees, got '" + rule_text + "'");
-    }
-    rule = "all-within";
-  }
-  if (rule != "consecutive" && rule != "from-first" && rule != "all-within")
-    throw Error("--pairs: expected consecutive, from-first or all-within:DEG, got '" + rule_text + "'");
+std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views, const PairRule& rule) {
   std::map<std::string, std::vector<int>> groups;
   for (int i = 0; i < static_cast<int>(views.size()); ++i) groups[views[i].group].push_back(i);
   std::vector<std::pair<int, int>> pairs;
@@ -75,9 +69,10 @@ std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views
     });
     for (std::size_t i = 0; i < idx.size(); ++i)
       for (std::size_t j = i + 1; j < idx.size(); ++j) {
-        const bool take = rule == "consecutive" ? j == i + 1
-                          : rule == "from-first" ? i == 0
-                                                 : rotationBetween(views[idx[i]], views[idx[j]]) <= within;
+        const bool take = rule.kind == PairRule::Kind::Consecutive ? j == i + 1
+                          : rule.kind == PairRule::Kind::FromFirst
+                              ? i == 0
+                              : rotationBetween(views[idx[i]], views[idx[j]]) <= rule.within_deg;
         if (take) pairs.emplace_back(idx[i], idx[j]);
       }
   }
@@ -123,10 +118,16 @@ std::string percent(double f) {
 Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o, const StudyProgress& progress) {
   if (views.size() < 2) throw Error("repeatability needs at least 2 views");
   if (o.detectors.empty() || o.eps_res.empty()) throw Error("repeatability needs a detector and a value of ε");
+  for (double e : o.eps_res)
+    if (!(e > 0) || !std::isfinite(e)) {
+      std::string text;
+      appendFormat(text, "ε %g: must be a positive multiple of the resolution", e);
+      throw Error(text);
+    }
   Study st;
   st.options = o;
   const auto pairs = selectPairs(views, o.pairs);
-  if (pairs.empty()) throw Error("no view pairs under --pairs " + o.pairs);
+  if (pairs.empty()) throw Error("no view pairs under the pair rule " + pairRuleName(o.pairs));
 
   std::vector<Loaded> data(views.size());
   progress.begin("load", views.size());
@@ -156,13 +157,14 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
   const auto bare = std::count_if(overlap.begin(), overlap.end(), [&](double f) { return f < o.overlap_min; });
   if (2 * bare > static_cast<long>(pairs.size())) {
     st.mean_overlap_inverted = meanOverlap(views, data, pairs, o.overlap_radius_res, true, nullptr);
-    const std::string hint = st.mean_overlap_inverted >= 2 * o.overlap_min
-                                 ? " — inverted? the inverse gives " + percent(st.mean_overlap_inverted) + " (--invert-poses)"
-                                 : " — nor does their inverse (" + percent(st.mean_overlap_inverted) +
-                                       "): check --pose-format and the units (metres)";
+    const bool inverse_overlaps = st.mean_overlap_inverted >= 2 * o.overlap_min;
+    const std::string hint = inverse_overlaps ? " — inverted? the inverse gives " + percent(st.mean_overlap_inverted)
+                                              : " — nor does their inverse (" + percent(st.mean_overlap_inverted) +
+                                                    "): check the pose format and the units (metres)";
     if (!o.force)
-      throw Error("poses give no overlap between views (" + std::to_string(bare) + " of " + std::to_string(pairs.size()) +
-                  " pairs under " + percent(o.overlap_min) + ")" + hint + "; --force scores anyway");
+      throw NoOverlapError("poses give no overlap between views (" + std::to_string(bare) + " of " +
+                               std::to_string(pairs.size()) + " pairs under " + percent(o.overlap_min) + ")" + hint,
+                           inverse_overlaps);
   }
 
   progress.begin("detect", views.size());

@@ -9,7 +9,7 @@ std::string explainView(const std::string& file, const ViewDescriptor& d) {
   std::ostringstream e;
   char line[512];
   if (d.filter.steps.empty()) {
-    e << file << ": not filtered (--no-filter), " << d.input_points << " valid points\n";
+    e << file << ": not filtered (the filter is off), " << d.input_points << " valid points\n";
   } else {
     e << file << ": " << inputKindName(d.filter.kind) << ", " << d.input_points << " valid points\n";
     for (const auto& s : d.filter.steps) {

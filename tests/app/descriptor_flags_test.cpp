@@ -1,6 +1,8 @@
 // The command line's descriptor options: every flag's default is the library's.
 #include <gtest/gtest.h>
 
+#include <set>
+
 #include "descriptor_options.h"
 #include "keyturn/core/descriptor_parameters.h"
 
@@ -25,18 +27,36 @@ TEST(DescriptorFlags, EveryDefaultIsTheLibrarysDefault) {
   flags.add(cli);
   const DescriptorOptions library;
   for (const auto& p : descriptorParameters()) {
-    const CLI::Option* o = cli.get_option(p.flag);
-    ASSERT_NE(o, nullptr) << p.flag;
+    const std::string flag = app::descriptorFlag(p);
+    const CLI::Option* o = cli.get_option(flag);
+    ASSERT_NE(o, nullptr) << flag;
     if (p.kind != DescriptorParameter::Kind::Switch)
-      EXPECT_EQ(o->get_default_str(), p.get(library)) << p.flag << " shows another default";
+      EXPECT_EQ(o->get_default_str(), p.get(library)) << flag << " shows another default";
     else
-      EXPECT_EQ(p.get(library), "on") << p.flag << " turns off a setting that is on by default";
+      EXPECT_EQ(p.get(library), "on") << flag << " turns off a setting that is on by default";
   }
   EXPECT_EQ(cli.get_option("--features")->get_default_str(), "kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2");
   // Parsing nothing leaves the library's options, field for field.
   const DescriptorOptions none = parse({});
-  for (const auto& p : descriptorParameters()) EXPECT_EQ(p.get(none), p.get(library)) << p.flag;
+  for (const auto& p : descriptorParameters()) EXPECT_EQ(p.get(none), p.get(library)) << p.name;
   EXPECT_EQ(none.features, library.features);
+}
+
+// The flags are the CLI's spelling of the rows' names: the words of the name, or an exception.
+// Each exception names a row (a renamed row would leave a stale one), every flag is distinct,
+// and the flags are the ones scripts and docs have always used.
+TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
+  std::set<std::string> names, flags;
+  for (const auto& p : descriptorParameters()) {
+    names.insert(p.name);
+    EXPECT_TRUE(flags.insert(app::descriptorFlag(p)).second) << app::descriptorFlag(p) << " twice";
+  }
+  for (const auto& [name, flag] : app::descriptorFlagExceptions()) EXPECT_EQ(names.count(name), 1u) << name << " is no row";
+  EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--extent", "--no-filter", "--no-plane",
+                                          "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
+                                          "--graph-radius", "--samples-across", "--voxel-grid", "--voxel-points",
+                                          "--max-keypoints", "--budget-taper", "--osada-samples", "--seed",
+                                          "--low-keypoints"}));
 }
 
 TEST(DescriptorFlags, FlagsSetTheirFields) {

@@ -31,7 +31,7 @@ check "a second import leaves what is there" grep -q ": 0 views imported, 30 alr
 "$KT" evaluate "$work/wcrop" $fast --protocol kfold3,leave-elevation,leave-instance --label category --out "$work/wcrop_r"
 check "evaluate runs on the cropped import" test $? -eq 0
 check "every row is judged by category" test "$(awk -F, 'NR > 1 && $3 != "category"' "$work/wcrop_r/report.csv" | wc -l)" -eq 0
-check "the report says so" grep -q "Labels: category for kfold3, leave-elevation and leave-instance (--label category)" \
+check "the report says so" grep -q "Labels: category for kfold3, leave-elevation and leave-instance (as asked: category)" \
   "$work/wcrop_r/report.md"
 acc=$(awk -F, '$2 == "kfold3" && $4 == "kpd2" {print $8}' "$work/wcrop_r/report.csv")
 check "boxes and cylinders told apart by KPD2 ($acc)" awk -v a="$acc" 'BEGIN {exit !(a >= 0.8)}'
@@ -46,7 +46,7 @@ check "the PCD import verifies" test $? -eq 0
 check "evaluate runs on the PCD import" test $? -eq 0 -a "$(awk -F, 'NR == 2 {print $3}' "$work/wpcd_r/report.csv")" = category
 "$KT" evaluate "$work/wpcd" $fast --protocol kfold3,leave-instance --label instance --out "$work/wpcd_i"
 check "--label instance keeps leave-instance by category" \
-  grep -q "Labels: instance for kfold3, category for leave-instance (--label instance; leave-instance is always judged by category)" \
+  grep -q "Labels: instance for kfold3, category for leave-instance (as asked: instance; leave-instance is always judged by category)" \
   "$work/wpcd_i/report.md"
 "$KT" evaluate "$work/wpcd" $fast --protocol kfold3 --label colour --out "$work/wpcd_x" 2> "$work/label.err"
 check "an unknown label is refused" grep -q "label colour: expected instance or category" "$work/label.err"

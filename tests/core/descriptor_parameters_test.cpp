@@ -10,11 +10,6 @@ using namespace keyturn;
 
 namespace {
 
-const DescriptorParameter& row(const std::string& flag) {
-  for (const auto& p : descriptorParameters())
-    if (p.flag == flag) return p;
-  throw std::runtime_error("no row " + flag);
-}
 
 // A value other than the default that the row accepts.
 std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d) {
@@ -22,15 +17,15 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
     case DescriptorParameter::Kind::Switch: return p.get(d) == "on" ? "off" : "on";
     case DescriptorParameter::Kind::Choice: {
       const std::string now = p.get(d);
-      if (p.flag == "--range") return now == "fixed" ? "per-view" : "fixed";
-      if (p.flag == "--binning") return now == "hard" ? "linear" : "hard";
-      if (p.flag == "--voxel-grid") return now == "object" ? "camera" : "object";
-      if (p.flag == "--voxel-points") return now == "means" ? "thinned" : "means";
-      ADD_FAILURE() << "no other value known for " << p.flag;
+      if (p.name == "range") return now == "fixed" ? "per-view" : "fixed";
+      if (p.name == "binning") return now == "hard" ? "linear" : "hard";
+      if (p.name == "working_grid") return now == "object" ? "camera" : "object";
+      if (p.name == "working_points") return now == "means" ? "thinned" : "means";
+      ADD_FAILURE() << "no other value known for " << p.name;
       return now;
     }
     case DescriptorParameter::Kind::Integer: return std::to_string(std::stoll(p.get(d)) + 3);
-    case DescriptorParameter::Kind::Number: return p.flag == "--budget-taper" ? "0.25" : "1.25";
+    case DescriptorParameter::Kind::Number: return p.name == "budget_taper" ? "0.25" : "1.25";
   }
   return "";
 }
@@ -47,7 +42,7 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
       {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"},
       {"binning", binningName(DescriptorOptions().histogram.binning)},  {"working_grid", "object"},
       {"working_points", "means"},
-      {"budget_taper", descriptorParameter("--budget-taper").get(DescriptorOptions())}};
+      {"budget_taper", descriptorParameter("budget_taper").get(DescriptorOptions())}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
 }
 
@@ -70,27 +65,24 @@ TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
 
 TEST(DescriptorParameters, EachRowOwnsOneSettingAndRoundTrips) {
   const DescriptorOptions d;
-  std::set<std::string> keys, flags;
+  std::set<std::string> names;
   for (const auto& p : descriptorParameters()) {
-    EXPECT_TRUE(flags.insert(p.flag).second) << p.flag << " twice";
-    if (!p.key.empty()) {
-      EXPECT_TRUE(keys.insert(p.key).second) << p.key << " twice";
-    }
+    EXPECT_TRUE(names.insert(p.name).second) << p.name << " twice";
     DescriptorOptions o;
     const std::string v = otherValue(p, d);
     p.set(o, v);
-    EXPECT_EQ(p.get(o), v) << p.flag;
+    EXPECT_EQ(p.get(o), v) << p.name;
     for (const auto& q : descriptorParameters()) {
       if (&q != &p) {
-        EXPECT_EQ(q.get(o), q.get(d)) << "setting " << p.flag << " changed " << q.flag;
+        EXPECT_EQ(q.get(o), q.get(d)) << "setting " << p.name << " changed " << q.name;
       }
     }
   }
   // A spec of changed options reads back to the same options.
   DescriptorOptions o;
-  row("--bins").set(o, "48");
-  row("--no-plane").set(o, "off");
-  row("--graph-radius").set(o, "4.5");
+  descriptorParameter("bins").set(o, "48");
+  descriptorParameter("plane_removal").set(o, "off");
+  descriptorParameter("graph_radius").set(o, "4.5");
   const DescriptorOptions back = optionsFromParameterSpec(parameterSpec(o), "x");
   EXPECT_EQ(back.histogram.bins, 48);
   EXPECT_FALSE(back.filter_options.remove_plane);
@@ -100,49 +92,49 @@ TEST(DescriptorParameters, EachRowOwnsOneSettingAndRoundTrips) {
 
 TEST(DescriptorParameters, FieldsTheRowsStandFor) {
   DescriptorOptions o;
-  row("--jump-edge-angle").set(o, "0");
+  descriptorParameter("jump_edge_deg").set(o, "0");
   EXPECT_FALSE(o.filter_options.jump_edge);
-  row("--jump-edge-angle").set(o, "12.5");
+  descriptorParameter("jump_edge_deg").set(o, "12.5");
   EXPECT_TRUE(o.filter_options.jump_edge);
   EXPECT_FLOAT_EQ(o.filter_options.jump_edge_angle_deg, 12.5f);
-  row("--max-range").set(o, "2.5");
+  descriptorParameter("max_range_m").set(o, "2.5");
   EXPECT_FLOAT_EQ(o.filter_options.max_range, 2.5f);
-  row("--iss-frame").set(o, "7");
-  row("--iss-nms").set(o, "5");
-  row("--iss-density").set(o, "3");
+  descriptorParameter("iss_frame").set(o, "7");
+  descriptorParameter("iss_nms").set(o, "5");
+  descriptorParameter("iss_density").set(o, "3");
   EXPECT_DOUBLE_EQ(o.iss.frame_radius, 7);
   EXPECT_DOUBLE_EQ(o.iss.nms_radius, 5);
   EXPECT_DOUBLE_EQ(o.iss.density_radius, 3);
-  row("--range").set(o, "per-view");
+  descriptorParameter("range").set(o, "per-view");
   EXPECT_EQ(o.histogram.mode, RangeMode::PerView);
-  row("--seed").set(o, "18446744073709551615");
+  descriptorParameter("seed").set(o, "18446744073709551615");
   EXPECT_EQ(o.osada.seed, 18446744073709551615ull);
-  row("--low-keypoints").set(o, "4");
+  descriptorParameter("low_keypoints").set(o, "4");
   EXPECT_EQ(o.low_keypoints, 4);
   EXPECT_EQ(parameterSpec(o).count("low_keypoints"), 0u) << "the warning threshold does not change the features";
 }
 
 TEST(DescriptorParameters, BadValuesNameTheReason) {
   DescriptorOptions o;
-  const auto reason = [&](const std::string& flag, const std::string& v) {
+  const auto reason = [&](const std::string& name, const std::string& v) {
     try {
-      row(flag).set(o, v);
+      descriptorParameter(name).set(o, v);
     } catch (const Error& e) {
       return std::string(e.what());
     }
     return std::string("accepted");
   };
-  EXPECT_EQ(reason("--bins", "1"), "must be within 2..4096, not '1'");
-  EXPECT_EQ(reason("--bins", "3x"), "is not a whole number: '3x'");
-  EXPECT_EQ(reason("--iss-nms", "0"), "must be positive, not '0'");
-  EXPECT_EQ(reason("--iss-nms", "four"), "is not a number: 'four'");
-  EXPECT_EQ(reason("--extent", "-1"), "must be positive, not '-1'");
-  EXPECT_EQ(reason("--range", "log"), "must be fixed or per-view, not 'log'");
-  EXPECT_EQ(reason("--voxel-grid", "world"), "must be object or camera, not 'world'");
-  EXPECT_EQ(reason("--binning", "soft"), "must be hard or linear, not 'soft'");
-  EXPECT_EQ(reason("--no-filter", "maybe"), "must be on or off, not 'maybe'");
-  EXPECT_EQ(reason("--seed", "-1"), "is not a whole number: '-1'");
-  EXPECT_EQ(reason("--jump-edge-angle", "-5"), "must be 0 (off) or positive, not '-5'");
+  EXPECT_EQ(reason("bins", "1"), "must be within 2..4096, not '1'");
+  EXPECT_EQ(reason("bins", "3x"), "is not a whole number: '3x'");
+  EXPECT_EQ(reason("iss_nms", "0"), "must be positive, not '0'");
+  EXPECT_EQ(reason("iss_nms", "four"), "is not a number: 'four'");
+  EXPECT_EQ(reason("extent_m", "-1"), "must be positive, not '-1'");
+  EXPECT_EQ(reason("range", "log"), "must be fixed or per-view, not 'log'");
+  EXPECT_EQ(reason("working_grid", "world"), "must be object or camera, not 'world'");
+  EXPECT_EQ(reason("binning", "soft"), "must be hard or linear, not 'soft'");
+  EXPECT_EQ(reason("filter", "maybe"), "must be on or off, not 'maybe'");
+  EXPECT_EQ(reason("seed", "-1"), "is not a whole number: '-1'");
+  EXPECT_EQ(reason("jump_edge_deg", "-5"), "must be 0 (off) or positive, not '-5'");
   EXPECT_EQ(o.histogram.bins, 32) << "a refused value leaves the field alone";
 
   auto spec = parameterSpec(DescriptorOptions());

@@ -173,13 +173,31 @@ TEST(Repeatability, AnEqualBudgetGivesEachDetectorExactlyK) {
   EXPECT_EQ(sorted, budget);
 }
 
-TEST(Repeatability, EpsListsAreRangesOrListsOfPositiveMultiples) {
-  EXPECT_EQ(parseEpsList("1:3:0.5"), (std::vector<double>{1, 1.5, 2, 2.5, 3}));
-  // 0.1 added ten times is not 1.0: the range is START + i·STEP, so its end is kept.
-  EXPECT_EQ(parseEpsList("0.1:1:0.1").size(), 10u);
-  EXPECT_EQ(parseEpsList("0.5,2"), (std::vector<double>{0.5, 2}));
-  EXPECT_EQ(errorOf([] { parseEpsList("1:x:1"); }), "--eps: 'x' is not a number");
-  EXPECT_EQ(errorOf([] { parseEpsList("1.5x"); }), "--eps: '1.5x' is not a number");
-  EXPECT_EQ(errorOf([] { parseEpsList("3:1:1"); }), "--eps: expected START:STOP:STEP with START <= STOP and STEP > 0, got '3:1:1'");
-  EXPECT_EQ(errorOf([] { parseEpsList("-1,2"); }), "--eps: each ε must be a positive multiple of the resolution, got '-1,2'");
+TEST(Repeatability, PairRulesReadAndWriteTheirText) {
+  EXPECT_EQ(parsePairRule("consecutive").kind, PairRule::Kind::Consecutive);
+  EXPECT_EQ(parsePairRule("from-first").kind, PairRule::Kind::FromFirst);
+  const PairRule within = parsePairRule("all-within:45");
+  EXPECT_EQ(within.kind, PairRule::Kind::AllWithin);
+  EXPECT_EQ(within.within_deg, 45);
+  for (const char* t : {"consecutive", "from-first", "all-within:45", "all-within:22.5"})
+    EXPECT_EQ(pairRuleName(parsePairRule(t)), t);
+  // Errors name the rule as given, never an option of a front end.
+  EXPECT_EQ(errorOf([] { parsePairRule("x"); }), "pair rule 'x': expected consecutive, from-first or all-within:DEG");
+  EXPECT_EQ(errorOf([] { parsePairRule("all-within:ten"); }), "pair rule 'all-within:ten': all-within needs degrees (0 or more)");
+  EXPECT_EQ(errorOf([] { parsePairRule("all-within:-5"); }), "pair rule 'all-within:-5': all-within needs degrees (0 or more)");
+  // Each rule's pairs among four views 30° apart, given out of order.
+  std::vector<StudyView> v(4);
+  for (int i = 0; i < 4; ++i) v[i] = StudyView{"v" + std::to_string(i), "g", 30.0 * ((i + 2) % 4)};  // 60, 90, 0, 30
+  using P = std::vector<std::pair<int, int>>;
+  EXPECT_EQ(selectPairs(v, parsePairRule("consecutive")), (P{{2, 3}, {3, 0}, {0, 1}}));
+  EXPECT_EQ(selectPairs(v, parsePairRule("from-first")), (P{{2, 3}, {2, 0}, {2, 1}}));
+  EXPECT_EQ(selectPairs(v, parsePairRule("all-within:60")).size(), 5u);  // all but 0° with 90°
+}
+
+TEST(Repeatability, EachEpsMustBeAPositiveMultipleOfTheResolution) {
+  StudyOptions o;
+  o.eps_res = {1, -0.5};
+  // Checked before any view is read (these files do not exist).
+  EXPECT_EQ(errorOf([&] { runRepeatabilityStudy({StudyView{"a.pcd", "g"}, StudyView{"b.pcd", "g"}}, o); }),
+            "ε -0.5: must be a positive multiple of the resolution");
 }

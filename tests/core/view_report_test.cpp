@@ -70,7 +70,7 @@ TEST(ViewReport, ExplanationNamesTheInputAndTheResult) {
   o.filter = false;
   const ViewDescriptor d = cube(o);
   const std::string e = explainView("cube.pcd", d);
-  EXPECT_EQ(e.rfind("cube.pcd: not filtered (--no-filter), " + std::to_string(d.input_points) + " valid points\n", 0), 0u) << e;
+  EXPECT_EQ(e.rfind("cube.pcd: not filtered (the filter is off), " + std::to_string(d.input_points) + " valid points\n", 0), 0u) << e;
   EXPECT_NE(e.find("K = " + std::to_string(d.keypointCount()) + " keypoints\n"), std::string::npos) << e;
 }
 

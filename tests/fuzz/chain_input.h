@@ -180,9 +180,9 @@ inline Cloud decodeCloud(Bytes& in, bool organized) {
 // stays short: Osada samples, bins and the radii (× resolution) a neighbourhood table grows with.
 inline std::string parameterValue(Bytes& in, const DescriptorParameter& p) {
   const std::uint8_t b = in.u8();
-  if (p.key == "osada_samples") return std::to_string(1 + in.u16() % 2000);
-  if (p.key == "bins") return std::to_string(b % 5 == 0 ? 4096 : 1 + in.u16() % 300);
-  if (p.key == "iss_frame" || p.key == "iss_nms" || p.key == "iss_density" || p.key == "graph_radius")
+  if (p.name == "osada_samples") return std::to_string(1 + in.u16() % 2000);
+  if (p.name == "bins") return std::to_string(b % 5 == 0 ? 4096 : 1 + in.u16() % 300);
+  if (p.name == "iss_frame" || p.name == "iss_nms" || p.name == "iss_density" || p.name == "graph_radius")
     return std::to_string(std::abs(in.power(-6, 1.5)));
   switch (p.kind) {
     case DescriptorParameter::Kind::Switch: return b & 1 ? "on" : "off";

@@ -231,8 +231,8 @@ TEST(EvaluationParts, ShardsMergeIntoTheSingleRunsReport) {
             (out / "parts").string() + ": complete sets of 1 and 3 parts; remove the stale one");
   fs::remove_all(out);
   EXPECT_EQ(errorOf([&] { mergeEvaluationParts(merged, out.string()); }),
-            (out / "parts").string() + ": no evaluation parts (run evaluate --shard I/N first)");
-  EXPECT_EQ(errorOf([&] { foldJobs(merged, 3, 3); }), "--shard 4/3: expected I/N with 1 <= I <= N");
+            (out / "parts").string() + ": no evaluation parts (part-I-of-N.json: the shards of the evaluation run first)");
+  EXPECT_EQ(errorOf([&] { foldJobs(merged, 3, 3); }), "shard 4 of 3: expected 1 <= shard <= shards");
 }
 
 TEST(ModelTraining, AModelClassifiesItsOwnViewsAndRefusesOtherFeatures) {
@@ -277,6 +277,6 @@ TEST(Consistency, ZeroForAnUnchangedViewAndGrowingWithTheChange) {
   EXPECT_EQ(r.plots.curves[0].file, "consistency_e30.png");
   EXPECT_EQ(r.plots.curves[0].series[0].y.size(), 12u);
   EXPECT_EQ(errorOf([&] { consistency(t, {"cup/z", "", {"kpd2"}}, "cups"); }), "cups: no views of cup/z");
-  EXPECT_EQ(errorOf([&] { objectParts("cup"); }), "--object cup: expected CLASS/INSTANCE");
+  EXPECT_EQ(errorOf([&] { objectParts("cup"); }), "object cup: expected CLASS/INSTANCE");
   EXPECT_EQ(errorOf([&] { consistency(t, {"cup/a", "", {"d2"}}, "cups"); }), "the feature cache has no 'd2' block");
 }

@@ -11,15 +11,8 @@ namespace {
 
 using Kind = DescriptorParameter::Kind;
 
-// A row's Python name: its specification key, or for a row without one its flag's words
-// (--low-keypoints → low_keypoints).
-std::string pythonName(const DescriptorParameter& p) {
-  if (!p.key.empty()) return p.key;
-  std::string n = p.flag.substr(p.flag.find_first_not_of('-'));
-  for (char& c : n)
-    if (c == '-') c = '_';
-  return n;
-}
+// A row's Python keyword: its name.
+const std::string& pythonName(const DescriptorParameter& p) { return p.name; }
 
 const char* typeName(Kind k) {
   switch (k) {
@@ -121,14 +114,13 @@ void bindParameters(py::module_& m) {
           py::dict row;
           row["default"] = defaultValue(p);
           row["help"] = (p.kind == Kind::Switch ? "False: " : "") + p.help;
-          row["flag"] = p.flag;
-          row["spec_key"] = p.key.empty() ? py::object(py::none()) : py::object(py::str(p.key));
+          row["spec_key"] = p.in_spec ? py::object(py::str(p.name)) : py::object(py::none());
           d[py::str(pythonName(p))] = row;
         }
         return d;
       },
-      "The descriptor's parameters (describe's and Dataset.features' keyword arguments): name → default, help, the "
-      "command line's flag and the feature-specification key. The library's own table and defaults.");
+      "The descriptor's parameters (describe's and Dataset.features' keyword arguments): name → default, help and "
+      "the feature-specification key. The library's own table and defaults.");
 }
 
 }  // namespace keyturn::python

@@ -45,7 +45,7 @@ double num(const json& row, const char* key) {
 
 std::string scalingTable(const json& out) {
   std::string t;
-  appendFormat(t, "keyturn bench --scaling %s: %u × %u%s, %zu valid points; its object (cut by the filter): %zu points\n",
+  appendFormat(t, "%s: %u × %u%s, %zu valid points; its object (cut by the filter): %zu points\n",
               out["source"].get<std::string>().c_str(), out["width"].get<unsigned>(), out["height"].get<unsigned>(),
               out["organized"].get<bool>() ? " organized" : " unorganized", out["valid_points"].get<std::size_t>(),
               out["object_points"].get<std::size_t>());

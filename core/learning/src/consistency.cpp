@@ -35,7 +35,7 @@ std::vector<double> pdfOf(const FeatureTable& t, const FeatureRow& r, const std:
 
 std::pair<std::string, std::string> objectParts(const std::string& object) {
   const auto slash = object.find('/');
-  if (slash == std::string::npos) throw Error("--object " + object + ": expected CLASS/INSTANCE");
+  if (slash == std::string::npos) throw Error("object " + object + ": expected CLASS/INSTANCE");
   return {object.substr(0, slash), object.substr(slash + 1)};
 }
 

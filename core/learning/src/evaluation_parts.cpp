@@ -179,7 +179,7 @@ int mergeEvaluationParts(EvaluationRun& run, const std::string& out) {
     if (std::regex_match(name, m, part_re) && m[1].length() < 9 && m[2].length() < 9)
       sets[std::stoi(m[2])][std::stoi(m[1]) - 1] = e.path().string();
   }
-  if (sets.empty()) throw Error(dir.string() + ": no evaluation parts (run evaluate --shard I/N first)");
+  if (sets.empty()) throw Error(dir.string() + ": no evaluation parts (part-I-of-N.json: the shards of the evaluation run first)");
   std::vector<int> complete;
   for (const auto& [n, files] : sets) {
     bool all = n > 0 && static_cast<int>(files.size()) == n;

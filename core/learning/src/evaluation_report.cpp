@@ -51,7 +51,7 @@ std::string labelsInWords(const EvaluationRun& run) {
     for (std::size_t i = 0; i < names.size(); ++i) out += (i == 0 ? "" : i + 1 == names.size() ? " and " : ", ") + names[i];
   }
   if (run.plan.label)
-    out += std::string(" (--label ") + (*run.plan.label == LabelKind::Category ? "category" : "instance") +
+    out += std::string(" (as asked: ") + (*run.plan.label == LabelKind::Category ? "category" : "instance") +
            (*run.plan.label == LabelKind::Instance && std::count(run.plan.protocols.begin(), run.plan.protocols.end(),
                                                                   std::string("leave-instance"))
                 ? "; leave-instance is always judged by category"
@@ -152,7 +152,7 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
   const auto start = Clock::now();
   if (plan.feature_sets.empty() || plan.classifiers.empty() || plan.protocols.empty() || plan.bins.empty())
     throw Error("evaluate needs at least one feature set, classifier and protocol");
-  if (!plan.train_extra.empty() && !describe_extra) throw Error("evaluate: no way to describe the --train-extra datasets");
+  if (!plan.train_extra.empty() && !describe_extra) throw Error("evaluate: no way to describe the extra training datasets");
   for (const auto& c : plan.classifiers) makeClassifier(paramsOf(plan, c));  // unknown names fail before any work
   EvaluationRun run;
   run.plan = plan;
@@ -193,8 +193,8 @@ EvaluationRun prepareEvaluation(const EvaluationPlan& plan, const std::function<
 
 std::vector<FoldJob> foldJobs(const EvaluationRun& run, int shard, int shards) {
   if (shards < 1 || shard < 0 || shard >= shards)
-    throw Error("--shard " + std::to_string(shard + 1) + "/" + std::to_string(shards) +
-                ": expected I/N with 1 <= I <= N");
+    throw Error("shard " + std::to_string(shard + 1) + " of " + std::to_string(shards) +
+                ": expected 1 <= shard <= shards");
   std::vector<FoldJob> jobs;
   std::size_t j = 0;
   for (std::size_t r = 0; r < run.rows.size(); ++r)

@@ -231,19 +231,10 @@ std::vector<FeatureRow> describeViews(const std::vector<LabelledView>& views, co
   return describeSome(views, all, options, layout, jobs, progress);
 }
 
-std::pair<int, int> parseShard(const std::string& text) {
-  int shard = 0, shards = 1;
-  char slash = 0;
-  std::istringstream in(text);
-  if (!(in >> shard >> slash >> shards) || slash != '/' || !in.eof())
-    throw Error("--shard " + text + ": expected I/N, e.g. 3/16");
-  return {shard - 1, shards};
-}
-
 std::string describeCacheShard(const FeatureCache& c, int shard, int shards) {
   if (shards < 1 || shard < 0 || shard >= shards)
-    throw Error("--shard " + std::to_string(shard + 1) + "/" + std::to_string(shards) +
-                ": expected I/N with 1 <= I <= N");
+    throw Error("shard " + std::to_string(shard + 1) + " of " + std::to_string(shards) +
+                ": expected 1 <= shard <= shards");
   std::vector<std::size_t> mine;
   for (std::size_t i = 0; i < c.views.size(); ++i)
     if (static_cast<int>(i % static_cast<std::size_t>(shards)) == shard) mine.push_back(i);

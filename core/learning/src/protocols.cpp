@@ -13,7 +13,7 @@ namespace keyturn::learning {
 LabelKind parseLabelKind(const std::string& name) {
   if (name == "instance") return LabelKind::Instance;
   if (name == "category") return LabelKind::Category;
-  throw Error("--label " + name + ": expected instance or category");
+  throw Error("label " + name + ": expected instance or category");
 }
 
 Labels labelRows(const FeatureTable& t, LabelKind kind) {

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/core/error.h"
 
 namespace keyturn {
 
@@ -48,9 +49,15 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
                         const DepthIntrinsics& intrinsics, double depth_scale,
                         const std::vector<std::uint8_t>& mask = {}, CropOffset crop = {});
 
+// A depth image read without the camera's intrinsics: a front end may say how its user gives them.
+class MissingIntrinsicsError : public Error {
+ public:
+  using Error::Error;
+};
+
 // Reads a 16-bit single-channel PNG (and its mask and crop offset) as an organized cloud. Every
-// failure (no intrinsics, 8-bit or colour image, empty or corrupt file, mask of another size)
-// throws keyturn::Error naming the file.
+// failure (no intrinsics: MissingIntrinsicsError; 8-bit or colour image, empty or corrupt file,
+// mask of another size) throws keyturn::Error naming the file.
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& options);
 
 // A 16-bit single-channel PNG of exactly width × height, row-major (a frame's raw distance,

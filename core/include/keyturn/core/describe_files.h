@@ -18,6 +18,10 @@ struct DescribeFilesOptions {
   bool warn_low = true;    // a warning per view with fewer than descriptor.low_keypoints keypoints
   int jobs = 0;            // parallel files (0: all cores)
   std::string prefix;      // put before every one-line message (the command's name)
+  // A front end's own remedies, in its words (core names none of its options): put in brackets
+  // after a flagged filter step's warning and the error of a view the filter emptied (how to see
+  // each step), and after the error of a depth image without intrinsics (how to give them).
+  std::string explain_hint, intrinsics_hint;
 };
 
 struct DescribedFiles {

@@ -11,4 +11,10 @@ class EmptyViewError : public Error {
   using Error::Error;
 };
 
+// The filter left fewer than three points: each step's effect (explainView) says which removed them.
+class FilteredAwayError : public EmptyViewError {
+ public:
+  using EmptyViewError::EmptyViewError;
+};
+
 }  // namespace keyturn

@@ -6,13 +6,15 @@
 //   stanford .conf of `camera tx ty tz qx qy qz qw` (the viewer's camera, ignored) and
 //            `bmesh VIEW_FILE tx ty tz qx qy qz qw` lines           common = R(q)ᵀ p + t
 //   tum      `timestamp tx ty tz qx qy qz qw` (camera to world)     common = R(q) p + t,
-//            views matched by a --views list or by file names that are timestamps
+//            views matched by a view list or by file names that are timestamps
 //   matrix   VIEW_FILE m00 m01 … m33 (row-major 4 × 4)             common = M · [p 1]
 // (metres; unit quaternions, w last.) '#' lines and blank lines are skipped;
 // relative paths are relative to the file that names them.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
+
+#include "keyturn/core/error.h"
 
 namespace keyturn {
 
@@ -36,6 +38,13 @@ struct PoseReadOptions {
 
 // The format a pose file's name and first pose line show; throws keyturn::Error when they show none.
 PoseFormat detectPoseFormat(const std::string& path);
+
+// A TUM trajectory whose views are neither listed (PoseReadOptions::views) nor found by their
+// timestamps: a front end may say how its user lists them.
+class MissingViewListError : public Error {
+ public:
+  using Error::Error;
+};
 
 // Throws keyturn::Error naming the file and line of the first bad line and what was wrong.
 std::vector<PoseListEntry> readPoses(const std::string& path, const PoseReadOptions& options = PoseReadOptions());

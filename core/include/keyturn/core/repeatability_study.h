@@ -15,6 +15,7 @@
 #include "keyturn/core/report_plots.h"
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/depth_image.h"
+#include "keyturn/core/error.h"
 #include "keyturn/core/keypoint_detectors.h"
 #include "keyturn/core/repeatability.h"
 #include "keyturn/core/working_resolution.h"
@@ -27,10 +28,19 @@ struct StudyView {
   Eigen::Matrix4d view_from_common = Eigen::Matrix4d::Identity();  // this view's camera ← the common frame
 };
 
+// Which views of a group are compared: each with the next by angle, each with the first, or
+// every two within a rotation. Written as text in reports: consecutive, from-first, all-within:DEG.
+struct PairRule {
+  enum class Kind { Consecutive, FromFirst, AllWithin } kind = Kind::Consecutive;
+  double within_deg = 360;  // AllWithin's largest rotation between the two views
+};
+PairRule parsePairRule(const std::string& text);  // throws keyturn::Error naming the text
+std::string pairRuleName(const PairRule& rule);   // parsePairRule's text ("all-within:45")
+
 struct StudyOptions {
   std::vector<Detector> detectors{Detector::Iss, Detector::Harris3d, Detector::Sift3d, Detector::Uniform};
   std::vector<double> eps_res{0.5, 1, 1.5, 2, 2.5, 3};  // ε in multiples of the resolution
-  std::string pairs = "consecutive";     // consecutive, from-first, all-within:DEG
+  PairRule pairs;
   DetectorOptions detector;             // each detector's scales (ISS's also set the budget K)
   bool icp = false;
   bool filter = true;                    // the describe filter before detection
@@ -42,11 +52,8 @@ struct StudyOptions {
   WorkingResolutionOptions working;      // the working resolution iss-chain detects on (describe's)
 };
 
-std::vector<double> parseEpsList(const std::string& text);  // START:STOP:STEP or a comma list; throws keyturn::Error
-std::vector<Detector> parseDetectorList(const std::string& text);
-
 // Index pairs (model, scene) within each group; datasets' views sorted by angle.
-std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views, const std::string& rule);
+std::vector<std::pair<int, int>> selectPairs(const std::vector<StudyView>& views, const PairRule& rule);
 double rotationBetween(const StudyView& a, const StudyView& b);  // degrees
 
 struct PairScore {
@@ -78,9 +85,16 @@ struct StudyProgress {
   std::function<void()> end = [] {};
 };
 
-// Loads every view, checks the overlap, detects and scores. Throws keyturn::Error with
-// one line when most pairs have almost no overlap (naming what the inverted poses give),
-// unless options.force.
+// Most pairs have almost no overlap under the poses: the message says how many and what the
+// inverted poses give; the fields let a front end name its own remedies.
+class NoOverlapError : public Error {
+ public:
+  NoOverlapError(const std::string& message, bool inverse_overlaps) : Error(message), inverse_overlaps(inverse_overlaps) {}
+  bool inverse_overlaps;  // the inverted poses do make the views overlap
+};
+
+// Loads every view, checks the overlap, detects and scores. Throws NoOverlapError when most
+// pairs have almost no overlap, unless options.force; keyturn::Error for a bad view or option.
 Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& options,
                             const StudyProgress& progress = StudyProgress());
 

@@ -31,7 +31,8 @@ std::vector<std::size_t> defaultScalingSizes();
 // Every row is timed even when one fails. Throws keyturn::Error when no size fits the input.
 nlohmann::json runScaling(const ScalingArgs& args, const DescriptorOptions& options);
 
-// The table `keyturn bench --scaling` prints.
+// The table `keyturn bench --scaling` prints; its first line begins with the source's name (the
+// CLI puts its command before it).
 std::string scalingTable(const nlohmann::json& scaling);
 // Its log-log plot of time against size, to be drawn into file (ui/report_plots.h).
 CurvePlot scalingPlot(const nlohmann::json& scaling, const std::string& file);

@@ -25,7 +25,7 @@ struct ConsistencyReport {
   ReportPlots plots;  // consistency_eLABEL.png: one curve per block
 };
 
-// "CLASS/INSTANCE" → {CLASS, INSTANCE}; throws keyturn::Error naming --object otherwise.
+// "CLASS/INSTANCE" → {CLASS, INSTANCE}; throws keyturn::Error naming the object otherwise.
 std::pair<std::string, std::string> objectParts(const std::string& object);
 
 // Throws keyturn::Error for a bad object name, a view name without its angle (…/aANGLE), a block

@@ -4,7 +4,7 @@
 // keypoint functions, the same on random keypoints (u_*), Osada's D2/D3/A3, the
 // length functions in RMS radii (s_*), the size block and the peers ESF, VFH and OUR-CVFH — kept in DATASET/.keyturn/features-<hash>.csv,
 // the hash being of the feature specification (feature_spec.h). Shards (views
-// i ≡ I−1 mod N for --shard I/N) are written beside it and merged when all are present.
+// i ≡ I−1 mod N for shard I of N) are written beside it and merged when all are present.
 #include <cstddef>
 #include <string>
 #include <utility>
@@ -65,9 +65,6 @@ struct FeatureCache {
   int jobs = 0;
   DescribeProgress* progress = nullptr;
 };
-
-// "I/N" (I counts from 1, as array jobs do) → {I - 1, N}. Throws keyturn::Error naming --shard.
-std::pair<int, int> parseShard(const std::string& text);
 
 // Describes the shard's views (i % shards == shard) into their shard file; returns its path.
 std::string describeCacheShard(const FeatureCache& cache, int shard, int shards);

@@ -1,6 +1,7 @@
 #pragma once
 // keyturn slurm (docs/slurm.md): a dataset's describe and evaluate as Slurm array jobs, written
-// as sbatch files and one submit.sh that chains them with --dependency=afterok:
+// as sbatch files and one submit.sh that chains them with --dependency=afterok. The scripts are
+// keyturn command lines, the CLI's own syntax, so they are written here in app/:
 //   describe.sbatch        array 1-N: describe DATASET --shard I/N (the cache's shards)
 //   merge-features.sbatch  one task: describe DATASET --cache (merges them; one writer)
 //   evaluate.sbatch        array 1-N: evaluate … --shard I/N (with an evaluation)
@@ -9,7 +10,7 @@
 #include <utility>
 #include <vector>
 
-namespace keyturn::learning {
+namespace keyturn::app {
 
 struct SlurmPlan {
   std::string keyturn;          // the program the jobs run (absolute)
@@ -29,4 +30,4 @@ std::vector<std::pair<std::string, std::string>> slurmScripts(const SlurmPlan& p
 // 'text' quoted for POSIX sh.
 std::string shellQuote(const std::string& text);
 
-}  // namespace keyturn::learning
+}  // namespace keyturn::app

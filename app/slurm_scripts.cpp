@@ -1,10 +1,10 @@
-#include "keyturn/learning/slurm_scripts.h"
+#include "slurm_scripts.h"
 
 #include <sstream>
 
 #include "keyturn/core/error.h"
 
-namespace keyturn::learning {
+namespace keyturn::app {
 namespace {
 
 // Options the stages set themselves; given in --evaluate they would fight them.
@@ -86,4 +86,4 @@ std::vector<std::pair<std::string, std::string>> slurmScripts(const SlurmPlan& p
   return files;
 }
 
-}  // namespace keyturn::learning
+}  // namespace keyturn::app
