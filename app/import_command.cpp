@@ -1,11 +1,12 @@
 // keyturn import FORMAT SRC --out DATASET: another tool's dataset (Washington RGB-D, labelled folders,
-// BigBIRD) as a keyturn dataset (rig/dataset_import.h does the work). Files it cannot use are listed one
+// BigBIRD) as a keyturn dataset (core/dataset: dataset_import.h does the work). Files it cannot use are listed one
 // a line; the rest is imported.
 #include <iostream>
 #include <memory>
 
 #include "commands.h"
 #include "depth_image_options.h"
+#include "keyturn/core/error.h"
 #include "keyturn/dataset/dataset_import.h"
 #include "progress.h"
 
@@ -20,6 +21,8 @@ struct ImportArgs {
 
 int runImport(ImportArgs a) {
   a.options.depth = a.depth.toOptions();
+  if (!a.options.categories.empty() && a.options.format != "bigbird")  // said in the flag's words before the library's
+    throw Error("--categories is for bigbird (" + a.options.format + " names each view's class by its folder)");
   std::unique_ptr<Progress> bar;
   a.options.progress = [&](std::size_t done, std::size_t total) {
     if (!bar) bar = std::make_unique<Progress>("import", total, !a.quiet && total > 1);

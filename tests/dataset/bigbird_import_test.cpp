@@ -140,7 +140,7 @@ TEST(BigbirdImport, CategoriesGiveTheClassAndAnObjectNotListedIsOneLine) {
   EXPECT_EQ(r.imported, 1u);
   ASSERT_EQ(r.problems.size(), 1u);
   EXPECT_EQ(r.problems[0], (d / "src" / "cup_2").string() + ": not in " + (d / "categories.csv").string() +
-                               " (--categories: no class for instance cup_2) (1 view of cup_2 not imported)");
+                               " (no class for instance cup_2) (1 view of cup_2 not imported)");
   EXPECT_TRUE(fs::exists(d / "ds/mug/mug_7/eNP2/a0.0.pcd"));
 }
 

@@ -200,7 +200,7 @@ ImportPlan planBigbirdImport(const std::string& source, const std::string& categ
                               object + " not imported)";
     const auto listed = classes.find(object);
     if (!categories.empty() && listed == classes.end()) {
-      plan.problems.push_back(folder + ": not in " + categories + " (--categories: no class for instance " + object + ")" + views);
+      plan.problems.push_back(folder + ": not in " + categories + " (no class for instance " + object + ")" + views);
       continue;
     }
     if (o.calibration.empty()) {

@@ -7,6 +7,7 @@
 #include <tuple>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
 
 namespace fs = std::filesystem;
@@ -46,7 +47,7 @@ ImportReport importDataset(const ImportOptions& o) {
   DepthImageOptions depth = o.depth;
   std::string importer = "keyturn import " + o.format;
   if (!o.categories.empty() && o.format != "bigbird")
-    throw Error("--categories is for bigbird (" + o.format + " names each view's class by its folder)");
+    throw Error("a categories file is for bigbird (" + o.format + " names each view's class by its folder)");
   if (o.format == "washington") {
     plan = planWashingtonImport(o.source);
     if (!depth.intrinsics) depth.intrinsics = washingtonIntrinsics();
@@ -65,7 +66,7 @@ ImportReport importDataset(const ImportOptions& o) {
   if (!depth.intrinsics)
     for (const auto& v : plan.views)
       if (isPng(v.file))
-        throw Error(v.file + ": depth images need the camera's intrinsics (--camera FILE, or --fx --fy --cx --cy)");
+        throw MissingIntrinsicsError(v.file + ": depth images need the camera's intrinsics");
   std::sort(plan.views.begin(), plan.views.end(), [](const ImportedView& a, const ImportedView& b) {
     return std::tie(a.key.cls, a.key.instance, a.key.elevation, a.key.commanded_deg) <
            std::tie(b.key.cls, b.key.instance, b.key.elevation, b.key.commanded_deg);

@@ -19,12 +19,12 @@ std::vector<StudyView> studyViews(const std::string& input, const PoseReadOption
     return out;
   }
   if (poses.format != PoseFormat::Auto || !poses.views.empty())
-    throw Error(input + ": a dataset's poses come from its sidecars; --pose-format and --views are for pose files");
+    throw Error(input + ": a dataset's poses come from its sidecars; a pose format and a view list are for pose files");
   for (const auto& r : Dataset::readManifest(input)) {
     const auto T = readViewTransform(input + "/" + r.sidecar());
     if (!T)
       throw Error(input + ": " + r.sidecar() +
-                  " has no camera_from_turntable: capture with --calibration (keyturn calibrate-axis), or give a pose list");
+                  " has no camera_from_turntable: capture with an axis calibration (keyturn calibrate-axis), or give a pose list");
     // The sidecar's camera ← turntable at this view's angle maps the object's own
     // (table-fixed) coordinates into this camera: the object frame is the common frame.
     StudyView v{input + "/" + r.pcd(), r.key.cls + "/" + r.key.instance + "/e" + r.key.elevation, r.measured_deg, *T};
