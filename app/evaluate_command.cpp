@@ -16,9 +16,9 @@
 #include "keyturn/learning/evaluation_parts.h"
 #include "keyturn/learning/evaluation_report.h"
 #include "keyturn/learning/feature_cache.h"
-#include "keyturn/plots/report_plots.h"
 #include "learning_options.h"
 #include "progress.h"
+#include "report_files.h"
 
 namespace keyturn::app {
 namespace {
@@ -115,11 +115,7 @@ int runEvaluate(const EvaluateArgs& a) {
   }
 
   const learning::EvaluationReport report = learning::evaluationReport(run);
-  std::filesystem::create_directories(out);
-  writeFileDurably((out / "report.csv").string(), report.csv);
-  writeFileDurably((out / "report.json").string(), report.json);
-  plots::saveReportPlots(report.plots, a.out);
-  writeFileDurably((out / "report.md").string(), report.markdown);
+  writeReportFiles(a.out, report);
   if (a.json) std::cout << report.json;
   if (!a.quiet)
     std::cerr << "keyturn evaluate: " << run.rows.size() << " rows in " << formatDuration(run.total_s) << " → "

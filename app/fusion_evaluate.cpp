@@ -14,7 +14,7 @@
 #include "keyturn/core/string_format.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/dataset/view_poses.h"
-#include "keyturn/plots/report_plots.h"
+#include "report_files.h"
 
 namespace keyturn::app {
 
@@ -87,11 +87,7 @@ int runFusionEvaluate(const FusionEvaluateArgs& a) {
   }
   const learning::FusionReport report = learning::fusionReport(results, a.dataset, a.features, a.classifier, options);
   const std::filesystem::path out(a.out);
-  std::filesystem::create_directories(out);
-  writeFileDurably((out / "report.csv").string(), report.csv);
-  writeFileDurably((out / "report.json").string(), report.json);
-  plots::saveReportPlots(report.plots, a.out);
-  writeFileDurably((out / "report.md").string(), report.markdown);
+  writeReportFiles(a.out, report);
   if (a.json) std::cout << report.json;
   if (!a.quiet) std::cerr << "keyturn evaluate: fusion → " << (out / "report.md").string() << "\n";
   return 0;

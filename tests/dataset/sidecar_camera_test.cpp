@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-  return p.string();
-}
+using test::writeText;
 
 }  // namespace
 
@@ -40,7 +36,7 @@ TEST(SidecarCamera, TheCameraRecordedIsTheCameraReadBack) {
   std::string written;
   const auto r = ds.writeCaptured({"box", "b1", "30", 15.0}, dataset::ViewMetadata(), cam, [&](const std::string& pcd) {
     written = pcd;
-    write(pcd, "not read here");
+    writeText(pcd, "not read here");
     return std::vector<std::string>{pcd};
   });
   EXPECT_EQ(written, (d / "ds" / "box" / "b1" / "e30" / "a15.0.pcd").string());
@@ -56,14 +52,14 @@ TEST(SidecarCamera, TheCameraRecordedIsTheCameraReadBack) {
   EXPECT_EQ(back.camera.acquire_mode, 0x911u);
   EXPECT_TRUE(dataset::Dataset::verify((d / "ds").string()).good());
 
-  const auto some = dataset::readSidecarCamera(write(d / "some.json", R"({"camera": {"device": "sim", "integration_time": 9}})"));
+  const auto some = dataset::readSidecarCamera(writeText(d / "some.json", R"({"camera": {"device": "sim", "integration_time": 9}})"));
   EXPECT_EQ(some.camera.device, "sim");
   EXPECT_EQ(some.camera.integration_time, 9);
   EXPECT_FALSE(some.camera.modulation_mhz.has_value());
   EXPECT_FALSE(some.camera.acquire_mode.has_value());
-  const auto imported = dataset::readSidecarCamera(write(d / "imported.json", R"({"imported_by": "keyturn import folders"})"));
+  const auto imported = dataset::readSidecarCamera(writeText(d / "imported.json", R"({"imported_by": "keyturn import folders"})"));
   EXPECT_TRUE(imported.imported);
   EXPECT_EQ(imported.camera.device, "");
-  const std::string bad = write(d / "bad.json", R"({"camera": {"auto_exposure": "yes"}})");
+  const std::string bad = writeText(d / "bad.json", R"({"camera": {"auto_exposure": "yes"}})");
   EXPECT_EQ(test::errorOf([&] { dataset::readSidecarCamera(bad); }).rfind(bad + ": camera: ", 0), 0u);
 }

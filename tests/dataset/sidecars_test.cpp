@@ -14,11 +14,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string write(const fs::path& p, const std::string& text) {
-  fs::create_directories(p.parent_path());
-  std::ofstream(p) << text;
-  return p.string();
-}
+using test::writeText;
 
 const char* kMatrix = "[[1,0,0,0.1],[0,1,0,0.2],[0,0,1,0.7],[0,0,0,1]]";
 
@@ -27,13 +23,13 @@ const char* kMatrix = "[[1,0,0,0.1],[0,1,0,0.2],[0,0,1,0.7],[0,0,0,1]]";
 TEST(Sidecars, ReadTheTransformOrNoneWhenUncalibrated) {
   const fs::path d = keyturn::test::scratchPath("sidecars");
   fs::remove_all(d);
-  const auto m = dataset::readViewTransform(write(d / "a.json", std::string("{\"camera_from_turntable\": ") + kMatrix + "}"));
+  const auto m = dataset::readViewTransform(writeText(d / "a.json", std::string("{\"camera_from_turntable\": ") + kMatrix + "}"));
   ASSERT_TRUE(m.has_value());
   EXPECT_DOUBLE_EQ((*m)(2, 3), 0.7);
   EXPECT_DOUBLE_EQ((*m)(0, 0), 1.0);
-  EXPECT_FALSE(dataset::readViewTransform(write(d / "b.json", "{\"camera_from_turntable\": null}")).has_value());
+  EXPECT_FALSE(dataset::readViewTransform(writeText(d / "b.json", "{\"camera_from_turntable\": null}")).has_value());
 
-  const std::string cal = write(d / "cal.json", std::string("{\"format\": \"keyturn-axis-calibration\", "
+  const std::string cal = writeText(d / "cal.json", std::string("{\"format\": \"keyturn-axis-calibration\", "
                                                             "\"camera_from_turntable\": ") + kMatrix + "}");
   EXPECT_DOUBLE_EQ(dataset::readAxisCalibration(cal)(1, 3), 0.2);
   const Eigen::Matrix4d adopted = dataset::adoptAxisCalibration(cal, (d / "ds").string());
@@ -45,7 +41,7 @@ TEST(Sidecars, EachBadFileIsOneLineNamingIt) {
   const fs::path d = keyturn::test::scratchPath("sidecars_bad");
   fs::remove_all(d);
   const auto err = [&](const std::string& name, const std::string& text) {
-    const std::string p = write(d / name, text);
+    const std::string p = writeText(d / name, text);
     return test::errorOf([&] { dataset::readViewTransform(p); });
   };
   EXPECT_EQ(err("a.json", "{not json").rfind((d / "a.json").string() + ": not valid JSON: ", 0), 0u);
@@ -56,6 +52,6 @@ TEST(Sidecars, EachBadFileIsOneLineNamingIt) {
             (d / "d.json").string() + ": camera_from_turntable holds a non-number");
   EXPECT_EQ(test::errorOf([&] { dataset::readViewTransform((d / "none.json").string()); }),
             (d / "none.json").string() + ": no such view sidecar");
-  const std::string wrong = write(d / "e.json", "{\"format\": \"other\"}");
+  const std::string wrong = writeText(d / "e.json", "{\"format\": \"other\"}");
   EXPECT_EQ(test::errorOf([&] { dataset::readAxisCalibration(wrong); }), wrong + ": not a keyturn axis calibration");
 }

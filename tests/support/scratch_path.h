@@ -4,12 +4,20 @@
 #include <unistd.h>
 
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 namespace keyturn::test {
 
 inline std::filesystem::path scratchPath(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("keyturn_" + name + "_" + std::to_string(::getpid()));
+}
+
+// TEXT written to PATH (its folders made); returns the path.
+inline std::string writeText(const std::filesystem::path& path, const std::string& text) {
+  std::filesystem::create_directories(path.parent_path());
+  std::ofstream(path) << text;
+  return path.string();
 }
 
 }  // namespace keyturn::test
