@@ -36,8 +36,13 @@ packages=(
   libxgboost-dev xgboost libtorch-dev libopenblas0-serial
   # BigBIRD's HDF5 files (keyturn import bigbird): the HDF5 C library
   libhdf5-dev
-  # command line, configuration, JSON
-  libcli11-dev nlohmann-json3-dev
+  # command line, configuration, JSON; camera files users have (ROS camera_info and OpenCV
+  # calibration YAML: yaml-cpp; Open3D's PinholeCameraIntrinsic JSON: nlohmann-json)
+  libcli11-dev nlohmann-json3-dev libyaml-cpp-dev
+  # commodity depth cameras (Kinect, Xtion, Astra) through OpenNI2: its library, the driver API
+  # (Driver/OniDriverAPI.h) the simulated OpenNI2 driver is built against, the samples' sources
+  # (SimpleRead, EventBasedRead, MultipleStreamRead) the tests compile, and its tools (NiViewer2)
+  libopenni2-dev openni2-utils
   # tests and benchmarks
   libgtest-dev libgmock-dev libbenchmark-dev
   # JSON assertions in the command-line tests
