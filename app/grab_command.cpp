@@ -55,8 +55,16 @@ int runGrab(const GrabArgs& a) {
   const auto written = rig::writeFrameFiles(a.out, f);
   std::cerr << "keyturn grab: " << cam->deviceString() << ", serial " << cam->serial() << ": " << a.frames
             << (a.frames > 1 ? " frames (per-pixel median)" : " frame") << ", " << f.cloud.validCount() << " of "
-            << f.cloud.size() << " pixels with a return, " << drivers::modulationMHz(f.settings.modulation_frequency)
-            << " MHz (range " << drivers::nonAmbiguousRange(f.settings.modulation_frequency) << " m)\n";
+            << f.cloud.size() << " pixels with a return, ";
+  if (f.depth_camera) {  // a depth camera: its pinhole, not the SR4000's modulation
+    const DepthIntrinsics& k = f.depth_camera->intrinsics;
+    std::cerr << "depth in " << f.depth_camera->depth_unit_m * 1000 << " mm units, fx " << k.fx << " fy " << k.fy
+              << " cx " << k.cx << " cy " << k.cy << (f.depth_camera->registered ? ", registered to colour" : "")
+              << "\n";
+  } else {
+    std::cerr << drivers::modulationMHz(f.settings.modulation_frequency) << " MHz (range "
+              << drivers::nonAmbiguousRange(f.settings.modulation_frequency) << " m)\n";
+  }
   for (const auto& p : written) std::cout << p << "\n";
   return 0;
 }
@@ -65,8 +73,8 @@ int runGrab(const GrabArgs& a) {
 
 Command addGrabCommand(CLI::App& app) {
   auto a = std::make_shared<GrabArgs>();
-  auto* cmd = app.add_subcommand("grab", "Grab SR4000 frames to an organized PCD and 16-bit PNGs");
-  cmd->add_option("--camera", a->camera, "sim, sim:CONFIG, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS]")->capture_default_str();
+  auto* cmd = app.add_subcommand("grab", "Grab SR4000 or OpenNI2 frames to an organized PCD and 16-bit PNGs");
+  cmd->add_option("--camera", a->camera, "sim, sim:CONFIG, usb, usb:SERIAL, eth:IP, openni2[:URI], playback:DATASET[@FPS] or playback:FILE.oni")->capture_default_str();
   cmd->add_option("--mesasr-lib", a->library,
                   "Path of MESA's libmesasr.so for usb/eth (default: $KEYTURN_MESASR_LIB, then the usual sonames)");
   // $MESASR_SIM_CONFIG, libmesasr-sim's own variable for outside programs, is read here only as this

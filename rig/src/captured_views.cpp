@@ -11,11 +11,13 @@ dataset::ViewRecord writeFrameView(dataset::Dataset& into, const dataset::ViewKe
   dataset::SidecarCamera camera;
   camera.device = frame.device;
   camera.serial = frame.serial;
-  camera.modulation_mhz = drivers::modulationMHz(frame.settings.modulation_frequency);
-  camera.integration_time = frame.settings.integration_time;
-  camera.auto_exposure = frame.settings.auto_exposure.enabled;
-  camera.amplitude_threshold = frame.settings.amplitude_threshold;
-  camera.acquire_mode = frame.settings.acquire_mode;
+  if (!frame.depth_camera) {  // the SR4000's settings; a depth camera (OpenNI2) has none of them
+    camera.modulation_mhz = drivers::modulationMHz(frame.settings.modulation_frequency);
+    camera.integration_time = frame.settings.integration_time;
+    camera.auto_exposure = frame.settings.auto_exposure.enabled;
+    camera.amplitude_threshold = frame.settings.amplitude_threshold;
+    camera.acquire_mode = frame.settings.acquire_mode;
+  }
   return into.writeCaptured(key, meta, camera,
                             [&frame](const std::string& pcd_path) { return writeFrameFiles(pcd_path, frame); });
 }

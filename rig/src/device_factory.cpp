@@ -10,6 +10,7 @@
 #include "keyturn/core/install_layout.h"
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/drivers/modbus_turntable.h"
+#include "keyturn/drivers/openni2_camera.h"
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/dataset_playback.h"
 #include "keyturn/rig/simulated_rig.h"
@@ -81,6 +82,21 @@ std::unique_ptr<drivers::TofCamera> DeviceFactory::openCamera(const CameraSpec& 
     std::lock_guard<std::mutex> l(mutex_);
     camera_from_turntable_ = played->cameraFromTurntable();  // the recorded calibration
     return std::make_unique<PlaybackCamera>(played);
+  }
+  if (spec.kind == CameraSpec::Kind::OpenNi2 || spec.kind == CameraSpec::Kind::OniFile) {
+    drivers::OpenNi2Options o;
+    o.log = orStderr(std::move(log), "camera");
+    if (spec.kind == CameraSpec::Kind::OniFile) {
+      o.oni_file = spec.playback.dataset;
+      o.playback_fps = spec.playback.rate_fps;
+      o.loop = spec.playback.loop;
+    } else {
+      o.uri = spec.openni2_uri;
+    }
+    auto camera = std::make_unique<drivers::OpenNi2Camera>(o);
+    std::lock_guard<std::mutex> l(mutex_);
+    camera_from_turntable_.reset();  // a real rig's comes from an axis calibration
+    return camera;
   }
   drivers::Sr4000Options options;
   options.log = orStderr(std::move(log), "camera");

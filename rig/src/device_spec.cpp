@@ -11,12 +11,17 @@ namespace keyturn::rig {
 namespace {
 
 const char* const kCameraChoices =
-    "expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS][@once] (usb and eth take ,lib=LIBMESASR)";
+    "expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP, openni2, openni2:URI, playback:DATASET[@FPS][@once] or "
+    "playback:FILE.oni[@FPS][@once] (usb and eth take ,lib=LIBMESASR)";
 const char* const kPoseChoices =
     "expected sim, playback, playback:DATASET, modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or "
     "can:IFACE (modbus and can take ,profile=FILE)";
 
 bool startsWith(const std::string& s, const char* prefix) { return s.rfind(prefix, 0) == 0; }
+
+bool isOniFile(const std::string& path) {
+  return path.size() > 4 && path.compare(path.size() - 4, 4, ".oni") == 0;
+}
 
 std::string number(double v) {
   std::ostringstream out;
@@ -98,6 +103,15 @@ CameraSpec CameraSpec::parse(const std::string& text) {
   if (startsWith(text, "playback:")) {
     s.kind = Kind::Playback;
     s.playback = parsePlayback(what, text.substr(9), "playback:DATASET[@FPS][@once]");
+    if (isOniFile(s.playback.dataset)) s.kind = Kind::OniFile;  // OpenNI2's recording, not a dataset folder
+    return s;
+  }
+  if (text == "openni2" || startsWith(text, "openni2:")) {
+    s.kind = Kind::OpenNi2;
+    if (text != "openni2") {
+      s.openni2_uri = text.substr(8);
+      if (s.openni2_uri.empty()) throw Error(what + ": openni2: needs the device's URI (keyturn devices lists them); " + kCameraChoices);
+    }
     return s;
   }
   if (text == "usb" || startsWith(text, "usb:") || startsWith(text, "usb,") || startsWith(text, "eth:")) {
@@ -123,7 +137,9 @@ std::string CameraSpec::toString() const {
     case Kind::Simulated: return sim_config.empty() ? "sim" : "sim:" + sim_config;
     case Kind::Usb: return (usb_serial ? "usb:" + std::to_string(usb_serial) : std::string("usb")) + lib;
     case Kind::Ethernet: return "eth:" + address + lib;
-    case Kind::Playback: return "playback:" + playbackText(playback);
+    case Kind::Playback:
+    case Kind::OniFile: return "playback:" + playbackText(playback);
+    case Kind::OpenNi2: return openni2_uri.empty() ? "openni2" : "openni2:" + openni2_uri;
   }
   return "sim";
 }
@@ -134,13 +150,15 @@ std::string CameraSpec::describe() const {
     case Kind::Usb: return usb_serial ? "SR4000 " + std::to_string(usb_serial) + " on USB" : "SR4000 on USB";
     case Kind::Ethernet: return "SR4000 at " + address;
     case Kind::Playback: return "recording " + playback.dataset;
+    case Kind::OpenNi2: return openni2_uri.empty() ? "OpenNI2 camera" : "OpenNI2 camera " + openni2_uri;
+    case Kind::OniFile: return "OpenNI2 recording " + playback.dataset;
   }
   return "camera";
 }
 
 bool CameraSpec::operator==(const CameraSpec& o) const {
   return kind == o.kind && sim_config == o.sim_config && usb_serial == o.usb_serial && address == o.address &&
-         mesasr_library == o.mesasr_library && playback == o.playback;
+         mesasr_library == o.mesasr_library && playback == o.playback && openni2_uri == o.openni2_uri;
 }
 
 PoseSpec PoseSpec::parse(const std::string& text) {

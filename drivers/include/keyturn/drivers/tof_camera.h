@@ -2,11 +2,14 @@
 // A Time-of-Flight camera as keyturn uses it: configure, acquire frames of
 // distance, amplitude and confidence with XYZ in metres.
 #include <chrono>
+#include <optional>
 #include <cstdint>
 #include <string>
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/core/depth_image.h"
+#include "keyturn/core/error.h"
 
 namespace keyturn::drivers {
 
@@ -38,6 +41,18 @@ double modulationMHz(int modulation_frequency);
 // The SR4000 frequency index of mhz; throws keyturn::Error naming --modulation and the choices.
 int modulationIndex(double mhz);
 
+// What a structured-light depth camera (OpenNI2: Kinect, Xtion, Astra) adds to a frame. Its `distance`
+// is then the depth image (z along the optical axis, in depth_unit_m per unit; 0 = no return), its
+// `amplitude` the IR image when one was streamed, and `confidence` stays empty.
+struct DepthCameraFrame {
+  double depth_unit_m = 0.001;             // metres per depth unit (OpenNI2's 1 mm or 100 µm formats)
+  DepthIntrinsics intrinsics;              // the pinhole the cloud was made with
+  std::uint64_t device_timestamp_us = 0;   // the device's own clock (OpenNI2: µs since the stream started)
+  std::uint32_t colour_width = 0, colour_height = 0;
+  std::vector<std::uint8_t> colour;        // RGB888 row-major; empty without a colour stream
+  bool registered = false;                 // depth was registered to the colour image by the device
+};
+
 struct TofFrame {
   std::uint32_t width = 0, height = 0;
   std::vector<std::uint16_t> distance;    // raw: 0..0xFFFF spans the non-ambiguous range; 0 = no return
@@ -49,6 +64,14 @@ struct TofFrame {
   std::string device;
   std::uint32_t serial = 0;
   std::uint64_t sequence = 0;
+  std::optional<DepthCameraFrame> depth_camera;  // set by depth cameras, not by the SR4000
+};
+
+// The end of a recording that does not loop (a dataset or an .oni file played once): not a device
+// lost, so nothing to reconnect to.
+class EndOfRecording : public Error {
+ public:
+  using Error::Error;
 };
 
 class TofCamera {

@@ -25,11 +25,8 @@
 
 namespace keyturn::rig {
 
-// The end of a recording that does not loop: not a device lost, so nothing to reconnect to.
-class EndOfRecording : public Error {
- public:
-  using Error::Error;
-};
+// The end of a recording that does not loop (tof_camera.h: .oni files end the same way).
+using EndOfRecording = drivers::EndOfRecording;
 
 struct PlaybackOptions {
   double rate_fps = 0;  // 0: the recorded rate (the median interval between views' capture times)

@@ -5,6 +5,8 @@
 //              its configuration file passed explicitly (KTSIM_OpenWithConfig, drivers/mesasr_api.h)
 //   usb, eth   MESA's libMesaSR (the spec's library, else $KEYTURN_MESASR_LIB or the usual sonames)
 //   playback   a dataset replayed (dataset_playback.h); its camera and pose source share one timeline
+//   openni2    a depth camera through OpenNI2 (drivers/openni2_camera.h); playback:FILE.oni: OpenNI2's
+//              recording through its libOniFile driver
 //   pose sim   the simulated turntable (simulated_rig.h) writing the world the simulated camera follows
 //   modbus-*   a Modbus turntable or encoder with its register profile; can: CANopen axes
 // A new kind of device is one case in openCamera/openPoseSource here.

@@ -10,6 +10,9 @@
 //                                           $KEYTURN_MESASR_LIB, then the usual sonames)
 //           playback:DATASET[@FPS][@once]   a dataset replayed (dataset_playback.h): at FPS (default the
 //                                           recorded rate), looping unless "once"
+//           openni2[:URI]                   a depth camera through OpenNI2 (Kinect, Xtion, Astra; the
+//                                           first found, or the one with OpenNI2's URI, verbatim)
+//           playback:FILE.oni[@FPS][@once]  an OpenNI2 recording (a path ending in .oni) played as a camera
 //   pose    sim                             the simulated turntable sharing the simulated camera's world
 //           playback[:DATASET[@FPS][@once]] the poses of the camera's recording (or of DATASET)
 //           modbus-tcp:HOST:PORT[@UNIT][,profile=P]            a Modbus turntable or encoder; P: its
@@ -30,18 +33,21 @@ struct PlaybackSpec {
 };
 
 struct CameraSpec {
-  enum class Kind { Simulated, Usb, Ethernet, Playback };
+  // The studio's camera list shows the first five in this order.
+  enum class Kind { Simulated, Usb, Ethernet, Playback, OpenNi2, OniFile };
   Kind kind = Kind::Simulated;
   std::string sim_config;      // Simulated: libmesasr-sim's configuration file; empty: the simulator's defaults
   unsigned usb_serial = 0;     // Usb: 0 = the first camera found
   std::string address;         // Ethernet: IPv4
   std::string mesasr_library;  // Usb, Ethernet: MESA's libMesaSR; empty: $KEYTURN_MESASR_LIB or the usual sonames
-  PlaybackSpec playback;       // Playback
+  PlaybackSpec playback;       // Playback; OniFile: its dataset is the .oni file
+  std::string openni2_uri;     // OpenNi2: empty = the first device found
 
   // The text forms above; anything else throws keyturn::Error in one line naming every choice.
   static CameraSpec parse(const std::string& text);
   std::string toString() const;  // parses back to this spec
-  std::string describe() const;  // "simulated SR4000", "SR4000 4000123 on USB", "SR4000 at 10.0.0.2", "recording D"
+  std::string describe() const;  // "simulated SR4000", "SR4000 4000123 on USB", "SR4000 at 10.0.0.2", "recording D",
+                                 // "OpenNI2 camera", "OpenNI2 recording F.oni"
   bool operator==(const CameraSpec& o) const;
   bool operator!=(const CameraSpec& o) const { return !(*this == o); }
 };
