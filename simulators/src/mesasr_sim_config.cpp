@@ -15,8 +15,8 @@ namespace fs = std::filesystem;
 
 namespace keyturn::sim {
 
-MesaSrSimConfig MesaSrSimConfig::fromEnvironment() {
-  const char* p = std::getenv("MESASR_SIM_CONFIG");
+MesaSrSimConfig MesaSrSimConfig::fromEnvironment(const char* variable) {
+  const char* p = std::getenv(variable);
   return p && *p ? fromFile(p) : MesaSrSimConfig();
 }
 

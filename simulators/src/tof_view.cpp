@@ -105,7 +105,7 @@ struct Hit {
 
 }  // namespace
 
-Cloud TofViewRenderer::render(const SceneView& view) const {
+void TofViewRenderer::buildScene(const SceneView& view) const {
   // (Re)build the scene when the turntable angle changes: the object is turned
   // on the CPU, which for ≤ 10k triangles costs far less than the BVH build.
   if (!(scene_->built_angle == view.turntable_deg) || !(scene_->built_table == view.table_half_size)) {
@@ -125,7 +125,10 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
     scene_->built_angle = view.turntable_deg;
     scene_->built_table = view.table_half_size;
   }
+}
 
+Cloud TofViewRenderer::render(const SceneView& view) const {
+  buildScene(view);
   const CameraPlacement placement = placeCamera(object_, view, k_);
   const Eigen::Vector3f& eye = placement.eye;
   const Eigen::Matrix3f& cam_to_world = placement.cam_to_world;
@@ -206,6 +209,60 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
     }
   }
   return cloud;
+}
+
+std::vector<SurfacePixel> TofViewRenderer::castPixelCentres(const SceneView& view,
+                                                            const Eigen::Vector3f& light_cam) const {
+  buildScene(view);
+  const CameraPlacement placement = placeCamera(object_, view, k_);
+  const Eigen::Vector3f light = placement.eye + placement.cam_to_world * light_cam;
+  RTCIntersectContext ctx;
+  rtcInitIntersectContext(&ctx);
+  std::vector<SurfacePixel> out(static_cast<std::size_t>(k_.width) * k_.height);
+  for (int v = 0; v < k_.height; ++v) {
+    for (int u = 0; u < k_.width; ++u) {
+      const Eigen::Vector3f ray_cam(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
+                                    static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f);
+      const Eigen::Vector3f d = (placement.cam_to_world * ray_cam).normalized();
+      RTCRayHit rh;
+      rh.ray.org_x = placement.eye.x(); rh.ray.org_y = placement.eye.y(); rh.ray.org_z = placement.eye.z();
+      rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
+      rh.ray.tnear = 0.f;
+      rh.ray.tfar = std::numeric_limits<float>::infinity();
+      rh.ray.mask = ~0u;
+      rh.ray.flags = 0;
+      rh.ray.time = 0.f;
+      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+      rtcIntersect1(scene_->scene, &ctx, &rh);
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
+      SurfacePixel& s = out[static_cast<std::size_t>(v) * k_.width + u];
+      const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
+      const Eigen::Vector3f p = placement.eye + rh.ray.tfar * d;
+      s.depth = rh.ray.tfar / ray_cam.norm();  // range → z along the optical axis
+      s.cos_incidence = std::abs(n.dot(d));
+      s.object = rh.hit.geomID == scene_->object_id;
+      // The light sees p unless something lies between them; the segment stops
+      // short of p so that p's own triangle does not count.
+      const Eigen::Vector3f to_light = light - p;
+      const float dist = to_light.norm();
+      const Eigen::Vector3f l = to_light / dist;
+      // Lit only from the side the camera sees (a surface never lights its back face).
+      if (n.dot(l) * n.dot(-d) <= 0.f) continue;
+      RTCRay r;
+      r.org_x = p.x(); r.org_y = p.y(); r.org_z = p.z();
+      r.dir_x = l.x(); r.dir_y = l.y(); r.dir_z = l.z();
+      r.tnear = 1e-4f * std::max(1.f, dist);
+      r.tfar = dist;
+      r.mask = ~0u;
+      r.flags = 0;
+      r.time = 0.f;
+      rtcOccluded1(scene_->scene, &ctx, &r);
+      s.lit = r.tfar >= 0.f;  // Embree sets tfar to -inf when the ray is blocked
+      s.cos_light = s.lit ? std::abs(n.dot(l)) : 0.f;
+    }
+  }
+  return out;
 }
 
 Cloud builtinBenchmarkView() {

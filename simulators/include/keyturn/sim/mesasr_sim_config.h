@@ -1,5 +1,6 @@
 #pragma once
-// Configuration of libmesasr-sim, the simulated libMesaSR: a JSON file read when
+// Configuration of libmesasr-sim, the simulated libMesaSR (and of the simulated
+// OpenNI2 driver, simulators/openni2_sim/, which reads the same file): a JSON file read when
 // a camera is opened, passed by keyturn through KTSIM_OpenWithConfig
 // (drivers/mesasr_api.h) and named by $MESASR_SIM_CONFIG for programs outside
 // keyturn (SR_OpenUSB/SR_OpenETH). Everything is optional.
@@ -46,8 +47,9 @@ struct MesaSrSimConfig {
   std::string unplug_file;
   MesaSrSimFaults faults;
 
-  // From $MESASR_SIM_CONFIG, or defaults when unset. Throws keyturn::Error.
-  static MesaSrSimConfig fromEnvironment();
+  // From the file the environment variable names (libmesasr-sim: MESASR_SIM_CONFIG; the
+  // simulated OpenNI2 driver: KEYTURN_OPENNI2_SIM_CONFIG), or defaults when unset. Throws keyturn::Error.
+  static MesaSrSimConfig fromEnvironment(const char* variable = "MESASR_SIM_CONFIG");
   static MesaSrSimConfig fromFile(const std::string& path);
   void save(const std::string& path) const;
 };

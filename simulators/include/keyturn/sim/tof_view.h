@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 #include <cstdint>
 #include <memory>
+#include <vector>
 
 #include "keyturn/core/cloud.h"
 #include "keyturn/sim/mesh.h"
@@ -45,6 +46,16 @@ double operatorDistance(const Mesh& mesh, const Intrinsics& k = Intrinsics());
 // the object's frame at another angle.
 Eigen::Matrix4d cameraFromTurntable(const Mesh& mesh, const SceneView& view, const Intrinsics& k = Intrinsics());
 
+// What the ray through one pixel's centre meets, with no sensor model: the
+// geometry a structured-light camera's simulator (structured_light_view.h) starts from.
+struct SurfacePixel {
+  float depth = 0.f;          // along the optical axis (m); 0 = the ray meets nothing
+  float cos_incidence = 0.f;  // |viewing ray · surface normal|
+  float cos_light = 0.f;      // |direction to the light · normal|, 0 where the light does not reach
+  bool lit = false;           // the light point sees this surface point (no occluder between)
+  bool object = false;        // on the object, else on the table
+};
+
 class TofViewRenderer {
  public:
   explicit TofViewRenderer(const Mesh& object, Intrinsics k = Intrinsics());
@@ -53,10 +64,15 @@ class TofViewRenderer {
   TofViewRenderer& operator=(const TofViewRenderer&) = delete;
 
   Cloud render(const SceneView& view) const;
+  // One ray per pixel centre (row-major, width × height) and, for each hit, a
+  // second ray to `light_cam`, a point in the camera's optical frame (m) such
+  // as a structured-light projector beside the lens: a real occlusion query.
+  std::vector<SurfacePixel> castPixelCentres(const SceneView& view, const Eigen::Vector3f& light_cam) const;
   const Intrinsics& intrinsics() const { return k_; }
 
  private:
   struct Scene;
+  void buildScene(const SceneView& view) const;  // for the view's turntable angle and table
   Intrinsics k_;
   Mesh object_;
   std::unique_ptr<Scene> scene_;

@@ -1,0 +1,194 @@
+#include "sim_device.h"
+
+#include <sys/stat.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstring>
+
+#include "keyturn/sim/mesh.h"
+#include "sim_stream.h"
+
+namespace keyturn::sim::openni2 {
+
+namespace {
+// The PS1080's 640 × 480 modes, at the simulator's one resolution.
+constexpr int kFps = 30;
+
+template <typename T>
+OniStatus putValue(void* data, int* size, const T& value) {
+  if (!data || !size || *size < static_cast<int>(sizeof(T))) return ONI_STATUS_BAD_PARAMETER;
+  std::memcpy(data, &value, sizeof(T));
+  *size = sizeof(T);
+  return ONI_STATUS_OK;
+}
+
+OniStatus putString(void* data, int* size, const std::string& s) {
+  if (!data || !size || *size < static_cast<int>(s.size()) + 1) return ONI_STATUS_BAD_PARAMETER;
+  std::memcpy(data, s.c_str(), s.size() + 1);
+  *size = static_cast<int>(s.size()) + 1;
+  return ONI_STATUS_OK;
+}
+}  // namespace
+
+SimDevice::SimDevice(const MesaSrSimConfig& config) : config_(config), opened_(std::chrono::steady_clock::now()) {
+  const Mesh mesh = scaledMesh(loadMeshOrBuiltin(config_.mesh), config_.scale);
+  renderer_ = std::make_unique<StructuredLightRenderer>(mesh);
+  distance_ = config_.distance > 0 ? config_.distance
+                                   : structuredLightOperatorDistance(mesh, intrinsics(), renderer_->model());
+  const int w = intrinsics().width, h = intrinsics().height;
+  depth_modes_ = {{ONI_PIXEL_FORMAT_DEPTH_1_MM, w, h, kFps}, {ONI_PIXEL_FORMAT_DEPTH_100_UM, w, h, kFps}};
+  color_modes_ = {{ONI_PIXEL_FORMAT_RGB888, w, h, kFps}};
+  ir_modes_ = {{ONI_PIXEL_FORMAT_GRAY16, w, h, kFps}};
+  sensors_ = {{ONI_SENSOR_DEPTH, static_cast<int>(depth_modes_.size()), depth_modes_.data()},
+              {ONI_SENSOR_COLOR, static_cast<int>(color_modes_.size()), color_modes_.data()},
+              {ONI_SENSOR_IR, static_cast<int>(ir_modes_.size()), ir_modes_.data()}};
+  thread_ = std::thread([this] { run(); });
+}
+
+SimDevice::~SimDevice() {
+  {
+    std::lock_guard<std::mutex> lock(mutex_);
+    stop_ = true;
+  }
+  wake_.notify_all();
+  thread_.join();
+}
+
+OniStatus SimDevice::getSensorInfoList(OniSensorInfo** infos, int* count) {
+  *infos = sensors_.data();
+  *count = static_cast<int>(sensors_.size());
+  return ONI_STATUS_OK;
+}
+
+const OniSensorInfo* SimDevice::sensor(OniSensorType type) const {
+  for (const auto& s : sensors_)
+    if (s.sensorType == type) return &s;
+  return nullptr;
+}
+
+oni::driver::StreamBase* SimDevice::createStream(OniSensorType type) {
+  return sensor(type) ? new SimStream(*this, type) : nullptr;
+}
+
+void SimDevice::destroyStream(oni::driver::StreamBase* stream) {
+  auto* s = static_cast<SimStream*>(stream);
+  streamStopped(s);  // OpenNI stops a stream before destroying it; this makes sure
+  delete s;
+}
+
+void SimDevice::streamStarted(SimStream* s) {
+  std::lock_guard<std::mutex> lock(mutex_);
+  if (std::find(active_.begin(), active_.end(), s) == active_.end()) active_.push_back(s);
+  wake_.notify_all();
+}
+
+void SimDevice::streamStopped(SimStream* s) {
+  std::lock_guard<std::mutex> lock(mutex_);  // waits out a delivery in progress
+  active_.erase(std::remove(active_.begin(), active_.end(), s), active_.end());
+}
+
+OniBool SimDevice::isImageRegistrationModeSupported(OniImageRegistrationMode mode) {
+  return mode == ONI_IMAGE_REGISTRATION_OFF || mode == ONI_IMAGE_REGISTRATION_DEPTH_TO_COLOR;
+}
+
+OniBool SimDevice::isPropertySupported(int id) {
+  switch (id) {
+    case ONI_DEVICE_PROPERTY_FIRMWARE_VERSION:
+    case ONI_DEVICE_PROPERTY_DRIVER_VERSION:
+    case ONI_DEVICE_PROPERTY_HARDWARE_VERSION:
+    case ONI_DEVICE_PROPERTY_SERIAL_NUMBER:
+    case ONI_DEVICE_PROPERTY_IMAGE_REGISTRATION:
+      return TRUE;
+    default:
+      return FALSE;
+  }
+}
+
+OniStatus SimDevice::getProperty(int id, void* data, int* size) {
+  switch (id) {
+    case ONI_DEVICE_PROPERTY_FIRMWARE_VERSION:
+      return putString(data, size, "keyturn-sim 1");
+    case ONI_DEVICE_PROPERTY_DRIVER_VERSION:
+      return putValue(data, size, OniVersion{1, 0, 0, 0});
+    case ONI_DEVICE_PROPERTY_HARDWARE_VERSION:
+      return putValue(data, size, OniHardwareVersion{0});
+    case ONI_DEVICE_PROPERTY_SERIAL_NUMBER:
+      return putString(data, size, std::to_string(config_.serial));
+    case ONI_DEVICE_PROPERTY_IMAGE_REGISTRATION:
+      return putValue(data, size, registration_);
+    default:
+      return ONI_STATUS_NOT_SUPPORTED;
+  }
+}
+
+OniStatus SimDevice::setProperty(int id, const void* data, int size) {
+  if (id != ONI_DEVICE_PROPERTY_IMAGE_REGISTRATION) return ONI_STATUS_NOT_SUPPORTED;
+  if (!data || size != sizeof(OniImageRegistrationMode)) return ONI_STATUS_BAD_PARAMETER;
+  OniImageRegistrationMode mode;
+  std::memcpy(&mode, data, sizeof mode);
+  if (!isImageRegistrationModeSupported(mode)) return ONI_STATUS_NOT_SUPPORTED;
+  // Nothing to warp: colour is already rendered from the depth camera's viewpoint.
+  registration_ = mode;
+  return ONI_STATUS_OK;
+}
+
+bool SimDevice::unplugged() const {
+  struct stat st;
+  return !config_.unplug_file.empty() && ::stat(config_.unplug_file.c_str(), &st) == 0;
+}
+
+StructuredLightFrame SimDevice::renderFrame() {
+  SceneView v;
+  v.distance = distance_;
+  v.elevation_deg = config_.elevation;
+  v.roll_deg = config_.roll;
+  v.turntable_deg =
+      config_.world.empty() ? config_.turntable_deg : readWorldTurntable(config_.world, config_.turntable_deg);
+  v.seed = config_.seed * 1000003ULL + static_cast<std::uint64_t>(frames_);  // repeatable per frame
+  return renderer_->render(v);
+}
+
+void SimDevice::run() {
+  const double rate = config_.frame_rate > 0 ? config_.frame_rate : kFps;
+  const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+      std::chrono::duration<double>(1.0 / rate));
+  auto next = std::chrono::steady_clock::now();
+  std::unique_lock<std::mutex> lock(mutex_);
+  while (!stop_) {
+    if (active_.empty()) {
+      wake_.wait(lock, [this] { return stop_ || !active_.empty(); });
+      next = std::chrono::steady_clock::now();
+      continue;
+    }
+    if (wake_.wait_until(lock, next, [this] { return stop_; })) break;
+    // A slow render (the turntable moved: the scene is cast again) delays the
+    // next frame rather than bunching frames up after it.
+    next = std::max(next + period, std::chrono::steady_clock::now());
+    ++periods_;
+    const auto& f = config_.faults;
+    if (disconnected_ || unplugged()) continue;  // the cable is out: no frames
+    if (f.disconnect_after > 0 && frames_ >= f.disconnect_after) {
+      disconnected_ = true;
+      continue;
+    }
+    if (f.timeout_every > 0 && periods_ % f.timeout_every == 0) continue;  // a dropped frame
+    lock.unlock();
+    StructuredLightFrame frame;
+    bool rendered = true;
+    try {
+      frame = renderFrame();
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "keyturn-sim OpenNI2 driver: %s\n", e.what());
+      rendered = false;
+    }
+    const auto timestamp = static_cast<std::uint64_t>(
+        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - opened_).count());
+    lock.lock();
+    if (!rendered) continue;
+    ++frames_;
+    for (SimStream* s : active_) s->deliver(frame, frames_, timestamp);
+  }
+}
+
+}  // namespace keyturn::sim::openni2
