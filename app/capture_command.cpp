@@ -96,7 +96,7 @@ int runVerify(const std::string& root) {
 Command addCaptureCommand(CLI::App& app) {
   auto a = std::make_shared<CaptureArgs>();
   auto* cmd = app.add_subcommand("capture", "Capture a turntable sequence into a dataset (resumable)");
-  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS] (a recording)")->capture_default_str();
+  cmd->add_option("--camera", a->camera, "sim, usb, usb:SERIAL, eth:IP, openni2[:URI] (with --pose sim: the simulated OpenNI2 camera), playback:DATASET[@FPS] (a recording) or playback:FILE.oni")->capture_default_str();
   cmd->add_option("--pose", a->pose, "sim (the simulated or played-back rig's own), modbus-tcp:HOST:PORT[@UNIT], modbus-rtu:DEVICE[:BAUD[:8N1]][@UNIT] or can:IFACE")
       ->capture_default_str();
   cmd->add_option("--profile", a->profile, "Modbus register map (JSON file, generic-encoder, keyturn-sim); for can: the CANopen axes file")

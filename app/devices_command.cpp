@@ -104,7 +104,7 @@ int runDevices(const DevicesArgs& a) {
     for (const auto& c : cams) printLine(c, "");
     if (denied) std::printf("\nTo open the camera(s) without root, install this udev rule:\n%s\n",
                             drivers::swissRangerUdevRule().c_str());
-    if (!openni2_error.empty()) std::printf("\nOpenNI2: %s\n", openni2_error.c_str());
+    if (!openni2_error.empty()) std::printf("%s\n", openni2_error.c_str());
     else if (depth_cams.empty()) std::printf("No OpenNI2 depth camera.\n");
     for (const auto& d : depth_cams) printOpenNi2(d);
   }

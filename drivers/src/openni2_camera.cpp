@@ -19,6 +19,21 @@ namespace {
 
 constexpr double kPi = 3.14159265358979323846;
 
+// OpenNI2's last error as part of one line: its tabs and line breaks folded into single spaces.
+std::string openNiError() {
+  std::string out;
+  for (const char* c = openni::OpenNI::getExtendedError(); c && *c; ++c) {
+    const bool space = *c == '\n' || *c == '\t' || *c == '\r' || *c == ' ';
+    if (space) {
+      if (!out.empty() && out.back() != ' ') out += ' ';
+    } else {
+      out += *c;
+    }
+  }
+  while (!out.empty() && out.back() == ' ') out.pop_back();
+  return out.empty() ? "no detail" : out;
+}
+
 // OpenNI2 keeps one context per process; it is started on first use and left running (its
 // shutdown unloads the drivers, which other threads' devices may still use).
 void startOpenNi2() {
@@ -27,7 +42,7 @@ void startOpenNi2() {
   std::lock_guard<std::mutex> l(mutex);
   if (started) return;
   if (openni::OpenNI::initialize() != openni::STATUS_OK)
-    throw Error(std::string("OpenNI2 could not start: ") + openni::OpenNI::getExtendedError());
+    throw Error(std::string("OpenNI2 could not start: ") + openNiError());
   started = true;
 }
 
@@ -212,22 +227,23 @@ void OpenNi2Camera::open() {
     uri = options_.oni_file.c_str();
     if (s->device.open(uri) != openni::STATUS_OK)
       throw Error(options_.oni_file + ": not a readable .oni recording (OpenNI2: " +
-                  openni::OpenNI::getExtendedError() + ")");
+                  openNiError() + ")");
   } else {
     const std::vector<std::string> present = presentUris();
     if (present.empty())
       throw Error("no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: " +
                   driversFolder() + ")");
-    if (!options_.uri.empty()) {
-      if (std::find(present.begin(), present.end(), options_.uri) == present.end()) {
+    if (!options_.uri.empty()) uri = options_.uri.c_str();
+    if (s->device.open(uri) != openni::STATUS_OK) {
+      // A URI no driver listed may still be one a driver answers when asked (OpenNI2 asks each one
+      // first); refused by all, it is not there.
+      if (!options_.uri.empty() && std::find(present.begin(), present.end(), options_.uri) == present.end()) {
         std::string list;
         for (const auto& p : present) list += (list.empty() ? "" : ", ") + p;
         throw Error("OpenNI2 device '" + options_.uri + "' not found; present: " + list);
       }
-      uri = options_.uri.c_str();
+      throw Error(name() + ": could not open it (OpenNI2: " + openNiError() + ")");
     }
-    if (s->device.open(uri) != openni::STATUS_OK)
-      throw Error(name() + ": could not open it (OpenNI2: " + openni::OpenNI::getExtendedError() + ")");
   }
   const openni::DeviceInfo& di = s->device.getDeviceInfo();
   s->info.uri = options_.oni_file.empty() ? di.getUri() : options_.oni_file;
@@ -237,7 +253,7 @@ void OpenNi2Camera::open() {
   s->info.usb_product_id = di.getUsbProductId();
   if (!s->device.hasSensor(openni::SENSOR_DEPTH)) throw Error(name() + ": the device has no depth stream");
   if (s->depth.create(s->device, openni::SENSOR_DEPTH) != openni::STATUS_OK)
-    throw Error(name() + ": could not create its depth stream (OpenNI2: " + openni::OpenNI::getExtendedError() + ")");
+    throw Error(name() + ": could not create its depth stream (OpenNI2: " + openNiError() + ")");
   const auto& modes = s->depth.getSensorInfo().getSupportedVideoModes();
   for (int i = 0; i < modes.getSize(); ++i) s->info.depth_modes.push_back(modeOf(modes[i]));
   if (!s->device.isFile()) chooseDepthMode(s->depth);
@@ -270,7 +286,7 @@ void OpenNi2Camera::open() {
     else s->ir.destroy();
   }
   if (s->depth.start() != openni::STATUS_OK)
-    throw Error(name() + ": could not start its depth stream (OpenNI2: " + openni::OpenNI::getExtendedError() + ")");
+    throw Error(name() + ": could not start its depth stream (OpenNI2: " + openNiError() + ")");
 
   // Registered depth lies in the colour camera's image: its field of view is the one that holds.
   openni::VideoStream& seen = registered ? s->colour : s->depth;
@@ -302,7 +318,7 @@ TofFrame OpenNi2Camera::acquireOnce() {
     throw Error("no depth frame within " + std::to_string(options_.timeout_ms) + " ms");
   openni::VideoFrameRef depth;
   if (s_->depth.readFrame(&depth) != openni::STATUS_OK || !depth.isValid())
-    throw Error(std::string("reading a depth frame failed (OpenNI2: ") + openni::OpenNI::getExtendedError() + ")");
+    throw Error(std::string("reading a depth frame failed (OpenNI2: ") + openNiError() + ")");
   const std::uint32_t w = depth.getWidth(), h = depth.getHeight();
   if (w != static_cast<std::uint32_t>(s_->info.depth_mode.width) || h != static_cast<std::uint32_t>(s_->info.depth_mode.height) ||
       static_cast<std::size_t>(depth.getDataSize()) < static_cast<std::size_t>(depth.getStrideInBytes()) * (h - 1) + w * 2)

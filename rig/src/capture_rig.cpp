@@ -7,7 +7,9 @@
 namespace keyturn::rig {
 
 namespace {
-const char* const kSharedWorld = "--pose sim needs --camera sim: the simulated table and camera share one world";
+const char* const kSharedWorld =
+    "--pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera): the simulated table and camera share "
+    "one world";
 }
 
 CaptureRig::CaptureRig(const CaptureDevices& d) {
@@ -26,12 +28,16 @@ CaptureRig::CaptureRig(const CaptureDevices& d) {
     return;
   }
   if (d.pose.kind == PoseKind::Playback) throw Error("--pose playback needs --camera playback:DATASET (the recording holds both)");
-  if (d.camera.kind == CameraKind::Simulated) {
+  // openni2 with the simulated turntable: the simulated rig's camera, seen through the simulated OpenNI2 driver.
+  const bool simulated_openni2 =
+      d.camera.kind == CameraKind::OpenNi2 && d.camera.openni2_uri.empty() && d.pose.kind == PoseKind::Simulated;
+  if (d.camera.kind == CameraKind::Simulated || simulated_openni2) {
     if (!d.camera.sim_config.empty())
       throw Error("camera '" + d.camera.toString() +
                   "': a capture writes its simulated camera's configuration itself (mesh, distance, seed); give sim");
     SimulatedRigOptions so = d.sim;
     so.simulated_pose = d.pose.kind == PoseKind::Simulated;
+    so.openni2 = simulated_openni2;
     if (!so.simulated_pose) real_pose_ = factory_.openPoseSource(d.pose);  // a missing profile is said at once
     sim_ = openSimulatedRig(so);
     camera_ = sim_.camera.get();

@@ -16,6 +16,7 @@
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/mesh.h"
+#include "keyturn/sim/structured_light_view.h"
 #include "keyturn/sim/tof_view.h"
 
 
@@ -49,6 +50,29 @@ Eigen::Matrix4d simulatedCameraFromTurntable(const CameraSpec& spec) {
   view.elevation_deg = c.elevation;
   view.roll_deg = c.roll;
   return sim::cameraFromTurntable(mesh, view);
+}
+
+// The simulated OpenNI2 driver's camera (keyturn-sim:///CONFIG) stands where an operator would stand a
+// Kinect-class camera, unless its configuration gives the distance; anything else is a real device.
+std::optional<Eigen::Matrix4d> simulatedOpenNi2CameraFromTurntable(const CameraSpec& spec) {
+  const std::string scheme = "keyturn-sim://";
+  if (spec.openni2_uri.rfind(scheme, 0) != 0 || spec.openni2_uri.size() <= scheme.size() ||
+      spec.openni2_uri[scheme.size()] != '/')
+    return std::nullopt;
+  const std::string config = spec.openni2_uri.substr(scheme.size());
+  const sim::MesaSrSimConfig c = sim::MesaSrSimConfig::fromFile(config);
+  sim::Mesh mesh;
+  try {
+    mesh = sim::scaledMesh(sim::loadMeshOrBuiltin(c.mesh), c.scale);
+  } catch (const Error& e) {
+    throw Error(config + ": mesh: " + e.what());
+  }
+  const sim::Intrinsics k = sim::kinectIntrinsics();
+  sim::SceneView view;
+  view.distance = c.distance > 0 ? c.distance : sim::structuredLightOperatorDistance(mesh, k, sim::StructuredLightModel());
+  view.elevation_deg = c.elevation;
+  view.roll_deg = c.roll;
+  return sim::cameraFromTurntable(mesh, view, k);
 }
 
 drivers::Sr4000Connection connectionOf(const CameraSpec& spec) {
@@ -93,9 +117,11 @@ std::unique_ptr<drivers::TofCamera> DeviceFactory::openCamera(const CameraSpec& 
     } else {
       o.uri = spec.openni2_uri;
     }
+    const std::optional<Eigen::Matrix4d> pose =
+        spec.kind == CameraSpec::Kind::OpenNi2 ? simulatedOpenNi2CameraFromTurntable(spec) : std::nullopt;
     auto camera = std::make_unique<drivers::OpenNi2Camera>(o);
     std::lock_guard<std::mutex> l(mutex_);
-    camera_from_turntable_.reset();  // a real rig's comes from an axis calibration
+    camera_from_turntable_ = pose;  // a real rig's comes from an axis calibration
     return camera;
   }
   drivers::Sr4000Options options;

@@ -58,6 +58,10 @@ sim::TurntableMotion captureMotion(bool fast) {
   return m;
 }
 
+std::string simulatedOpenNi2Uri(const std::string& config_path) {
+  return "keyturn-sim://" + fs::absolute(config_path).lexically_normal().string();
+}
+
 SimulatedRig openSimulatedRig(const SimulatedRigOptions& o) {
   const SimulatedRigFiles files{o.dir};
   fs::create_directories(files.dir);
@@ -74,7 +78,14 @@ SimulatedRig openSimulatedRig(const SimulatedRigOptions& o) {
   DeviceFactory factory(so);
   SimulatedRig rig;
   if (o.simulated_pose) rig.turntable = factory.openSimulatedTurntable();
-  rig.camera = factory.openCamera(writeSimulatedCameraConfig(files.cameraConfig(), camera));
+  CameraSpec spec = writeSimulatedCameraConfig(files.cameraConfig(), camera);
+  if (o.openni2) {
+    const std::string config = spec.sim_config;
+    spec = CameraSpec();
+    spec.kind = CameraSpec::Kind::OpenNi2;
+    spec.openni2_uri = simulatedOpenNi2Uri(config);
+  }
+  rig.camera = factory.openCamera(spec);
   rig.camera_from_turntable = *factory.cameraFromTurntable();
   return rig;
 }

@@ -63,10 +63,39 @@ TEST(CameraSpec, TheDisplayFormParsesBackToTheSameSpec) {
   EXPECT_NE(rig::CameraSpec::parse("sim"), rig::CameraSpec::parse("sim:c.json"));
 }
 
+TEST(CameraSpec, ReadsOpenNi2DevicesAndOniRecordings) {
+  const auto any = rig::CameraSpec::parse("openni2");
+  EXPECT_EQ(any.kind, rig::CameraSpec::Kind::OpenNi2);
+  EXPECT_EQ(any.openni2_uri, "");
+  EXPECT_EQ(any.describe(), "OpenNI2 camera");
+  // OpenNI2's URIs hold '@', '/' and ':' and are taken verbatim (a PS1080's, the simulated driver's).
+  const auto xtion = rig::CameraSpec::parse("openni2:1d27/0601@2/7");
+  EXPECT_EQ(xtion.openni2_uri, "1d27/0601@2/7");
+  EXPECT_EQ(rig::CameraSpec::parse("openni2:keyturn-sim:///tmp/a b/sim.json").openni2_uri,
+            "keyturn-sim:///tmp/a b/sim.json");
+  // A playback path ending in .oni is OpenNI2's recording; any other stays a keyturn dataset.
+  const auto oni = rig::CameraSpec::parse("playback:rec/take 1.oni@15@once");
+  EXPECT_EQ(oni.kind, rig::CameraSpec::Kind::OniFile);
+  EXPECT_EQ(oni.playback.dataset, "rec/take 1.oni");
+  EXPECT_EQ(oni.playback.rate_fps, 15);
+  EXPECT_FALSE(oni.playback.loop);
+  EXPECT_EQ(oni.describe(), "OpenNI2 recording rec/take 1.oni");
+  EXPECT_EQ(rig::CameraSpec::parse("playback:rec/oni").kind, rig::CameraSpec::Kind::Playback);
+  EXPECT_EQ(rig::CameraSpec::parse("playback:rec.oni.d").kind, rig::CameraSpec::Kind::Playback);
+  for (const std::string text : {"openni2", "openni2:1d27/0601@2/7", "openni2:keyturn-sim://default",
+                                 "playback:a.oni", "playback:a.oni@15", "playback:x/a.oni@once", "playback:b@c.oni@2.5@once"}) {
+    const rig::CameraSpec spec = rig::CameraSpec::parse(text);
+    EXPECT_EQ(spec.toString(), text);
+    EXPECT_EQ(rig::CameraSpec::parse(spec.toString()), spec) << text;
+  }
+  EXPECT_NE(rig::CameraSpec::parse("openni2"), rig::CameraSpec::parse("openni2:1d27/0601@2/7"));
+  EXPECT_NE(rig::CameraSpec::parse("playback:a.oni"), rig::CameraSpec::parse("playback:a.oni@once"));
+}
+
 TEST(CameraSpec, ABadCameraIsOneLineNamingEveryChoice) {
   const std::string choices =
-      "expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP or playback:DATASET[@FPS][@once] (usb and eth take "
-      ",lib=LIBMESASR)";
+      "expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP, openni2, openni2:URI, playback:DATASET[@FPS][@once] or "
+      "playback:FILE.oni[@FPS][@once] (usb and eth take ,lib=LIBMESASR)";
   EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("gige"); }), "camera 'gige': " + choices);
   EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("usb:abc"); }),
             "camera 'usb:abc': expected usb:SERIAL with a number; " + choices);
@@ -76,6 +105,9 @@ TEST(CameraSpec, ABadCameraIsOneLineNamingEveryChoice) {
             "camera 'usb:1,library=x': unknown option 'library=x'; " + choices);
   EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("sim:"); }),
             "camera 'sim:': sim: needs the simulator's configuration file; " + choices);
+  EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("openni2:"); }),
+            "camera 'openni2:': openni2: needs the device's URI (keyturn devices lists them); " + choices);
+  EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("openni"); }), "camera 'openni': " + choices);
   EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("playback:out/demo@0"); }),
             "camera 'playback:out/demo@0': the playback rate after @ must be a positive number of frames/s");
   EXPECT_EQ(errorOf([] { rig::CameraSpec::parse("playback:"); }),

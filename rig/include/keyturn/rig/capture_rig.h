@@ -17,7 +17,8 @@
 namespace keyturn::rig {
 
 struct CaptureDevices {
-  CameraSpec camera;         // simulated (configured by sim below), usb, eth or playback
+  CameraSpec camera;         // simulated (configured by sim below), usb, eth, playback, or openni2 (with pose
+                             // sim: the simulated rig's camera through the simulated OpenNI2 driver)
   PoseSpec pose;             // sim: the simulated or played-back rig's own; playback; or a real pose source
   SimulatedRigOptions sim;   // with a simulated camera (simulated_pose follows pose)
 };

@@ -1,6 +1,7 @@
 #pragma once
 // The simulated rig, for the CLI and the studio alike: the simulated SR4000
-// (libmesasr-sim, opened through the real driver) and the simulated turntable
+// (libmesasr-sim, opened through the real driver) or the simulated Kinect-class
+// camera (the simulated OpenNI2 driver, opened through the real libOpenNI2) and the simulated turntable
 // (its Modbus server in this process and the real Modbus driver talking to it
 // over loopback), sharing one world file in the rig's folder. Both are opened by
 // the device factory (device_factory.h); this file writes what they share.
@@ -72,7 +73,12 @@ struct SimulatedRigOptions {
   bool simulated_pose = true;        // false: the camera is simulated, the pose source real
   std::string world;                 // with a separately running simulated turntable: its --world file
   bool fast = false;                 // shrink motion and settling far below real time
+  bool openni2 = false;              // the camera seen through the simulated OpenNI2 driver (a Kinect-class
+                                     // camera, openni2:keyturn-sim://CONFIG) instead of libmesasr-sim
 };
+
+// The URI under which the simulated OpenNI2 driver opens the simulated camera's configuration file.
+std::string simulatedOpenNi2Uri(const std::string& config_path);
 
 struct SimulatedRig {
   std::unique_ptr<drivers::TofCamera> camera;

@@ -1,0 +1,102 @@
+#!/usr/bin/env bash
+# OpenNI2 cameras as a user runs keyturn with them, against the simulated OpenNI2 driver that
+# Debian's real libOpenNI2 loads from its folder (argument 2, put first on the library path as a
+# user would for any OpenNI2 program): grab writes frames, devices lists the device, a capture with
+# the simulated turntable writes a dataset verify passes; without a device, with a URI not present
+# and with an .oni file missing, one line says so.
+set -u
+source "$(dirname "$0")/lib.sh"
+simdir=${2:?the simulated OpenNI2 driver\'s folder (lib/keyturn/openni2)}
+sim() { LD_LIBRARY_PATH="$simdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$@"; }
+
+# No device: Debian's libOpenNI2 beside a drivers folder holding only the .oni driver (as a machine
+# with no camera plugged in), and beside an empty one (OpenNI2 cannot start).
+nodev="$work/no-device"
+mkdir -p "$nodev/OpenNI2/Drivers" "$work/no-drivers/OpenNI2/Drivers"
+ln -s "$(readlink -f "$simdir/libOpenNI2.so.0")" "$nodev/libOpenNI2.so.0"
+ln -s "$(readlink -f "$simdir/OpenNI2/Drivers/libOniFile.so.0")" "$nodev/OpenNI2/Drivers/libOniFile.so.0"
+ln -s "$(readlink -f "$simdir/libOpenNI2.so.0")" "$work/no-drivers/libOpenNI2.so.0"
+LD_LIBRARY_PATH="$nodev" "$KT" grab --camera openni2 --out "$work/none.pcd" 2> "$work/none.err"
+check "no device: grab exits non-zero" test $? -ne 0
+check "no device: one line naming the drivers folder" \
+  grep -qx "keyturn: no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: $nodev/OpenNI2/Drivers)" "$work/none.err"
+check "no device: nothing else said" test "$(wc -l < "$work/none.err")" -eq 1
+LD_LIBRARY_PATH="$nodev" "$KT" devices > "$work/none-devices.txt"
+check "no device: devices says so" grep -qx "No OpenNI2 depth camera." "$work/none-devices.txt"
+LD_LIBRARY_PATH="$work/no-drivers" "$KT" grab --camera openni2 --out "$work/none.pcd" 2> "$work/nodrivers.err"
+check "no drivers: one line saying OpenNI2 could not start" \
+  grep -qx "keyturn: OpenNI2 could not start: Found no files matching '$work/no-drivers/OpenNI2/Drivers/lib\*.so.0'" "$work/nodrivers.err"
+LD_LIBRARY_PATH="$work/no-drivers" "$KT" devices --json > "$work/nodrivers.json"
+check "no drivers: devices still lists the SwissRangers and says why OpenNI2 is absent" \
+  python3 -c "import json,sys; j = json.load(open(sys.argv[1])); assert j['cameras'] == [] and j['openni2'] == [] and 'could not start' in j['openni2_error']" "$work/nodrivers.json"
+
+# grab: three frames of the simulated Kinect-class camera, their per-pixel median written.
+sim "$KT" grab --camera openni2 --frames 3 --out "$work/grab/frame.pcd" > "$work/grab.out" 2> "$work/grab.err"
+check "grab --camera openni2 exits 0" test $? -eq 0
+check "grab writes the PCD and the depth PNG" test -s "$work/grab/frame.pcd" -a -s "$work/grab/frame_distance.png"
+check "grab lists what it wrote" grep -qx "$work/grab/frame.pcd" "$work/grab.out"
+check "the PCD is the organized 640 x 480 frame" grep -aqx "WIDTH 640" "$work/grab/frame.pcd"
+check "grab reports the device's pinhole" grep -q "depth in 1 mm units, fx 580 fy 580 cx 320 cy 240, registered to colour" "$work/grab.err"
+valid=$(sed -n 's/.* frames (per-pixel median), \([0-9]*\) of 307200 pixels with a return.*/\1/p' "$work/grab.err")
+check "grab: the object is seen (${valid:-0} pixels with a return)" test "${valid:-0}" -gt 5000
+
+# devices --json: URI, name, depth modes, intrinsics.
+sim "$KT" devices --json > "$work/devices.json"
+check "devices --json exits 0" test $? -eq 0
+python3 - "$work/devices.json" <<'PY' > "$work/devices.check"
+import json, sys
+d = json.load(open(sys.argv[1]))["openni2"]
+ok = len(d) == 1 and d[0]["uri"] == "keyturn-sim://default" and d[0]["spec"] == "openni2:keyturn-sim://default"
+ok = ok and {"width": 640, "height": 480, "fps": 30, "format": "depth 1 mm"} in d[0]["depth_modes"]
+ok = ok and abs(d[0]["intrinsics"]["fx"] - 580) < 0.5 and d[0]["intrinsics"]["cx"] == 320
+ok = ok and d[0]["colour"] and d[0]["registration"]
+print("ok" if ok else d)
+PY
+check "devices --json lists the simulated device with its modes and intrinsics" grep -qx ok "$work/devices.check"
+sim "$KT" devices > "$work/devices.txt"
+check "devices lists its spec" grep -q "openni2:keyturn-sim://default" "$work/devices.txt"
+
+sim "$KT" grab --camera openni2:1d27/0601@9/9 --out "$work/x.pcd" 2> "$work/uri.err"
+check "a URI not present: exits non-zero" test $? -ne 0
+check "a URI not present: named with those present" \
+  grep -qx "keyturn: OpenNI2 device '1d27/0601@9/9' not found; present: keyturn-sim://default" "$work/uri.err"
+"$KT" grab --camera "playback:$work/gone.oni" --out "$work/x.pcd" 2> "$work/gone.err"
+check "an .oni file missing: named" grep -qx "keyturn: $work/gone.oni: no such .oni recording" "$work/gone.err"
+
+# A capture sequence: the simulated turntable turning, the simulated OpenNI2 camera seeing it.
+ds="$work/dataset"
+sim "$KT" capture --camera openni2 --pose sim --class mug --instance builtin --step 90 --settle 0.01 -q --out "$ds" \
+  2> "$work/capture.err"
+check "capture --camera openni2 --pose sim exits 0" test $? -eq 0
+check "capture writes 4 views" grep -q "4 views written" "$work/capture.err"
+"$KT" verify "$ds" > "$work/verify.txt"
+check "the dataset verifies" test $? -eq 0
+check "verify counts 4 views, OK" grep -q "4 views, 0 missing, 0 corrupt, 0 orphan, 0 duplicate files — OK" "$work/verify.txt"
+python3 - "$ds" <<'PY' > "$work/sidecar.check"
+import json, sys
+s = json.load(open(sys.argv[1] + "/mug/builtin/e30/a90.0.json"))
+cam = s["camera"]
+ok = "modulation_mhz" not in cam and "keyturn-sim://" in cam["device"] and len(s["camera_from_turntable"]) == 4
+print("ok" if ok else s)
+PY
+check "the sidecar records the OpenNI2 device, no SR4000 settings, the exact calibration" grep -qx ok "$work/sidecar.check"
+# The object turned: the views differ.
+check "views at 0 and 90 degrees differ" bash -c "! cmp -s '$ds/mug/builtin/e30/a0.0.pcd' '$ds/mug/builtin/e30/a90.0.pcd'"
+sim "$KT" capture --camera openni2:keyturn-sim://default --pose sim --class mug --instance builtin --out "$work/other" \
+  2> "$work/world.err"
+check "pose sim with another OpenNI2 device is refused in one line" \
+  grep -q "pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera)" "$work/world.err"
+# The studio with the OpenNI2 camera live (headless under Xvfb): frames arrive, recognition runs.
+studio="$(dirname "$KT")/keyturn-studio"
+if [ -x "$studio" ] && command -v xvfb-run > /dev/null; then
+  data="$(cd "$(dirname "$0")/../../data" && pwd)"
+  sim xvfb-run -a -s "-screen 0 1600x1000x24" "$studio" --camera openni2 --model "$data/models/sim-objects" \
+    --settings "$work/studio.ini" --measure 3 --screenshot "$work/studio.png" > "$work/studio.json" 2> "$work/studio.err"
+  check "studio --camera openni2 exits 0" test $? -eq 0
+  fps=$(python3 -c "import json,sys; print(int(json.load(open(sys.argv[1]))['camera_fps']))" "$work/studio.json" 2>/dev/null)
+  check "studio: the OpenNI2 camera live (${fps:-0} frames/s)" test "${fps:-0}" -ge 5
+  check "studio: screenshot written" test -s "$work/studio.png"
+else
+  echo "SKIPPED: the studio under Xvfb (keyturn-studio or xvfb-run missing)"
+fi
+finish
