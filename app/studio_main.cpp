@@ -9,6 +9,7 @@
 #include <QApplication>
 #include <cstdlib>
 #include <iostream>
+#include <optional>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/install_layout.h"
@@ -21,7 +22,7 @@ namespace {
 
 struct Args {
   bool simulated = false;
-  std::string object, model, dataset, settings, screenshot, playback;
+  std::string object, model, dataset, settings, screenshot, playback, camera;
   double playback_rate = 0;
   bool playback_once = false;
   int threads = 2;
@@ -43,6 +44,10 @@ int main(int argc, char** argv) {
   cli.add_option("--playback-rate", a.playback_rate, "Frames per second of the playback (default: as recorded)")
       ->check(CLI::PositiveNumber);
   cli.add_flag("--playback-once", a.playback_once, "Stop at the end of the recording instead of starting over");
+  cli.add_option("--camera", a.camera,
+                 "Start with this camera connected, named as keyturn grab names it (openni2, openni2:URI, "
+                 "playback:FILE.oni, usb, eth:IP)")
+      ->excludes(simulated);
   cli.add_option("--object", a.object, "Instance on the simulated turntable (data/objects/objects.csv), e.g. ycb_035_power_drill");
   cli.add_option("--model", a.model, "Model folder (keyturn train --out …); with --simulated or --playback the built-in one by default");
   cli.add_option("--dataset", a.dataset, "Capture dataset folder");
@@ -86,6 +91,15 @@ int main(int argc, char** argv) {
       return 1;
     }
   }
+  std::optional<keyturn::rig::CameraSpec> camera;
+  if (!a.camera.empty()) {
+    try {
+      camera = keyturn::rig::CameraSpec::parse(a.camera);
+    } catch (const keyturn::Error& e) {
+      std::cerr << "keyturn-studio: " << e.what() << "\n";
+      return 1;
+    }
+  }
   if (!std::getenv("DISPLAY") && !std::getenv("WAYLAND_DISPLAY") && !std::getenv("QT_QPA_PLATFORM")) {
     std::cerr << "keyturn-studio: no display (DISPLAY is not set): run it on a desktop, or headless as "
                  "xvfb-run -a keyturn-studio …\n";
@@ -97,6 +111,7 @@ int main(int argc, char** argv) {
   o.sim_object = a.object;
   o.model = a.model.empty() && (a.simulated || !a.playback.empty()) ? data + "/models/sim-objects" : a.model;
   o.playback = {a.playback, a.playback_rate, !a.playback_once};
+  o.camera = camera;
   o.dataset = a.dataset;
   o.recognition_threads = a.threads;
   o.settings_file = a.settings;

@@ -31,11 +31,13 @@ void CameraWorker::open(const rig::CameraSpec& spec, const drivers::TofSettings&
     return;
   }
   const auto s = camera_->settings();
+  const bool depth_camera = spec_.kind == rig::CameraSpec::Kind::OpenNi2 || spec_.kind == rig::CameraSpec::Kind::OniFile;
   emit opened(QString::fromStdString(camera_->deviceString()),
-              QString("integration %1 · %2 MHz · threshold %3")
-                  .arg(s.auto_exposure.enabled ? QString("auto") : QString::number(s.integration_time))
-                  .arg(drivers::modulationMHz(s.modulation_frequency))
-                  .arg(s.amplitude_threshold));
+              depth_camera ? QString("OpenNI2 depth camera: the SR4000's settings do not apply")
+                           : QString("integration %1 · %2 MHz · threshold %3")
+                                 .arg(s.auto_exposure.enabled ? QString("auto") : QString::number(s.integration_time))
+                                 .arg(drivers::modulationMHz(s.modulation_frequency))
+                                 .arg(s.amplitude_threshold));
   second_start_ms_ = QDateTime::currentMSecsSinceEpoch();
   frames_in_second_ = 0;
   live_->start();

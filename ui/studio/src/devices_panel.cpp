@@ -34,7 +34,9 @@ QWidget* DevicesPanel::cameraGroup() {
   auto* box = new QGroupBox(tr("Camera"));
   auto* form = new QFormLayout(box);
   camera_kind_ = new QComboBox;
-  camera_kind_->addItems({tr("Simulated SR4000"), tr("USB"), tr("Ethernet"), tr("Recording (playback)")});
+  // In rig::CameraSpec::Kind's order; an .oni recording is chosen as a recording (playback).
+  camera_kind_->addItems({tr("Simulated SR4000"), tr("USB"), tr("Ethernet"), tr("Recording (playback)"),
+                          tr("OpenNI2 (Kinect, Xtion, Astra)")});
   camera_kind_->setObjectName("cameraKind");
   form->addRow(tr("Source"), camera_kind_);
 
@@ -77,6 +79,19 @@ QWidget* DevicesPanel::cameraGroup() {
   playback_row->addWidget(playback_rate_);
   playback_row->addWidget(playback_loop_);
   camera_where_->addWidget(playback);
+  // OpenNI2's devices by URI; the field stays editable for a URI not (yet) listed, empty = the first found.
+  auto* openni2 = new QWidget;
+  auto* openni2_row = new QHBoxLayout(openni2);
+  openni2_row->setContentsMargins(0, 0, 0, 0);
+  openni2_uri_ = new QComboBox;
+  openni2_uri_->setEditable(true);
+  openni2_uri_->setObjectName("openni2Uri");
+  openni2_uri_->setToolTip(tr("OpenNI2 device URI (keyturn devices lists them); empty: the first device found"));
+  auto* openni2_rescan = new QPushButton(tr("Rescan"));
+  openni2_row->addWidget(openni2_uri_, 1);
+  openni2_row->addWidget(openni2_rescan);
+  camera_where_->addWidget(openni2);
+  connect(openni2_rescan, &QPushButton::clicked, this, &DevicesPanel::refreshOpenNi2);
   form->addRow(tr("Device"), camera_where_);
 
   auto_exposure_ = new QCheckBox(tr("Auto exposure"));
@@ -231,7 +246,33 @@ QWidget* DevicesPanel::poseGroup() {
 void DevicesPanel::updateCameraKind() {
   camera_where_->setCurrentIndex(camera_kind_->currentIndex());
   unplug_->setVisible(camera_kind_->currentIndex() == 0);
+  // The SR4000's settings mean nothing to an OpenNI2 camera.
+  const bool sr4000 = camera_kind_->currentIndex() != static_cast<int>(rig::CameraSpec::Kind::OpenNi2);
+  for (QWidget* w : std::initializer_list<QWidget*>{integration_, auto_exposure_, modulation_, threshold_, median_,
+                                                    denoise_, fixed_pattern_, conf_map_})
+    if (w) w->setEnabled(sr4000);
   if (camera_kind_->currentIndex() == 1 && usb_list_->count() == 0) refreshUsb();
+  if (camera_kind_->currentIndex() == static_cast<int>(rig::CameraSpec::Kind::OpenNi2) && openni2_uri_->count() == 0)
+    refreshOpenNi2();
+}
+
+void DevicesPanel::refreshOpenNi2() {
+  const QString typed = openni2_uri_->currentText();
+  openni2_uri_->clear();
+  try {
+    for (const auto& [uri, text] : factory_.openni2Cameras())
+      openni2_uri_->addItem(QString::fromStdString(text), QString::fromStdString(uri));
+  } catch (const std::exception& e) {
+    openni2_uri_->addItem(QString("OpenNI2: %1").arg(e.what()), QString());
+  }
+  if (openni2_uri_->count() == 0 && !typed.isEmpty()) openni2_uri_->setEditText(typed);
+}
+
+QString DevicesPanel::openni2Uri() const {
+  // A listed device carries its URI as data; a typed one is the text itself.
+  const int i = openni2_uri_->currentIndex();
+  if (i >= 0 && openni2_uri_->itemText(i) == openni2_uri_->currentText()) return openni2_uri_->itemData(i).toString();
+  return openni2_uri_->currentText().trimmed();
 }
 
 void DevicesPanel::updatePoseKind() {
@@ -266,8 +307,14 @@ rig::CameraSpec DevicesPanel::cameraSpec() const {
       return spec;
     case rig::CameraSpec::Kind::Ethernet: return rig::CameraSpec::parse("eth:" + address_->text().trimmed().toStdString());
     case rig::CameraSpec::Kind::Playback:
-      spec.kind = rig::CameraSpec::Kind::Playback;
+    case rig::CameraSpec::Kind::OniFile:
       spec.playback = playback();
+      // A path ending in .oni is OpenNI2's recording, as the CLI's playback:FILE.oni.
+      spec.kind = rig::CameraSpec::parse("playback:" + spec.playback.dataset).kind;
+      return spec;
+    case rig::CameraSpec::Kind::OpenNi2:
+      spec.kind = rig::CameraSpec::Kind::OpenNi2;
+      spec.openni2_uri = openni2Uri().toStdString();
       return spec;
   }
   return spec;
@@ -323,10 +370,15 @@ std::optional<rig::PoseSpec> DevicesPanel::poseSpec() const {
 QString DevicesPanel::simObject() const { return sim_object_->currentData().toString(); }
 
 void DevicesPanel::setCameraChoice(rig::CameraSpec::Kind kind, const QString& sim_object) {
+  if (kind == rig::CameraSpec::Kind::OniFile) kind = rig::CameraSpec::Kind::Playback;  // the same row
   camera_kind_->setCurrentIndex(static_cast<int>(kind));
   const int i = sim_object_->findData(sim_object);
   if (i >= 0) sim_object_->setCurrentIndex(i);
 }
+
+void DevicesPanel::setOpenNi2Uri(const QString& uri) { openni2_uri_->setEditText(uri); }
+
+void DevicesPanel::setAddress(const QString& address) { address_->setText(address); }
 
 void DevicesPanel::setPoseChoice(PoseChoice choice) { pose_kind_->setCurrentIndex(static_cast<int>(choice)); }
 
@@ -341,6 +393,7 @@ void DevicesPanel::save(QSettings& s) const {
   s.setValue("camera/playback_dataset", playback_dataset_->text());
   s.setValue("camera/playback_rate", playback_rate_->value());
   s.setValue("camera/playback_loop", playback_loop_->isChecked());
+  s.setValue("camera/openni2_uri", openni2Uri());
   s.setValue("pose/kind", pose_kind_->currentIndex());
   s.setValue("pose/endpoint", pose_endpoint_->text());
   s.setValue("pose/profile", pose_profile_->text());
@@ -358,6 +411,7 @@ void DevicesPanel::restore(const QSettings& s) {
   playback_dataset_->setText(s.value("camera/playback_dataset").toString());
   playback_rate_->setValue(s.value("camera/playback_rate", 0.0).toDouble());
   playback_loop_->setChecked(s.value("camera/playback_loop", true).toBool());
+  openni2_uri_->setEditText(s.value("camera/openni2_uri").toString());
   pose_kind_->setCurrentIndex(s.value("pose/kind", 1).toInt());
   pose_endpoint_->setText(s.value("pose/endpoint").toString());
   pose_profile_->setText(s.value("pose/profile", "keyturn-sim").toString());

@@ -1,5 +1,5 @@
 #pragma once
-// Devices: the camera (simulated, USB, Ethernet) with its settings, and the
+// Devices: the camera (simulated, USB, Ethernet, a recording, OpenNI2) with its settings, and the
 // pose source (simulated turntable, Modbus TCP/RTU, CANopen) with a live
 // readout and jog / home / move-to / stop.
 #include <QWidget>
@@ -36,6 +36,9 @@ class DevicesPanel : public QWidget {
   void setCameraChoice(rig::CameraSpec::Kind kind, const QString& sim_object);
   void setPoseChoice(PoseChoice choice);
   void setPlayback(const rig::PlaybackSpec& playback);
+  void setOpenNi2Uri(const QString& uri);  // "" = the first OpenNI2 device found
+  QString openni2Uri() const;
+  void setAddress(const QString& ipv4);
   rig::PlaybackSpec playback() const;
   QString simObject() const;
 
@@ -53,6 +56,7 @@ class DevicesPanel : public QWidget {
   void poseFailing(const QString& message);
   void showPose(double deg, double x, double y, double z, bool moving, bool in_position);
   void refreshUsb();
+  void refreshOpenNi2();
 
  signals:
   void connectCamera();
@@ -75,7 +79,7 @@ class DevicesPanel : public QWidget {
 
   RigFactory& factory_;
   bool camera_on_ = false, pose_on_ = false;
-  QComboBox *camera_kind_, *sim_object_, *usb_list_, *modulation_, *pose_kind_;
+  QComboBox *camera_kind_, *sim_object_, *usb_list_, *openni2_uri_, *modulation_, *pose_kind_;
   QLineEdit *address_, *pose_endpoint_, *pose_profile_, *playback_dataset_;
   QDoubleSpinBox* playback_rate_;
   QCheckBox* playback_loop_;

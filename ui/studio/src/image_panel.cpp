@@ -79,6 +79,17 @@ ImagePanel::ImagePanel(const QString& title, bool colour_bar, QWidget* parent)
   if (colour_bar_) bar_ = colourBar(256, 1);
 }
 
+QImage rgbImage(const std::vector<std::uint8_t>& rgb, int w, int h) {
+  if (w <= 0 || h <= 0 || rgb.size() != static_cast<std::size_t>(w) * h * 3) return {};
+  return QImage(rgb.data(), w, h, w * 3, QImage::Format_RGB888).copy();
+}
+
+void ImagePanel::setTitle(const QString& title) {
+  if (title == title_) return;
+  title_ = title;
+  update();
+}
+
 void ImagePanel::setImage(const QImage& image, const ImageScale& scale) {
   image_ = image;
   scale_ = scale;

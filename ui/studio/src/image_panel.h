@@ -18,13 +18,16 @@ struct ImageScale {
 QImage distanceImage(const std::vector<std::uint16_t>& raw, int w, int h, double metres_per_count, ImageScale* scale);
 // auto_level: 0 … the 99th percentile (amplitude); otherwise the full 16-bit range (confidence).
 QImage greyImage(const std::vector<std::uint16_t>& raw, int w, int h, ImageScale* scale, bool auto_level = true);
-QImage colourBar(int width, int height);  // the distance colour map, low → high, left → right
+QImage colourBar(int width, int height);
+// A depth camera's RGB888 colour image (copied); null when the size does not match the bytes.
+QImage rgbImage(const std::vector<std::uint8_t>& rgb, int w, int h);  // the distance colour map, low → high, left → right
 
 class ImagePanel : public QWidget {
   Q_OBJECT
  public:
   ImagePanel(const QString& title, bool colour_bar, QWidget* parent = nullptr);
   void setImage(const QImage& image, const ImageScale& scale);
+  void setTitle(const QString& title);  // the panels say what a depth camera's images are
   const QImage& image() const { return image_; }
   QSize sizeHint() const override { return {300, 260}; }
 

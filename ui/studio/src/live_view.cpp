@@ -81,10 +81,20 @@ void LiveView::refresh() {
     const FramePtr frame = last_frame_;
     const int fw = static_cast<int>(frame->width), fh = static_cast<int>(frame->height);
     ImageScale s;
-    const double mpc = drivers::nonAmbiguousRange(frame->settings.modulation_frequency) / 65535.0;
+    // An SR4000's raw distance spans its non-ambiguous range; a depth camera's depth has its unit.
+    const auto& depth = frame->depth_camera;
+    const double mpc = depth ? depth->depth_unit_m : drivers::nonAmbiguousRange(frame->settings.modulation_frequency) / 65535.0;
+    widgets_.distance->setTitle(depth ? tr("Depth") : tr("Distance"));
     widgets_.distance->setImage(distanceImage(frame->distance, fw, fh, mpc, &s), s);
     ImageScale a;
-    widgets_.amplitude->setImage(greyImage(frame->amplitude, fw, fh, &a), a);
+    if (depth && !depth->colour.empty()) {  // a depth camera's colour where the SR4000 has amplitude
+      widgets_.amplitude->setTitle(depth->registered ? tr("Colour (depth registered to it)") : tr("Colour"));
+      widgets_.amplitude->setImage(rgbImage(depth->colour, static_cast<int>(depth->colour_width),
+                                            static_cast<int>(depth->colour_height)), a);
+    } else {
+      widgets_.amplitude->setTitle(depth ? tr("IR") : tr("Amplitude"));
+      widgets_.amplitude->setImage(greyImage(frame->amplitude, fw, fh, &a), a);
+    }
     if (!frame->confidence.empty()) {
       ImageScale c;
       widgets_.confidence->setImage(greyImage(frame->confidence, fw, fh, &c, false), c);

@@ -7,6 +7,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/dataset/object_list.h"
+#include "keyturn/drivers/openni2_camera.h"
 
 namespace fs = std::filesystem;
 
@@ -76,6 +77,13 @@ std::vector<std::pair<unsigned, std::string>> StudioRigFactory::usbCameras() {
     if (!c.accessible) text += " (no access: " + c.access_error + ")";
     out.emplace_back(serial, text);
   }
+  return out;
+}
+
+std::vector<std::pair<std::string, std::string>> StudioRigFactory::openni2Cameras() {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& d : drivers::listOpenNi2Devices())
+    out.emplace_back(d.uri, d.vendor + " " + d.name + " (" + d.uri + ")" + (d.error.empty() ? "" : ": " + d.error));
   return out;
 }
 

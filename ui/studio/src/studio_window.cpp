@@ -187,6 +187,16 @@ void StudioWindow::connectDevices(RigFactory& factory) {
     emit devices_panel_->connectCamera();
     emit devices_panel_->connectPose();
   }
+  if (options_.camera) {  // a camera named as the CLI names it, without a pose source
+    const rig::CameraSpec& c = *options_.camera;
+    if (c.kind == rig::CameraSpec::Kind::Playback || c.kind == rig::CameraSpec::Kind::OniFile)
+      devices_panel_->setPlayback(c.playback);
+    if (c.kind == rig::CameraSpec::Kind::OpenNi2) devices_panel_->setOpenNi2Uri(QString::fromStdString(c.openni2_uri));
+    if (c.kind == rig::CameraSpec::Kind::Ethernet) devices_panel_->setAddress(QString::fromStdString(c.address));
+    devices_panel_->setCameraChoice(c.kind, QString());
+    devices_panel_->setPoseChoice(DevicesPanel::PoseChoice::None);
+    emit devices_panel_->connectCamera();
+  }
 }
 
 // Unattended runs: start the capture as soon as both devices answer.

@@ -37,6 +37,8 @@ class RigFactory {
   // Handles pending USB hot-plug events without waiting: true when a SwissRanger
   // arrived or left since the last call. False where libusb has no hot-plug.
   virtual bool usbCamerasChanged() { return false; }
+  // (URI, "vendor name (URI)") of each OpenNI2 depth camera present; throws when OpenNI2 cannot start.
+  virtual std::vector<std::pair<std::string, std::string>> openni2Cameras() { return {}; }
   // Camera ← turntable at 0° for the views' sidecars: exact for the simulated
   // rig, from an axis calibration for a real one, none when not calibrated.
   virtual std::optional<Eigen::Matrix4d> cameraFromTurntable() const { return std::nullopt; }

@@ -3,7 +3,7 @@
 // the CLI opens them. What is the studio's own: the simulated rig's files in a
 // private runtime folder (the world the simulated camera and turntable share,
 // the camera's configuration, its unplug flag), the simulated objects to choose
-// from, and USB discovery for the Devices panel.
+// from, and USB and OpenNI2 discovery for the Devices panel.
 #include <mutex>
 
 #include "keyturn/drivers/usb_discovery.h"
@@ -26,6 +26,7 @@ class StudioRigFactory final : public RigFactory {
   void setSimulatedCameraUnplugged(bool unplugged) override;
   std::vector<std::pair<unsigned, std::string>> usbCameras() override;
   bool usbCamerasChanged() override;
+  std::vector<std::pair<std::string, std::string>> openni2Cameras() override;
   std::optional<Eigen::Matrix4d> cameraFromTurntable() const override;
   const std::string& runtimeDir() const { return files_.dir; }
 

@@ -7,6 +7,7 @@
 // rates, redraw clock, model) and the capture (sequence start, snapshot).
 #include <QMainWindow>
 #include <memory>
+#include <optional>
 
 #include "keyturn/studio/rig_factory.h"
 
@@ -25,6 +26,7 @@ struct StudioOptions {
   bool start_capture = false;    // start the capture sequence once camera and turntable are up
   bool geodesic_paths = false;   // show the geodesic paths in the 3D view from the start
   rig::PlaybackSpec playback;    // dataset not empty: start playing it back as camera and pose source
+  std::optional<rig::CameraSpec> camera;  // start with this camera connected (no pose source)
 };
 
 // Live numbers, for the status bar, tests and `keyturn-studio --measure`.
