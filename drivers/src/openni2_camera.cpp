@@ -123,8 +123,8 @@ DepthIntrinsics intrinsicsFromFieldOfView(double hfov, double vfov, std::uint32_
   DepthIntrinsics k;
   k.fx = width / (2.0 * std::tan(hfov / 2));
   k.fy = height / (2.0 * std::tan(vfov / 2));
-  k.cx = width / 2.0;
-  k.cy = height / 2.0;
+  k.cx = (width - 1) / 2.0;
+  k.cy = (height - 1) / 2.0;
   return k;
 }
 

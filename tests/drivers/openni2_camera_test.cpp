@@ -42,7 +42,8 @@ TEST(OpenNi2Camera, TakesFramesWithTheDevicesIntrinsicsAndTimestamps) {
   // The simulated Kinect-class camera: 640 × 480, HFOV/VFOV of fx = fy = 580 px.
   EXPECT_NEAR(camera.info().intrinsics.fx, 580, 0.5);
   EXPECT_NEAR(camera.info().intrinsics.fy, 580, 0.5);
-  EXPECT_DOUBLE_EQ(camera.info().intrinsics.cx, 320);
+  EXPECT_DOUBLE_EQ(camera.info().intrinsics.cx, 319.5);
+  EXPECT_DOUBLE_EQ(camera.info().intrinsics.cy, 239.5);
   EXPECT_EQ(camera.info().depth_mode.pixel_format, "depth 1 mm");
   EXPECT_TRUE(camera.info().has_colour);
   std::uint64_t last_stamp = 0;
@@ -70,8 +71,8 @@ TEST(OpenNi2Camera, TakesFramesWithTheDevicesIntrinsicsAndTimestamps) {
       ASSERT_GE(q.z(), 0.5f);
       ASSERT_LE(q.z(), 4.5f);
       const double u = static_cast<double>(p % 640), v = static_cast<double>(p / 640);
-      ASSERT_NEAR(q.x(), (u - 320) * q.z() / camera.info().intrinsics.fx, 1e-4);
-      ASSERT_NEAR(q.y(), (v - 240) * q.z() / camera.info().intrinsics.fy, 1e-4);
+      ASSERT_NEAR(q.x(), (u - 319.5) * q.z() / camera.info().intrinsics.fx, 1e-4);
+      ASSERT_NEAR(q.y(), (v - 239.5) * q.z() / camera.info().intrinsics.fy, 1e-4);
     }
     // Colour beside depth, registered to it by the device.
     EXPECT_EQ(f.depth_camera->colour.size(), 640u * 480u * 3u);

@@ -16,14 +16,15 @@ namespace {
 
 using test::errorOf;
 
-TEST(OpenNi2Intrinsics, FromTheFieldOfViewAsOpenNi2sConverterHasIt) {
+TEST(OpenNi2Intrinsics, FromTheFieldOfViewCentredOnTheImage) {
   // A Kinect v1 / Xtion depth camera: 640 × 480 at fx = fy = 580 px is 57.8° × 45.0°.
   const double hfov = 2 * std::atan(320.0 / 580), vfov = 2 * std::atan(240.0 / 580);
   const DepthIntrinsics k = drivers::intrinsicsFromFieldOfView(hfov, vfov, 640, 480);
   EXPECT_NEAR(k.fx, 580, 1e-9);
   EXPECT_NEAR(k.fy, 580, 1e-9);
-  EXPECT_DOUBLE_EQ(k.cx, 320);
-  EXPECT_DOUBLE_EQ(k.cy, 240);
+  // The middle of 640 pixels numbered 0 … 639 (PCL's OpenNI2 grabber's principal point too).
+  EXPECT_DOUBLE_EQ(k.cx, 319.5);
+  EXPECT_DOUBLE_EQ(k.cy, 239.5);
   // Half the resolution, half the focal length in pixels.
   EXPECT_NEAR(drivers::intrinsicsFromFieldOfView(hfov, vfov, 320, 240).fx, 290, 1e-9);
   EXPECT_EQ(errorOf([] { drivers::intrinsicsFromFieldOfView(0, 0.5, 640, 480); }),

@@ -4,8 +4,9 @@
 //
 // A frame is the depth stream as an organized cloud (metres, x right, y down, z forward; NaN where
 // the depth is 0) made with the device's pinhole: OpenNI2 gives no calibration through its generic
-// API, so the intrinsics come from the stream's fields of view and resolution, as OpenNI2's own
-// CoordinateConverter does (fx = width / (2 tan(HFOV / 2)), cx = width / 2). Depth is registered to
+// API, so the intrinsics come from the stream's fields of view and resolution: fx = width / (2 tan(HFOV / 2)),
+// the principal point at the image's centre, (width − 1) / 2 in 0-based pixel coordinates, as PCL's
+// OpenNI2 grabber has it (OpenNI2's CoordinateConverter puts it half a pixel off). Depth is registered to
 // the colour image where the device supports it; IR (as the frame's amplitude) and colour are read
 // when the device has them. A stream that stops delivering frames closes and reopens the device with
 // backoff (drivers/retry.h), reported through the log, before acquire gives up — as the SR4000 does.
@@ -19,9 +20,9 @@
 
 namespace keyturn::drivers {
 
-// The pinhole of an image of width × height pixels seeing hfov × vfov radians, centred as OpenNI2's
-// CoordinateConverter has it (cx = width / 2, cy = height / 2). Throws keyturn::Error for a field
-// of view outside (0, π) or an empty image.
+// The pinhole of an image of width × height pixels seeing hfov × vfov radians, centred on the image
+// (cx = (width − 1) / 2, cy = (height − 1) / 2). Throws keyturn::Error for a field of view outside
+// (0, π) or an empty image.
 DepthIntrinsics intrinsicsFromFieldOfView(double hfov_rad, double vfov_rad, std::uint32_t width,
                                           std::uint32_t height);
 
