@@ -14,6 +14,10 @@
 
 namespace keyturn::sim::openni2 {
 
+struct FrameSyncGroup {
+  int streams;
+};
+
 class SimDriver : public oni::driver::DriverBase {
  public:
   explicit SimDriver(OniDriverServices* services) : DriverBase(services) {}
@@ -59,6 +63,14 @@ class SimDriver : public oni::driver::DriverBase {
   void deviceClose(oni::driver::DeviceBase* device) override { delete static_cast<SimDevice*>(device); }
 
   void shutdown() override {}
+
+  // libOpenNI2 pairs synced depth and colour frames by frame index itself; the
+  // device already gives the frames of one instant one index, so a sync group
+  // needs nothing from the driver but a handle.
+  void* enableFrameSync(oni::driver::StreamBase** /*streams*/, int count) override {
+    return count > 0 ? new FrameSyncGroup{count} : nullptr;
+  }
+  void disableFrameSync(void* group) override { delete static_cast<FrameSyncGroup*>(group); }
 
  private:
   static MesaSrSimConfig load(const std::string& path) {

@@ -44,56 +44,93 @@ bool sameGeometry(const SceneView& a, const SceneView& b) {
 std::uint8_t toByte(double x) { return static_cast<std::uint8_t>(std::clamp(std::lround(x * 255.0), 0L, 255L)); }
 }  // namespace
 
+void StructuredLightRenderer::cast(const SceneView& view) const {
+  const Intrinsics& k = renderer_.intrinsics();
+  surfaces_ = renderer_.castPixelCentres(view, Eigen::Vector3f(static_cast<float>(model_.baseline), 0.f, 0.f));
+  cast_view_ = view;
+  cast_ = true;
+  const std::size_t n = static_cast<std::size_t>(k.width) * k.height;
+  theta_.assign(n, 0.f);
+  lateral_.assign(n, 0.f);
+  rgb_.assign(3 * n, 0);
+  ir_.assign(n, 0);
+  for (std::size_t i = 0; i < n; ++i) {
+    const SurfacePixel& s = surfaces_[i];
+    const double t = std::min(std::acos(std::clamp(static_cast<double>(s.cos_incidence), 0.0, 1.0)), M_PI / 2 - 1e-3);
+    theta_[i] = static_cast<float>(t);
+    lateral_[i] = static_cast<float>(model_.lateral_px + 0.035 * t / (M_PI / 2 - t));  // Nguyen et al. σ_L (px)
+    // Colour: albedo shaded by a light at the camera, so no shadow is visible from it.
+    const double shade = 0.2 + 0.8 * s.cos_incidence;
+    const double albedo[3] = {s.object ? 0.85 : 0.55, 0.55, s.object ? 0.30 : 0.52};
+    for (int c = 0; c < 3; ++c) rgb_[3 * i + c] = s.depth > 0 ? toByte(albedo[c] * shade) : toByte(0.12);
+    // IR: the projector's light, 10-bit like the PS1080's IR image; dark in its shadow.
+    if (s.lit) {
+      const double refl = s.object ? view.object_reflectivity : view.table_reflectivity;
+      ir_[i] = static_cast<std::uint16_t>(std::min(1023.0, 400.0 * refl * s.cos_light / (s.depth * s.depth)));
+    }
+  }
+}
+
+namespace {
+// Standard normal samples for the per-pixel noise: 3 per pixel at 30 frames/s are
+// too many to draw one by one, so a fixed table of 2^16 is indexed by a fast
+// generator (splitmix64) seeded per frame.
+const std::vector<float>& normalTable() {
+  static const std::vector<float> table = [] {
+    std::mt19937_64 rng(20121113);
+    std::normal_distribution<float> g(0.f, 1.f);
+    std::vector<float> t(1 << 16);
+    for (float& x : t) x = g(rng);
+    return t;
+  }();
+  return table;
+}
+
+struct FastNormal {
+  std::uint64_t state;
+  const std::vector<float>& table = normalTable();
+  float operator()() {
+    std::uint64_t z = (state += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return table[(z ^ (z >> 31)) >> 48];
+  }
+};
+}  // namespace
+
 StructuredLightFrame StructuredLightRenderer::render(const SceneView& view) const {
   const Intrinsics& k = renderer_.intrinsics();
-  if (!cast_ || !sameGeometry(view, cast_view_)) {
-    surfaces_ = renderer_.castPixelCentres(view, Eigen::Vector3f(static_cast<float>(model_.baseline), 0.f, 0.f));
-    cast_view_ = view;
-    cast_ = true;
-  }
+  if (!cast_ || !sameGeometry(view, cast_view_)) cast(view);
   const int w = k.width, h = k.height;
   StructuredLightFrame f;
   f.width = w;
   f.height = h;
   f.depth.assign(static_cast<std::size_t>(w) * h, 0.f);
-  f.rgb.assign(static_cast<std::size_t>(w) * h * 3, 0);
-  f.ir.assign(static_cast<std::size_t>(w) * h, 0);
+  f.rgb = rgb_;
+  f.ir = ir_;
 
-  std::mt19937_64 rng(view.seed);
-  std::normal_distribution<double> gauss(0.0, 1.0);
+  FastNormal gauss{view.seed};
   const double fb = k.fx * model_.baseline;  // disparity (px) × depth (m)
-  const double max_theta = model_.max_incidence_deg * M_PI / 180.0;
+  const double step = model_.subpixel;
+  const float max_theta = static_cast<float>(model_.max_incidence_deg * M_PI / 180.0);
   for (int v = 0; v < h; ++v) {
     for (int u = 0; u < w; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * w + u;
-      const SurfacePixel& s = surfaces_[i];
-      // Colour: albedo shaded by a light at the camera, so no shadow is visible from it.
-      const double shade = s.depth > 0 ? 0.2 + 0.8 * s.cos_incidence : 0.0;
-      const double albedo[3] = {s.object ? 0.85 : 0.55, s.object ? 0.55 : 0.55, s.object ? 0.30 : 0.52};
-      for (int c = 0; c < 3; ++c) f.rgb[3 * i + c] = s.depth > 0 ? toByte(albedo[c] * shade) : toByte(0.12);
-      // IR: the projector's light, 10-bit like the PS1080's IR image; dark in its shadow.
-      if (s.lit) {
-        const double refl = s.object ? view.object_reflectivity : view.table_reflectivity;
-        f.ir[i] = static_cast<std::uint16_t>(std::min(1023.0, 400.0 * refl * s.cos_light / (s.depth * s.depth)));
-      }
-
       // Depth: the pattern seen a lateral jitter away, then axial noise, then disparity steps.
-      int su = u, sv = v;
-      const double theta0 = std::acos(std::clamp(static_cast<double>(s.cos_incidence), 0.0, 1.0));
-      if (view.noise && s.depth > 0) {
-        const double t = std::min(theta0, M_PI / 2 - 1e-3);
-        const double sigma_l = model_.lateral_px + 0.035 * t / (M_PI / 2 - t);
-        su = std::clamp(u + static_cast<int>(std::lround(sigma_l * gauss(rng))), 0, w - 1);
-        sv = std::clamp(v + static_cast<int>(std::lround(sigma_l * gauss(rng))), 0, h - 1);
+      std::size_t j = i;
+      if (view.noise && surfaces_[i].depth > 0) {
+        const float sl = lateral_[i];
+        const int su = std::clamp(u + static_cast<int>(std::lround(sl * gauss())), 0, w - 1);
+        const int sv = std::clamp(v + static_cast<int>(std::lround(sl * gauss())), 0, h - 1);
+        j = static_cast<std::size_t>(sv) * w + su;
       }
-      const SurfacePixel& m = surfaces_[static_cast<std::size_t>(sv) * w + su];
+      const SurfacePixel& m = surfaces_[j];
       if (m.depth <= 0 || !m.lit) continue;  // no surface, or the projector's shadow
-      const double theta = std::acos(std::clamp(static_cast<double>(m.cos_incidence), 0.0, 1.0));
-      if (theta > max_theta) continue;
+      if (theta_[j] > max_theta) continue;   // too grazing for the pattern to be matched
       double z = m.depth;
-      if (view.noise) z += axialSigma(z, theta, model_) * gauss(rng);
+      if (view.noise) z += axialSigma(z, theta_[j], model_) * gauss();
       if (z <= 0) continue;
-      const double disparity = std::round(fb / z / model_.subpixel) * model_.subpixel;
+      const double disparity = std::round(fb / z / step) * step;
       if (disparity <= 0) continue;
       z = fb / disparity;
       if (z < model_.min_depth || z > model_.max_depth) continue;

@@ -69,7 +69,13 @@ class StructuredLightRenderer {
  private:
   TofViewRenderer renderer_;
   StructuredLightModel model_;
-  mutable std::vector<SurfacePixel> surfaces_;  // the last cast, and the view it was cast for
+  // The last cast, for cast_view_, and what follows from it alone: each pixel's
+  // incidence angle (rad) and lateral σ (px), and the colour and IR images.
+  void cast(const SceneView& view) const;
+  mutable std::vector<SurfacePixel> surfaces_;
+  mutable std::vector<float> theta_, lateral_;
+  mutable std::vector<std::uint8_t> rgb_;
+  mutable std::vector<std::uint16_t> ir_;
   mutable SceneView cast_view_;
   mutable bool cast_ = false;
 };

@@ -1,0 +1,293 @@
+// The simulated OpenNI2 driver through the real libOpenNI2's C++ API, as any
+// OpenNI2 program sees it (this program's RUNPATH picks the simulated camera's
+// libOpenNI2 folder; see tests/openni2/CMakeLists.txt).
+#include <OpenNI.h>
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "support/scratch_path.h"
+
+namespace fs = std::filesystem;
+using namespace openni;
+
+namespace {
+
+class OpenNI2Sim : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_EQ(OpenNI::initialize(), STATUS_OK) << OpenNI::getExtendedError();
+    dir_ = keyturn::test::scratchPath(::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::create_directories(dir_);
+  }
+  void TearDown() override {
+    OpenNI::shutdown();
+    fs::remove_all(dir_);
+  }
+  // A configuration file (MesaSrSimConfig's JSON) and the URI that names it.
+  std::string uri(const std::string& json, const std::string& name = "sim.json") {
+    return "keyturn-sim://" + keyturn::test::writeText(dir_ / name, json);
+  }
+  fs::path dir_;
+};
+
+std::vector<OniDepthPixel> pixels(const VideoFrameRef& f) {
+  const auto* p = static_cast<const OniDepthPixel*>(f.getData());
+  return std::vector<OniDepthPixel>(p, p + f.getWidth() * f.getHeight());
+}
+
+int middle(const VideoFrameRef& f) { return pixels(f)[240 * 640 + 320]; }
+
+bool waitFrame(VideoStream& s, int timeout_ms) {
+  VideoStream* streams[] = {&s};
+  int ready = -1;
+  return OpenNI::waitForAnyStream(streams, 1, &ready, timeout_ms) == STATUS_OK;
+}
+
+}  // namespace
+
+TEST_F(OpenNI2Sim, EnumeratesTheDefaultDevice) {
+  Array<DeviceInfo> devices;
+  OpenNI::enumerateDevices(&devices);
+  ASSERT_EQ(devices.getSize(), 1);
+  EXPECT_STREQ(devices[0].getUri(), "keyturn-sim://default");
+  EXPECT_STREQ(devices[0].getVendor(), "keyturn");
+  Device d;
+  ASSERT_EQ(d.open(ANY_DEVICE), STATUS_OK) << OpenNI::getExtendedError();
+  EXPECT_TRUE(d.hasSensor(SENSOR_DEPTH));
+  EXPECT_TRUE(d.hasSensor(SENSOR_COLOR));
+  EXPECT_TRUE(d.hasSensor(SENSOR_IR));
+}
+
+// keyturn passes its configuration in the URI; the turntable angle it names turns the mug
+// (its handle faces the camera at 270°, 14 mm nearer than the body).
+TEST_F(OpenNI2Sim, AUriNamesTheConfiguration) {
+  auto middleDepth = [&](const std::string& u) {
+    Device d;
+    EXPECT_EQ(d.open(u.c_str()), STATUS_OK) << OpenNI::getExtendedError();
+    VideoStream s;
+    s.create(d, SENSOR_DEPTH);
+    s.start();
+    VideoFrameRef f;
+    EXPECT_EQ(s.readFrame(&f), STATUS_OK);
+    return middle(f);
+  };
+  const int body = middleDepth(uri(R"({"distance": 0.7, "turntable_deg": 0, "seed": 2})", "body.json"));
+  const int handle = middleDepth(uri(R"({"distance": 0.7, "turntable_deg": 270, "seed": 2})", "handle.json"));
+  EXPECT_NEAR(body, 654, 6);
+  EXPECT_NEAR(handle, 641, 6);
+  const int far = middleDepth(uri(R"({"distance": 1.5, "seed": 2})", "far.json"));
+  EXPECT_NEAR(far, 1500 - 40, 25);  // the mug's front wall, one radius nearer than its axis
+}
+
+TEST_F(OpenNI2Sim, ABadConfigurationIsRefusedNamingTheFile) {
+  Device d;
+  const std::string missing = (dir_ / "missing.json").string();
+  EXPECT_NE(d.open(("keyturn-sim://" + missing).c_str()), STATUS_OK);
+  EXPECT_NE(std::string(OpenNI::getExtendedError()).find(missing + ": cannot open"), std::string::npos)
+      << OpenNI::getExtendedError();
+  EXPECT_NE(d.open(uri(R"({"scale": 50})").c_str()), STATUS_OK);
+  EXPECT_NE(std::string(OpenNI::getExtendedError()).find("scale must be in"), std::string::npos);
+  EXPECT_NE(d.open("keyturn-sim://elsewhere"), STATUS_OK);  // not a path
+}
+
+TEST_F(OpenNI2Sim, StreamsDescribeAKinectClassCamera) {
+  Device d;
+  ASSERT_EQ(d.open(uri(R"({"serial": 31337})").c_str()), STATUS_OK);
+  char serial[64] = {};
+  int size = sizeof serial;
+  ASSERT_EQ(d.getProperty(ONI_DEVICE_PROPERTY_SERIAL_NUMBER, serial, &size), STATUS_OK);
+  EXPECT_STREQ(serial, "31337");
+
+  VideoStream depth, colour, ir;
+  ASSERT_EQ(depth.create(d, SENSOR_DEPTH), STATUS_OK);
+  ASSERT_EQ(colour.create(d, SENSOR_COLOR), STATUS_OK);
+  ASSERT_EQ(ir.create(d, SENSOR_IR), STATUS_OK);
+  // The focal length OpenNI2 programs (PCL's grabber among them) recover from the fields of view.
+  EXPECT_NEAR(320.0 / std::tan(depth.getHorizontalFieldOfView() / 2), 580.0, 0.05);
+  EXPECT_NEAR(240.0 / std::tan(depth.getVerticalFieldOfView() / 2), 580.0, 0.05);
+  EXPECT_EQ(depth.getMaxPixelValue(), 4500);
+  EXPECT_EQ(depth.getMinPixelValue(), 0);
+  EXPECT_FALSE(depth.getMirroringEnabled());
+  EXPECT_NE(depth.setMirroringEnabled(true), STATUS_OK);
+  EXPECT_EQ(depth.setMirroringEnabled(false), STATUS_OK);
+
+  const VideoMode m = depth.getVideoMode();
+  EXPECT_EQ(m.getPixelFormat(), PIXEL_FORMAT_DEPTH_1_MM);
+  EXPECT_EQ(m.getResolutionX(), 640);
+  EXPECT_EQ(m.getResolutionY(), 480);
+  EXPECT_EQ(m.getFps(), 30);
+  EXPECT_EQ(d.getSensorInfo(SENSOR_DEPTH)->getSupportedVideoModes().getSize(), 2);
+  EXPECT_EQ(colour.getVideoMode().getPixelFormat(), PIXEL_FORMAT_RGB888);
+  EXPECT_EQ(ir.getVideoMode().getPixelFormat(), PIXEL_FORMAT_GRAY16);
+  VideoMode qvga = m;
+  qvga.setResolution(320, 240);
+  EXPECT_NE(depth.setVideoMode(qvga), STATUS_OK);  // one resolution only
+  VideoMode fine = m;
+  fine.setPixelFormat(PIXEL_FORMAT_DEPTH_100_UM);
+  ASSERT_EQ(depth.setVideoMode(fine), STATUS_OK);
+  EXPECT_EQ(depth.getVideoMode().getPixelFormat(), PIXEL_FORMAT_DEPTH_100_UM);
+  EXPECT_EQ(depth.getMaxPixelValue(), 45000);
+}
+
+TEST_F(OpenNI2Sim, DepthIn100MicrometreUnitsIsTenTimesMillimetres) {
+  Device d;
+  ASSERT_EQ(d.open(uri(R"({"distance": 0.7})").c_str()), STATUS_OK);
+  VideoStream s;
+  s.create(d, SENSOR_DEPTH);
+  auto blockMean = [&](PixelFormat format) {
+    VideoMode m = s.getVideoMode();
+    m.setPixelFormat(format);
+    EXPECT_EQ(s.setVideoMode(m), STATUS_OK);
+    s.start();
+    double sum = 0;
+    int n = 0;
+    for (int k = 0; k < 5; ++k) {
+      VideoFrameRef f;
+      EXPECT_EQ(s.readFrame(&f), STATUS_OK);
+      EXPECT_EQ(f.getVideoMode().getPixelFormat(), format);
+      const auto p = pixels(f);
+      for (int v = 220; v < 260; ++v)
+        for (int u = 310; u < 330; ++u)
+          if (p[v * 640 + u]) sum += p[v * 640 + u], ++n;
+    }
+    s.stop();
+    return sum / n;
+  };
+  const double mm = blockMean(PIXEL_FORMAT_DEPTH_1_MM), um100 = blockMean(PIXEL_FORMAT_DEPTH_100_UM);
+  EXPECT_GT(mm, 600);
+  EXPECT_NEAR(um100 / 10.0, mm, 1.5);
+  EXPECT_GT(std::abs(um100 / 10.0 - std::round(um100 / 10.0)), 0.0);  // finer than whole millimetres
+}
+
+// Colour is rendered from the depth camera's viewpoint: registration is the identity.
+TEST_F(OpenNI2Sim, DepthIsRegisteredToColour) {
+  Device d;
+  ASSERT_EQ(d.open(uri("{}").c_str()), STATUS_OK);
+  EXPECT_TRUE(d.isImageRegistrationModeSupported(IMAGE_REGISTRATION_DEPTH_TO_COLOR));
+  ASSERT_EQ(d.setImageRegistrationMode(IMAGE_REGISTRATION_DEPTH_TO_COLOR), STATUS_OK);
+  EXPECT_EQ(d.getImageRegistrationMode(), IMAGE_REGISTRATION_DEPTH_TO_COLOR);
+  VideoStream depth, colour;
+  depth.create(d, SENSOR_DEPTH);
+  colour.create(d, SENSOR_COLOR);
+  int cx = -1, cy = -1;
+  ASSERT_EQ(CoordinateConverter::convertDepthToColor(depth, colour, 100, 200, 650, &cx, &cy), STATUS_OK);
+  EXPECT_EQ(cx, 100);
+  EXPECT_EQ(cy, 200);
+  // Depth and colour of one instant share a frame index (and so OpenNI's depth/colour sync works).
+  ASSERT_EQ(d.setDepthColorSyncEnabled(true), STATUS_OK);
+  depth.start();
+  colour.start();
+  VideoFrameRef df, cf;
+  ASSERT_EQ(depth.readFrame(&df), STATUS_OK);
+  ASSERT_EQ(colour.readFrame(&cf), STATUS_OK);
+  EXPECT_LE(std::abs(df.getFrameIndex() - cf.getFrameIndex()), 1);
+  // Where depth sees the mug, colour is the mug's orange.
+  const auto* rgb = static_cast<const RGB888Pixel*>(cf.getData());
+  EXPECT_GT(middle(df), 0);
+  EXPECT_GT(rgb[240 * 640 + 320].r, rgb[240 * 640 + 320].b + 40);
+}
+
+TEST_F(OpenNI2Sim, FramesCarryIndicesAndTimestampsAtTheFrameRate) {
+  Device d;
+  ASSERT_EQ(d.open(uri(R"({"seed": 4})").c_str()), STATUS_OK);
+  VideoStream s;
+  s.create(d, SENSOR_DEPTH);
+  s.start();
+  std::vector<int> index;
+  std::vector<std::uint64_t> stamp;
+  for (int k = 0; k < 12; ++k) {
+    VideoFrameRef f;
+    ASSERT_EQ(s.readFrame(&f), STATUS_OK);
+    index.push_back(f.getFrameIndex());
+    stamp.push_back(f.getTimestamp());
+  }
+  for (std::size_t k = 1; k < index.size(); ++k) {
+    EXPECT_GT(index[k], index[k - 1]);
+    // Never faster than 30 frames/s (µs); slower only when the machine is.
+    EXPECT_GE(stamp[k] - stamp[k - 1], 33000u * static_cast<unsigned>(index[k] - index[k - 1]) - 2000u);
+  }
+}
+
+TEST_F(OpenNI2Sim, UnpluggingStopsFramesAndOpensFailUntilPluggedBack) {
+  const std::string cable = (dir_ / "unplugged").string();
+  const std::string u = uri(R"({"unplug_file": "unplugged"})");
+  {
+    Device d;
+    ASSERT_EQ(d.open(u.c_str()), STATUS_OK);
+    VideoStream s;
+    s.create(d, SENSOR_DEPTH);
+    s.start();
+    ASSERT_TRUE(waitFrame(s, 2000));
+    std::ofstream(cable).put('x');
+    int late = 0;
+    while (waitFrame(s, 500)) {  // at most a frame already on its way
+      VideoFrameRef f;
+      s.readFrame(&f);
+      ASSERT_LT(++late, 3);
+    }
+  }
+  // Closed, it cannot be opened again while unplugged; plugged back in, it can.
+  Device again;
+  EXPECT_NE(again.open(u.c_str()), STATUS_OK);
+  EXPECT_NE(std::string(OpenNI::getExtendedError()).find("unplugged"), std::string::npos);
+  fs::remove(cable);
+  ASSERT_EQ(again.open(u.c_str()), STATUS_OK) << OpenNI::getExtendedError();
+  VideoStream s;
+  s.create(again, SENSOR_DEPTH);
+  s.start();
+  EXPECT_TRUE(waitFrame(s, 2000));
+}
+
+TEST_F(OpenNI2Sim, AnOniRecordingPlaysBackTheSameFrames) {
+  const std::string oni = (dir_ / "take.oni").string();
+  std::map<int, std::vector<OniDepthPixel>> live;
+  {
+    Device d;
+    ASSERT_EQ(d.open(uri(R"({"seed": 8, "turntable_deg": 270})").c_str()), STATUS_OK);
+    VideoStream s;
+    s.create(d, SENSOR_DEPTH);
+    Recorder rec;
+    ASSERT_EQ(rec.create(oni.c_str()), STATUS_OK) << OpenNI::getExtendedError();
+    ASSERT_EQ(rec.attach(s, false), STATUS_OK) << OpenNI::getExtendedError();  // lossless
+    s.start();
+    ASSERT_EQ(rec.start(), STATUS_OK);
+    for (int k = 0; k < 10; ++k) {
+      VideoFrameRef f;
+      ASSERT_EQ(s.readFrame(&f), STATUS_OK);
+      live[f.getFrameIndex()] = pixels(f);
+    }
+    rec.stop();
+    s.stop();
+  }
+  Device file;
+  ASSERT_EQ(file.open(oni.c_str()), STATUS_OK) << OpenNI::getExtendedError();
+  ASSERT_NE(file.getPlaybackControl(), nullptr);
+  file.getPlaybackControl()->setRepeatEnabled(false);
+  VideoStream s;
+  ASSERT_EQ(s.create(file, SENSOR_DEPTH), STATUS_OK);
+  const int recorded = file.getPlaybackControl()->getNumberOfFrames(s);
+  EXPECT_GE(recorded, 8);
+  s.start();
+  int matched = 0, read = 0;
+  for (; read < recorded; ++read) {
+    VideoFrameRef f;
+    if (!waitFrame(s, 3000) || s.readFrame(&f) != STATUS_OK) break;
+    EXPECT_EQ(f.getWidth(), 640);
+    const auto it = live.find(f.getFrameIndex());
+    if (it == live.end()) continue;  // recorded, but not among the frames read live
+    EXPECT_EQ(it->second, pixels(f)) << "frame " << f.getFrameIndex();
+    ++matched;
+  }
+  std::printf("%d frames recorded, %d played back, %d compared with the live frames\n", recorded, read, matched);
+  EXPECT_GE(matched, 5);
+}
