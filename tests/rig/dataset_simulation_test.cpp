@@ -126,7 +126,8 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
   EXPECT_EQ(simulated.camera().acquire().cloud.width, 176u);  // an SR4000 frame
   d.camera = rig::CameraSpec::parse("usb");
   EXPECT_EQ(errorOf([&] { rig::CaptureRig real(d); }),
-            "--pose sim needs --camera sim: the simulated table and camera share one world");
+            "--pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera): the simulated table and camera "
+            "share one world");
   d.camera = rig::CameraSpec::parse("sim:" + (dir / "camera.json").string());
   EXPECT_EQ(errorOf([&] { rig::CaptureRig configured(d); }),
             "camera 'sim:" + (dir / "camera.json").string() +
