@@ -92,13 +92,14 @@ TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
   const std::string unplug = (dir.path / "unplugged").string();
   drivers::OpenNi2Options o;
   o.uri = "keyturn-sim://" + writeConfig(dir.path, unplug);
-  o.timeout_ms = 400;
+  o.timeout_ms = 1500;  // the first frame of a fresh device renders the whole scene: slow on a loaded machine
   o.reconnect_attempts = 2;
   o.backoff_initial_ms = 10;
   std::vector<std::string> log;
   o.log = [&](const std::string& line) { log.push_back(line); };
   drivers::OpenNi2Camera camera(o);
   EXPECT_GT(camera.acquire().cloud.validCount(), 0u);
+  log.clear();  // a first frame slow on a loaded machine may already have been waited for again
 
   std::ofstream(unplug) << "cable out\n";  // frames stop; reopening fails while it is out
   // A frame delivered before the cable came out may still be read; the next one is not coming.
@@ -106,7 +107,7 @@ TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
   for (int i = 0; i < 3 && lost.empty(); ++i) lost = errorOf([&] { camera.acquire(); });
   EXPECT_EQ(lost.rfind("OpenNI2 device " + o.uri + ": giving up after 2 reopen attempts: ", 0), 0u) << lost;
   ASSERT_EQ(log.size(), 2u);
-  EXPECT_NE(log[0].find("no depth frame within 400 ms; reopening in 10 ms (attempt 1 of 2)"), std::string::npos) << log[0];
+  EXPECT_NE(log[0].find("no depth frame within 1500 ms; reopening in 10 ms (attempt 1 of 2)"), std::string::npos) << log[0];
 
   fs::remove(unplug);  // plugged in again: the next acquire reopens it
   EXPECT_GT(camera.acquire().cloud.validCount(), 0u);
