@@ -20,6 +20,9 @@ namespace keyturn::sim::openni2 {
 
 class SimStream;
 
+// The simulated cable is out while the configuration's unplug file exists.
+bool unplugged(const MesaSrSimConfig& config);
+
 class SimDevice : public oni::driver::DeviceBase {
  public:
   // Throws keyturn::Error for a mesh that cannot be loaded.
@@ -43,7 +46,6 @@ class SimDevice : public oni::driver::DeviceBase {
 
  private:
   void run();
-  bool unplugged() const;
   StructuredLightFrame renderFrame();
 
   MesaSrSimConfig config_;
