@@ -41,6 +41,7 @@ class SimDevice : public oni::driver::DeviceBase {
   const OniSensorInfo* sensor(OniSensorType type) const;
   const Intrinsics& intrinsics() const { return renderer_->intrinsics(); }
   double maxDepth() const { return renderer_->model().max_depth; }
+  double baseline() const { return renderer_->model().baseline; }
   void streamStarted(SimStream* s);
   void streamStopped(SimStream* s);
 

@@ -2,6 +2,7 @@
 // OpenNI2 program sees it (this program's RUNPATH picks the simulated camera's
 // libOpenNI2 folder; see tests/openni2/CMakeLists.txt).
 #include <OpenNI.h>
+#include <PS1080.h>
 #include <gtest/gtest.h>
 
 #include <chrono>
@@ -116,6 +117,9 @@ TEST_F(OpenNI2Sim, StreamsDescribeAKinectClassCamera) {
   EXPECT_NEAR(320.0 / std::tan(depth.getHorizontalFieldOfView() / 2), 580.0, 0.05);
   EXPECT_NEAR(240.0 / std::tan(depth.getVerticalFieldOfView() / 2), 580.0, 0.05);
   EXPECT_EQ(depth.getMaxPixelValue(), 4500);
+  double baseline_cm = 0;  // PrimeSense's property, which PCL's grabber reads for disparity images
+  ASSERT_EQ(depth.getProperty(XN_STREAM_PROPERTY_EMITTER_DCMOS_DISTANCE, &baseline_cm), STATUS_OK);
+  EXPECT_DOUBLE_EQ(baseline_cm, 7.5);
   EXPECT_EQ(depth.getMinPixelValue(), 0);
   EXPECT_FALSE(depth.getMirroringEnabled());
   EXPECT_NE(depth.setMirroringEnabled(true), STATUS_OK);
