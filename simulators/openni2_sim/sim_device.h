@@ -4,7 +4,6 @@
 // shared simulated turntable (the config's world file). One thread renders a
 // frame per period while any stream runs and hands it to every started stream,
 // so depth, colour and IR of one instant share a frame index and timestamp.
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
