@@ -133,9 +133,9 @@ OniStatus SimDevice::setProperty(int id, const void* data, int size) {
   return ONI_STATUS_OK;
 }
 
-bool SimDevice::unplugged() const {
+bool unplugged(const MesaSrSimConfig& config) {
   struct stat st;
-  return !config_.unplug_file.empty() && ::stat(config_.unplug_file.c_str(), &st) == 0;
+  return !config.unplug_file.empty() && ::stat(config.unplug_file.c_str(), &st) == 0;
 }
 
 StructuredLightFrame SimDevice::renderFrame() {
@@ -162,12 +162,14 @@ void SimDevice::run() {
       continue;
     }
     if (wake_.wait_until(lock, next, [this] { return stop_; })) break;
+    // The frame's instant, its timestamp: a camera stamps the exposure, not the delivery.
+    const auto slot = next;
     // A slow render (the turntable moved: the scene is cast again) delays the
     // next frame rather than bunching frames up after it.
     next = std::max(next + period, std::chrono::steady_clock::now());
     ++periods_;
     const auto& f = config_.faults;
-    if (disconnected_ || unplugged()) continue;  // the cable is out: no frames
+    if (disconnected_ || unplugged(config_)) continue;  // the cable is out: no frames
     if (f.disconnect_after > 0 && frames_ >= f.disconnect_after) {
       disconnected_ = true;
       continue;
@@ -182,8 +184,8 @@ void SimDevice::run() {
       std::fprintf(stderr, "keyturn-sim OpenNI2 driver: %s\n", e.what());
       rendered = false;
     }
-    const auto timestamp = static_cast<std::uint64_t>(
-        std::chrono::duration_cast<std::chrono::microseconds>(std::chrono::steady_clock::now() - opened_).count());
+    const auto timestamp =
+        static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(slot - opened_).count());
     lock.lock();
     if (!rendered) continue;
     ++frames_;

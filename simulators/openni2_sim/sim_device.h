@@ -4,7 +4,6 @@
 // shared simulated turntable (the config's world file). One thread renders a
 // frame per period while any stream runs and hands it to every started stream,
 // so depth, colour and IR of one instant share a frame index and timestamp.
-#include <atomic>
 #include <chrono>
 #include <condition_variable>
 #include <memory>
@@ -19,6 +18,9 @@
 namespace keyturn::sim::openni2 {
 
 class SimStream;
+
+// The simulated cable is out while the configuration's unplug file exists.
+bool unplugged(const MesaSrSimConfig& config);
 
 class SimDevice : public oni::driver::DeviceBase {
  public:
@@ -38,12 +40,12 @@ class SimDevice : public oni::driver::DeviceBase {
   const OniSensorInfo* sensor(OniSensorType type) const;
   const Intrinsics& intrinsics() const { return renderer_->intrinsics(); }
   double maxDepth() const { return renderer_->model().max_depth; }
+  double baseline() const { return renderer_->model().baseline; }
   void streamStarted(SimStream* s);
   void streamStopped(SimStream* s);
 
  private:
   void run();
-  bool unplugged() const;
   StructuredLightFrame renderFrame();
 
   MesaSrSimConfig config_;

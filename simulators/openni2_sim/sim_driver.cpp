@@ -3,7 +3,6 @@
 // libOpenNI2 from a drivers folder, that serves the simulated rig as a
 // Kinect-class depth camera. sim_uri.h names its devices.
 #include <cstdio>
-#include <fstream>
 #include <list>
 #include <set>
 #include <string>
@@ -51,7 +50,7 @@ class SimDriver : public oni::driver::DriverBase {
     try {
       const MesaSrSimConfig config = load(*path);
       if (config.faults.open_fail) throw Error(std::string(uri) + ": simulated open failure (faults.open_fail)");
-      if (!config.unplug_file.empty() && std::ifstream(config.unplug_file))
+      if (unplugged(config))
         throw Error(std::string(uri) + ": unplugged (" + config.unplug_file + " exists)");
       return new SimDevice(config);
     } catch (const std::exception& e) {

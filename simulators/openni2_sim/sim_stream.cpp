@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 
+#include <PS1080.h>  // XN_STREAM_PROPERTY_EMITTER_DCMOS_DISTANCE
+
 #include "sim_device.h"
 
 namespace keyturn::sim::openni2 {
@@ -36,6 +38,7 @@ OniBool SimStream::isPropertySupported(int id) {
       return TRUE;
     case ONI_STREAM_PROPERTY_MAX_VALUE:
     case ONI_STREAM_PROPERTY_MIN_VALUE:
+    case XN_STREAM_PROPERTY_EMITTER_DCMOS_DISTANCE:
       return type_ == ONI_SENSOR_DEPTH;
     default:
       return FALSE;
@@ -75,6 +78,9 @@ OniStatus SimStream::getProperty(int id, void* data, int* size) {
     case ONI_STREAM_PROPERTY_MIN_VALUE:
       if (type_ != ONI_SENSOR_DEPTH) break;
       return putValue(data, size, 0);
+    case XN_STREAM_PROPERTY_EMITTER_DCMOS_DISTANCE:  // the PS1080's projector-to-camera baseline, cm
+      if (type_ != ONI_SENSOR_DEPTH) break;
+      return putValue(data, size, device_.baseline() * 100.0);
     default:
       break;
   }

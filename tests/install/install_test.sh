@@ -38,6 +38,17 @@ check "describe's PCD plugin loaded from the prefix" grep -q "file=$prefix/lib/k
 clean LD_DEBUG=files "$kt" grab --camera sim --out "$work/grab.pcd" > "$work/grab.out" 2> "$work/grab.ld"
 check "the simulated SR4000 loaded from the prefix" grep -q "file=$prefix/lib/keyturn/mesasr-sim/libmesasr.so" "$work/grab.ld"
 check "a frame grabbed" test -s "$work/grab.pcd"
+# The simulated OpenNI2 camera's drivers folder, used by an OpenNI2 program built elsewhere (Debian's
+# SimpleRead sample, from the build) through LD_LIBRARY_PATH, as docs/camera.md tells users.
+openni2=$prefix/lib/keyturn/openni2
+sample=$build/tests/openni2/openni2_sample_SimpleRead
+if [ -x "$sample" ]; then
+  check "the simulated OpenNI2 camera's folder installed" test -e "$openni2/libOpenNI2.so.0" \
+    -a -f "$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0" -a -e "$openni2/OpenNI2/Drivers/libOniFile.so.0"
+  (sleep 2; echo q) | clean LD_DEBUG=files LD_LIBRARY_PATH="$openni2" "$sample" > "$work/openni2.out" 2> "$work/openni2.ld"
+  check "an OpenNI2 program reads the simulated camera from the prefix" bash -c \
+    "grep -q 'file=$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0' '$work/openni2.ld' && grep -qE '^\[[0-9]+\] +[0-9]+\$' '$work/openni2.out'"
+fi
 # Without its data the program says where it looked, in one line.
 mv "$prefix/share/keyturn" "$prefix/share/keyturn.away"
 clean "$kt" demo --out "$work/demo-nodata" > /dev/null 2> "$work/nodata.err"
