@@ -42,24 +42,27 @@ struct EvaluateArgs {
   FusionFlags fusion;
 };
 
-// --protocol fusion is a run of its own (app/fusion_evaluate.cpp): sequences of views, not folds of rows.
-int runFusion(const EvaluateArgs& a) {
+// --protocol fusion and --protocol nbv are runs of their own (app/fusion_evaluate.cpp,
+// app/nbv_evaluate.cpp): sequences of views, not folds of rows.
+int runSequences(const EvaluateArgs& a, const std::string& protocol) {
   if (!a.shard.empty() || a.merge || !a.train_extra.empty() || !a.label.empty())
-    throw Error("--protocol fusion takes none of --shard, --merge, --train-extra, --label");
+    throw Error("--protocol " + protocol + " takes none of --shard, --merge, --train-extra, --label");
   FusionEvaluateArgs f{a.dataset, a.features, a.classifiers, a.out, a.params, a.flags.options, a.jobs, a.json, a.quiet, a.fusion};
   if (!a.bins.empty()) {
-    if (splitList(a.bins).size() != 1) throw Error("--protocol fusion measures one bin count, not '" + a.bins + "'");
+    if (splitList(a.bins).size() != 1) throw Error("--protocol " + protocol + " measures one bin count, not '" + a.bins + "'");
     descriptorParameter("--bins").set(f.options, a.bins);
   }
-  return runFusionEvaluate(f);
+  return protocol == "nbv" ? runNbvEvaluate(f) : runFusionEvaluate(f);
 }
 
 int runEvaluate(const EvaluateArgs& a) {
   const auto protocols = splitList(a.protocols);
-  if (std::find(protocols.begin(), protocols.end(), "fusion") != protocols.end()) {
-    if (protocols.size() != 1) throw Error("--protocol fusion is a run of its own: give it alone, not '" + a.protocols + "'");
-    return runFusion(a);
-  }
+  for (const std::string sequences : {"fusion", "nbv"})
+    if (std::find(protocols.begin(), protocols.end(), sequences) != protocols.end()) {
+      if (protocols.size() != 1)
+        throw Error("--protocol " + sequences + " is a run of its own: give it alone, not '" + a.protocols + "'");
+      return runSequences(a, sequences);
+    }
   if (!a.shard.empty() && (a.merge || a.json))
     throw Error(std::string("--shard writes a part of the report; ") + (a.merge ? "--merge" : "--json") +
                 " belongs to the run that merges the parts");
@@ -138,7 +141,8 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--protocol", a->protocols,
                   "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
                   "default 5), fixed:FILE; or fusion alone (accuracy against the number of views of one object, "
-                  "one feature set and classifier, under leave-instance and leave-elevation)")
+                  "one feature set and classifier, under leave-instance and leave-elevation), or nbv alone (next "
+                  "best view against fixed steps, the same way)")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
   cmd->add_option("--inner-folds", a->inner_folds,

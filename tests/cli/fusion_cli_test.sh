@@ -73,4 +73,22 @@ check "the Markdown table" grep -q "^| over 90° | pose | shuffled |" "$work/rep
 check "fusion mixed with other protocols is refused" grep -q "give it alone" "$work/r2.err"
 "$KT" evaluate "$work/ds" --protocol fusion -q --out "$work/r3" 2> "$work/r3.err"
 check "fusion over the default list of feature sets is refused" grep -q "measures one feature set" "$work/r3.err"
+
+# evaluate's next-best-view protocol: next best view against 45° steps, sequences of 3 views.
+"$KT" evaluate "$work/ds" --protocol nbv --features kpd2+kpa3 --classifier xgboost $fast --fusion-views 3 \
+  -q --out "$work/nbv" --json > "$work/nbv.json"
+check "evaluate --protocol nbv exits 0" test $? -eq 0
+check "next best view beside the 45° steps" \
+  test "$(jq -c '[.protocols[0].curves[].policy]' "$work/nbv.json")" = '["next best view","step 45°"]'
+check "every view of the test elevation starts a sequence of each" \
+  test "$(jq -c '[.protocols[0].curves[].views[2].sequences]' "$work/nbv.json")" = '[64,64]'
+check "both start from the same view" \
+  test "$(jq '.protocols[0].curves | (.[0].views[0].accuracy == .[1].views[0].accuracy)' "$work/nbv.json")" = true
+check "the target is the 45° steps' accuracy after 3 views" \
+  test "$(jq '.protocols[0] | (.target_accuracy == .curves[1].views[2].accuracy)' "$work/nbv.json")" = true
+check "every sequence's first turn counted" test "$(jq '[.protocols[0].first_turns[]] | add' "$work/nbv.json")" -eq 64
+check "the plot" test -s "$work/nbv/nbv_leave-elevation.png"
+"$KT" evaluate "$work/ds" --protocol nbv --features kpd2+kpa3 --classifier xgboost --fusion-schedule 90 -q --out "$work/r4" 2> "$work/r4.err"
+check "a spread schedule is refused for nbv" \
+  test "$(cat "$work/r4.err")" = "keyturn: --fusion-schedule 90: protocol nbv compares fixed steps, stepDEG (step45: 3 views over 90°)"
 finish

@@ -11,6 +11,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/learning/fusion_evaluation.h"
+#include "keyturn/learning/live_fusion.h"
 #include "keyturn/learning/model_file.h"
 #include "keyturn/learning/view_fusion.h"
 #include "support/error_of.h"
@@ -230,4 +231,39 @@ TEST(Fusion, PoseReferencesSurviveTheModelSidecar) {
   const Eigen::RowVectorXf v = look(0, 40, rng);
   EXPECT_LT((poseEvidence(refs, v) - poseEvidence(back.info.pose_references, v)).cwiseAbs().maxCoeff(), 0.05f);
   std::filesystem::remove_all(dir);
+}
+
+// The studio's live fusion: one view per 5° bin however many frames show it, "no object" left out,
+// and with an open-set model "unknown" views add no evidence and make the answer while they are half.
+TEST(Fusion, LiveFusionTakesOneViewPerBinAndKeepsUnknown) {
+  ModelInfo info;
+  info.classes = {"a", "b"};
+  LiveFusion closed(info);
+  EXPECT_EQ(closed.method(), "independent");  // no pose references
+  EXPECT_TRUE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, 0.0));
+  EXPECT_FALSE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, 1.0));  // the same 5° bin
+  EXPECT_FALSE(closed.add(Answer::NoObject, {}, {}, 20.0));
+  EXPECT_FALSE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, std::nan("")));
+  EXPECT_TRUE(closed.add(Answer::Class, {0.6f, 0.4f}, {}, 10.0));
+  EXPECT_EQ(closed.views(), 2u);
+  EXPECT_DOUBLE_EQ(closed.turnedDeg(), 10.0);
+  EXPECT_NEAR(closed.belief()[0], 0.48 / (0.48 + 0.08), 1e-6);  // 0.8 · 0.6 against 0.2 · 0.4
+  EXPECT_EQ(closed.best(), 0);
+  EXPECT_EQ(closed.answer(), Answer::Class);
+  closed.reset();
+  EXPECT_EQ(closed.views(), 0u);
+  EXPECT_EQ(closed.answer(), Answer::NoObject);
+  EXPECT_TRUE(closed.belief().empty());
+
+  info.open_set.method = "knn";
+  LiveFusion open(info);
+  EXPECT_TRUE(open.add(Answer::Unknown, {0.5f, 0.5f}, {}, 0.0));
+  EXPECT_EQ(open.answer(), Answer::Unknown);
+  EXPECT_TRUE(open.belief().empty());  // an unknown view adds no evidence
+  EXPECT_TRUE(open.add(Answer::Class, {0.1f, 0.9f}, {}, 30.0));
+  EXPECT_EQ(open.answer(), Answer::Unknown);  // one of two views unknown
+  EXPECT_TRUE(open.add(Answer::Class, {0.1f, 0.9f}, {}, 60.0));
+  EXPECT_EQ(open.answer(), Answer::Class);
+  EXPECT_EQ(open.best(), 1);
+  EXPECT_EQ(open.unknownViews(), 1u);
 }

@@ -9,8 +9,6 @@
 namespace keyturn::learning {
 namespace {
 
-constexpr double kMinusInf = -std::numeric_limits<double>::infinity();
-
 int binOf(double azimuth_deg, double bin_deg, int bins) {
   const long b = std::lround(azimuth_deg / bin_deg);
   return static_cast<int>(((b % bins) + bins) % bins);
@@ -137,45 +135,68 @@ Matrix poseEvidence(const PoseReferences& r, const Eigen::RowVectorXf& x) {
   return e;
 }
 
+FusionState::FusionState(const FusionOptions& o) : options_(o), pose_(o.method == "pose") { checkFusionMethod(o.method); }
+
+void FusionState::add(const FusionView& v, std::size_t index) {
+  const std::string which = "fusion: view " + std::to_string(index + 1);
+  if (views_ == 0) {
+    if (v.probabilities.empty()) throw Error("fusion: the first view has no class probabilities");
+    evidence_.assign(v.probabilities.size(), 0.0);
+    if (pose_) {
+      if (v.pose.rows() != static_cast<Eigen::Index>(evidence_.size()) || v.pose.cols() < 4)
+        throw Error(which + " has no pose evidence for its " + std::to_string(evidence_.size()) + " classes");
+      bins_ = static_cast<int>(v.pose.cols());
+      aligned_.assign(evidence_.size(), std::vector<double>(static_cast<std::size_t>(bins_), 0.0));
+    }
+  }
+  const std::size_t classes = evidence_.size();
+  if (v.probabilities.size() != classes)
+    throw Error(which + " has " + std::to_string(v.probabilities.size()) + " class probabilities, the first " +
+                std::to_string(classes));
+  if (pose_ && (v.pose.rows() != static_cast<Eigen::Index>(classes) || v.pose.cols() != bins_))
+    throw Error(which + " has no pose evidence for its " + std::to_string(classes) + " classes");
+  if (!std::isfinite(v.azimuth_deg)) throw Error(which + " has no azimuth");
+  if (views_ == 0) first_azimuth_ = v.azimuth_deg;
+  for (std::size_t c = 0; c < classes; ++c) evidence_[c] += flooredLog(v.probabilities[c], options_.probability_floor);
+  if (pose_) {
+    const int shift = binOf(v.azimuth_deg - first_azimuth_, 360.0 / bins_, bins_);
+    for (std::size_t c = 0; c < classes; ++c)
+      for (int phi = 0; phi < bins_; ++phi)
+        aligned_[c][static_cast<std::size_t>(phi)] += v.pose(static_cast<Eigen::Index>(c), (phi + shift) % bins_);
+  }
+  ++views_;
+}
+
+std::vector<double> FusionState::belief() const {
+  std::vector<double> score = evidence_;
+  if (pose_)
+    for (std::size_t c = 0; c < score.size(); ++c)
+      score[c] += *std::max_element(aligned_[c].begin(), aligned_[c].end());
+  return normalised(score);
+}
+
+std::vector<std::vector<double>> FusionState::jointBelief() const {
+  if (!pose_) throw Error("fusion: the belief over classes and rotations needs pose fusion, not " + options_.method);
+  if (views_ == 0) throw Error("fusion: no view yet, so no belief over classes and rotations");
+  std::vector<double> flat;
+  for (std::size_t c = 0; c < evidence_.size(); ++c)
+    for (double a : aligned_[c]) flat.push_back(evidence_[c] + a);
+  flat = normalised(flat);
+  std::vector<std::vector<double>> joint(evidence_.size());
+  for (std::size_t c = 0; c < evidence_.size(); ++c)
+    joint[c].assign(flat.begin() + static_cast<std::ptrdiff_t>(c * static_cast<std::size_t>(bins_)),
+                    flat.begin() + static_cast<std::ptrdiff_t>((c + 1) * static_cast<std::size_t>(bins_)));
+  return joint;
+}
+
 FusedSequence fuseViews(const std::vector<FusionView>& views, const FusionOptions& o) {
   checkFusionMethod(o.method);
   if (views.empty()) throw Error("fusion: a sequence needs at least one view");
-  const std::size_t classes = views[0].probabilities.size();
-  if (classes == 0) throw Error("fusion: the first view has no class probabilities");
-  const bool pose = o.method == "pose";
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    if (views[i].probabilities.size() != classes)
-      throw Error("fusion: view " + std::to_string(i + 1) + " has " + std::to_string(views[i].probabilities.size()) +
-                  " class probabilities, the first " + std::to_string(classes));
-    if (pose && (views[i].pose.rows() != static_cast<Eigen::Index>(classes) || views[i].pose.cols() < 4))
-      throw Error("fusion: view " + std::to_string(i + 1) + " has no pose evidence for its " + std::to_string(classes) +
-                  " classes");
-    if (!std::isfinite(views[i].azimuth_deg))
-      throw Error("fusion: view " + std::to_string(i + 1) + " has no azimuth");
-  }
+  FusionState state(o);
   FusedSequence out;
-  std::vector<double> evidence(classes, 0.0);  // summed log-probabilities
-  const int bins = pose ? static_cast<int>(views[0].pose.cols()) : 0;
-  const double bin_deg = pose ? 360.0 / bins : 0;
-  // aligned[c][φ]: Σ_i pose(c, φ + Δθ_i) over the views so far, for every rotation φ.
-  std::vector<std::vector<double>> aligned(pose ? classes : 0, std::vector<double>(static_cast<std::size_t>(bins), 0.0));
   for (std::size_t i = 0; i < views.size(); ++i) {
-    const FusionView& v = views[i];
-    for (std::size_t c = 0; c < classes; ++c) evidence[c] += flooredLog(v.probabilities[c], o.probability_floor);
-    std::vector<double> score = evidence;
-    if (pose) {
-      const int shift = binOf(v.azimuth_deg - views[0].azimuth_deg, bin_deg, bins);
-      for (std::size_t c = 0; c < classes; ++c) {
-        double best = kMinusInf;
-        for (int phi = 0; phi < bins; ++phi) {
-          auto& a = aligned[c][static_cast<std::size_t>(phi)];
-          a += v.pose(static_cast<Eigen::Index>(c), (phi + shift) % bins);
-          best = std::max(best, a);
-        }
-        score[c] += best;
-      }
-    }
-    out.belief.push_back(normalised(score));
+    state.add(views[i], i);
+    out.belief.push_back(state.belief());
     const auto& b = out.belief.back();
     out.best.push_back(static_cast<int>(std::max_element(b.begin(), b.end()) - b.begin()));
     if (out.stopped_after == 0 && b[static_cast<std::size_t>(out.best.back())] >= o.stop_belief) out.stopped_after = i + 1;

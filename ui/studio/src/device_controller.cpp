@@ -151,8 +151,11 @@ void DeviceController::connectPose() {
   QObject::connect(pose_, &PoseWorker::closed, this, [this] {
     pose_source_.reset();
     panel_->poseDisconnected();
+    emit poseLost();
   });
   QObject::connect(pose_, &PoseWorker::pose, panel_, &DevicesPanel::showPose);
+  QObject::connect(pose_, &PoseWorker::pose, this,
+                   [this](double deg, double, double, double, bool moving, bool) { emit poseChanged(deg, moving); });
   QObject::connect(pose_, &PoseWorker::failed, this, [this](const QString& why) {
     panel_->poseFailing(why);
     setPoseProblem(tr("Pose source stopped answering: %1. Reconnecting every second…").arg(why));

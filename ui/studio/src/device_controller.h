@@ -41,6 +41,9 @@ class DeviceController : public QObject {
  signals:
   void frameReady(keyturn::studio::FramePtr frame);
   void cameraRestarted();  // opened or reconnected: its frame numbers start again from 0
+  // The pose source's readout (10 Hz): the turntable's angle and whether it is turning.
+  void poseChanged(double turntable_deg, bool moving);
+  void poseLost();  // disconnected: the angles that follow are another table's
   void message(const QString& text, int timeout_ms);
   void captureProgress(int done, int skipped, int total, double angle, keyturn::studio::FramePtr frame,
                        const QString& view);

@@ -44,12 +44,48 @@ void LiveView::showFrame(const FramePtr& frame) {
   if (paused_ || !frame) return;
   last_frame_ = frame;
   frame_fresh_ = true;
+  frame_poses_.emplace_back(frame->sequence, pose_deg_);
+  if (frame_poses_.size() > 256) frame_poses_.pop_front();
   ++frames_;
   frame_rate_.tick();
   pool_->submit(frame);
 }
 
-void LiveView::cameraRestarted() { last_result_sequence_ = 0; }
+void LiveView::cameraRestarted() {
+  last_result_sequence_ = 0;
+  frame_poses_.clear();
+  resetFusion();
+}
+
+void LiveView::setPose(double deg, bool moving) {
+  const qint64 now = QDateTime::currentMSecsSinceEpoch();
+  if (moving && !moving_ && (rest_since_ms_ == 0 || now - rest_since_ms_ >= kRestMs)) resetFusion();
+  if (!moving && moving_) rest_since_ms_ = now;
+  pose_deg_ = deg;
+  moving_ = moving;
+}
+
+void LiveView::poseLost() {
+  pose_deg_ = std::nan("");
+  moving_ = false;
+  rest_since_ms_ = 0;
+  resetFusion();
+}
+
+void LiveView::resetFusion() {
+  fusion_.reset();
+  fusion_fresh_ = true;
+}
+
+// One more view of the turn, at the angle the table had when its frame arrived.
+void LiveView::fuse(const ViewResult& r) {
+  if (!r.recognition || !r.recognizer || r.recognizer != pool_->recognizer() || !r.recognizer->hasModel()) return;
+  double az = std::nan("");
+  for (const auto& [sequence, deg] : frame_poses_)
+    if (sequence == r.frame->sequence) az = deg;
+  const auto& rec = *r.recognition;
+  if (fusion_.add(rec.answer, rec.probabilities, rec.features, az)) fusion_fresh_ = true;
+}
 
 void LiveView::setPaused(bool paused) { paused_ = paused; }
 
@@ -68,6 +104,7 @@ void LiveView::showResult(const ViewResultPtr& r) {
     describe_ms_ = r->recognition->total_ms;
     last_result_ = r;
     result_fresh_ = true;
+    fuse(*r);
   }
   widgets_.recognition->record(r);
 }
@@ -101,6 +138,10 @@ void LiveView::refresh() {
     }
   }
   widgets_.recognition->refresh();
+  if (fusion_fresh_) {
+    fusion_fresh_ = false;
+    widgets_.recognition->showFusion(fusion_);
+  }
   // The 3D view is drawn in software here (llvmpipe): at 5 frames/s it costs a
   // fifth of a core instead of half (docs/benchmarks.md).
   const qint64 now = QDateTime::currentMSecsSinceEpoch();
@@ -140,11 +181,15 @@ void LiveView::loadModel(const QString& path) {
   if (path.trimmed().isEmpty()) {
     pool_->setRecognizer(describeOnly());
     widgets_.recognition->setModel("", pool_->recognizer().get());
+    fusion_ = learning::LiveFusion();
+    resetFusion();
     return;
   }
   try {
     auto r = std::make_shared<learning::Recognizer>(learning::Recognizer::load(path.toStdString()));
     pool_->setRecognizer(r);
+    fusion_ = learning::LiveFusion(r->info());
+    resetFusion();
     widgets_.recognition->setModel(path, r.get());
     emit message(tr("model loaded: %1").arg(path), 4000);
   } catch (const std::exception& e) {

@@ -2,13 +2,19 @@
 // What the studio shows live: each camera frame goes to the recognition pool
 // and to the image panels, each result to the recognition pane and the 3D
 // view. Owns the newest frame and result, the rates and latency the status
-// line reports, the model recognition runs, and the redraw clock that keeps
-// the window from repainting per frame.
+// line reports, the model recognition runs, the fused belief over the views
+// of one turn of the table, and the redraw clock that keeps the window from
+// repainting per frame.
 #include <QObject>
 #include <QString>
+#include <cmath>
+#include <cstdint>
+#include <deque>
 #include <memory>
+#include <utility>
 
 #include "frame_types.h"
+#include "keyturn/learning/live_fusion.h"
 #include "keyturn/studio/studio_window.h"
 #include "rate_meter.h"
 
@@ -43,6 +49,14 @@ class LiveView : public QObject {
   void setPaused(bool paused);   // frozen: frames and results are ignored
   void setGeodesicPaths(bool on);
   void loadModel(const QString& path);  // "" = describe only; a bad file is shown in the pane
+  // The turntable's readout: each frame is fused at the angle last read when it arrived. A turn
+  // that starts after the table has rested kRestMs starts a new sequence; at rest no view is
+  // added (its bin is taken), so a finished turn's belief stays shown until the next turn.
+  void setPose(double turntable_deg, bool moving);
+  void poseLost();
+  void resetFusion();  // a new object on the table, or another camera: start the sequence again
+  const learning::LiveFusion& fusion() const { return fusion_; }
+  static constexpr qint64 kRestMs = 3000;
   FramePtr lastFrame() const { return last_frame_; }
   StudioRates rates() const;
 
@@ -53,6 +67,7 @@ class LiveView : public QObject {
   void showResult(const ViewResultPtr& r);
   void refresh();
   void updateStatus();
+  void fuse(const ViewResult& r);
 
   LiveWidgets widgets_;
   std::unique_ptr<RecognitionPool> pool_;
@@ -66,6 +81,12 @@ class LiveView : public QObject {
   RateMeter frame_rate_, result_rate_;
   double latency_ms_ = 0, describe_ms_ = 0;
   long frames_ = 0, results_ = 0;
+  learning::LiveFusion fusion_;
+  bool fusion_fresh_ = true;
+  double pose_deg_ = std::nan("");
+  bool moving_ = false;
+  qint64 rest_since_ms_ = 0;  // when the table last came to rest (0: it has not turned yet)
+  std::deque<std::pair<std::uint64_t, double>> frame_poses_;  // frame sequence → the angle when it arrived
 };
 
 }  // namespace keyturn::studio

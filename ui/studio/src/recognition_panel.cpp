@@ -63,6 +63,13 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   big.setBold(true);
   verdict_->setFont(big);
   grid->addWidget(verdict_, 0, 0, 1, 2);
+  // The belief fused over the views of the table's turn, under the single view's (issue 34): one
+  // line, so the window still fits a 1000 px screen.
+  fused_verdict_ = new QLabel("–");
+  fused_verdict_->setObjectName("fusedVerdict");
+  fused_verdict_->setToolTip(tr("The belief fused over the views of the table's turn (one per 5°), beside this view's"));
+  fused_verdict_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // a long name never widens the dock
+  grid->addWidget(fused_verdict_, 1, 0, 1, 2);
   for (int i = 0; i < kTop; ++i) {
     auto* name = new QLabel;
     auto* bar = new QProgressBar;
@@ -70,8 +77,8 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
     bar->setTextVisible(true);
     bar->setFormat("");
     bar->setMaximumHeight(16);
-    grid->addWidget(name, i + 1, 0);
-    grid->addWidget(bar, i + 1, 1);
+    grid->addWidget(name, i + 2, 0);
+    grid->addWidget(bar, i + 2, 1);
     names_.push_back(name);
     bars_.push_back(bar);
   }
@@ -80,11 +87,12 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   stability_label_->setObjectName("stability");
   keypoints_ = new QLabel("–");
   keypoints_->setObjectName("keypointCount");
-  grid->addWidget(new QLabel(tr("Stability")), kTop + 1, 0);
-  grid->addWidget(stability_label_, kTop + 1, 1);
-  grid->addWidget(new QLabel(tr("Keypoints")), kTop + 2, 0);
-  grid->addWidget(keypoints_, kTop + 2, 1);
+  grid->addWidget(new QLabel(tr("Stability")), kTop + 2, 0);
+  grid->addWidget(stability_label_, kTop + 2, 1);
+  grid->addWidget(new QLabel(tr("Keypoints")), kTop + 3, 0);
+  grid->addWidget(keypoints_, kTop + 3, 1);
   layout->addWidget(top);
+
 
   auto* pdf_box = new QGroupBox(tr("PDFs: this view over the class mean"));
   auto* pl = new QVBoxLayout(pdf_box);
@@ -157,11 +165,49 @@ void RecognitionPanel::setModel(const QString& path, const learning::Recognizer*
   classes_ = info.classes;
   QStringList blocks;
   for (const auto& b : info.blocks) blocks << QString::fromStdString(b);
-  model_info_->setText(QString("%1 · %2 classes · %3 · %4 bins")
+  model_info_->setText(QString("%1 · %2 classes · %3 · %4 bins · %5")
                            .arg(QString::fromStdString(info.params.kind))
                            .arg(info.classes.size())
                            .arg(blocks.join("+"))
-                           .arg(QString::fromStdString(info.spec.at("bins"))));
+                           .arg(QString::fromStdString(info.spec.at("bins")))
+                           .arg(info.pose_references.empty() ? tr("fuses a turn's views independently (no pose references)")
+                                                             : tr("fuses a turn's views by pose")));
+}
+
+void RecognitionPanel::showFusion(const learning::LiveFusion& f) {
+  const std::vector<double> belief = f.belief();
+  fused_views_ = static_cast<int>(f.views());
+  fused_belief_ = 0;
+  if (classes_.empty() || f.views() == 0) {
+    fused_class_.clear();
+    fused_verdict_->setText(QString("%1 <span style='color:%2'>%3</span>")
+                                .arg(tr("Turn:"), kNoObjectColour,
+                                     classes_.empty() ? tr("no model") : tr("no view yet: turn the table")));
+    return;
+  }
+  const learning::Answer answer = f.answer();
+  const bool named = belief.size() == classes_.size();
+  const int best = named ? f.best() : -1;
+  QString colour;
+  if (answer == learning::Answer::Unknown) {
+    fused_class_ = QStringLiteral("unknown");
+    colour = kUnknownColour;
+  } else if (answer == learning::Answer::NoObject || best < 0) {
+    fused_class_ = QStringLiteral("no object");
+    colour = kNoObjectColour;
+  } else {
+    fused_class_ = QString::fromStdString(classes_[static_cast<std::size_t>(best)]);
+    fused_belief_ = belief[static_cast<std::size_t>(best)];
+    colour = fused_belief_ >= 0.99 ? "#27ae60" : fused_belief_ >= 0.8 ? "#d68910" : "#c0392b";
+  }
+  QString detail = answer == learning::Answer::Class && best >= 0 ? QString(" %1 %").arg(100.0 * fused_belief_, 0, 'f', 1) : QString();
+  detail += QString(" · %1 %2, %3°")
+                .arg(f.views())
+                .arg(f.views() == 1 ? tr("view") : tr("views"))
+                .arg(f.turnedDeg(), 0, 'f', 0);
+  if (f.unknownViews() > 0) detail += tr(" · %1 unknown").arg(f.unknownViews());
+  fused_verdict_->setText(QString("%1 <b style='color:%2'>%3</b><span style='color:%4'>%5</span>")
+                              .arg(tr("Turn:"), colour, fused_class_.toHtmlEscaped(), kNoObjectColour, detail.toHtmlEscaped()));
 }
 
 QString RecognitionPanel::modelPath() const { return model_path_->text(); }

@@ -1,10 +1,12 @@
 #pragma once
 // Recognition: the model, the current view's top classes with probabilities,
-// how steady the answer has been over the last frames, and the view's PDFs
-// drawn over the mean PDFs of the class it was recognised as.
+// how steady the answer has been over the last frames, the belief fused over
+// the views of the table's turn beside it, and the view's PDFs drawn over the
+// mean PDFs of the class it was recognised as.
 #include <QWidget>
 
 #include "frame_types.h"
+#include "keyturn/learning/live_fusion.h"
 #include "stability.h"
 
 class QComboBox;
@@ -32,6 +34,11 @@ class RecognitionPanel : public QWidget {
   // unlike every class, "no object" for views too empty to describe), and that agreement.
   QString stableClass() const;
   double stableAgreement() const { return stability_.agreement(); }
+  // The fused answer over the turn's views ("" before any; "unknown" as for a view) and their count.
+  QString fusedClass() const { return fused_class_; }
+  int fusedViews() const { return fused_views_; }
+  double fusedBelief() const { return fused_belief_; }  // the fused answer's belief (0 unless a class)
+  void showFusion(const learning::LiveFusion& fusion);
 
  public slots:
   // Every result counts towards stability; refresh() draws the newest.
@@ -51,6 +58,10 @@ class RecognitionPanel : public QWidget {
   QLabel *model_info_, *keypoints_, *stability_label_, *verdict_;
   std::vector<QLabel*> names_;
   std::vector<QProgressBar*> bars_;
+  QLabel* fused_verdict_;
+  QString fused_class_;
+  double fused_belief_ = 0;
+  int fused_views_ = 0;
   QComboBox* block_;
   QtCharts::QChart* chart_;
   QtCharts::QLineSeries *view_series_, *mean_series_;

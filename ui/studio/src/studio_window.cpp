@@ -123,6 +123,10 @@ void StudioWindow::buildLayout(RigFactory& factory, int recognition_threads) {
   connect(devices_.get(), &DeviceController::frameReady, live_.get(), &LiveView::showFrame);
   connect(devices_.get(), &DeviceController::cameraRestarted, live_.get(), &LiveView::cameraRestarted);
   connect(devices_panel_, &DevicesPanel::simObjectChanged, capture_.get(), &CaptureController::labelAsSimObject);
+  // The fused belief follows the turntable: each frame at its angle, a new object starts it again.
+  connect(devices_.get(), &DeviceController::poseChanged, live_.get(), &LiveView::setPose);
+  connect(devices_.get(), &DeviceController::poseLost, live_.get(), &LiveView::poseLost);
+  connect(devices_panel_, &DevicesPanel::simObjectChanged, live_.get(), [this] { live_->resetFusion(); });
   connect(devices_.get(), &DeviceController::message, statusBar(), &QStatusBar::showMessage);
   connect(live_.get(), &LiveView::message, statusBar(), &QStatusBar::showMessage);
   connect(capture_.get(), &CaptureController::message, statusBar(), &QStatusBar::showMessage);
@@ -226,5 +230,8 @@ StudioRates StudioWindow::rates() const { return live_->rates(); }
 QString StudioWindow::bannerText() const { return devices_->bannerText(); }
 QString StudioWindow::recognisedClass() const { return recognition_panel_->stableClass(); }
 double StudioWindow::recognisedAgreement() const { return recognition_panel_->stableAgreement(); }
+QString StudioWindow::fusedClass() const { return recognition_panel_->fusedClass(); }
+double StudioWindow::fusedBelief() const { return recognition_panel_->fusedBelief(); }
+int StudioWindow::fusedViews() const { return recognition_panel_->fusedViews(); }
 
 }  // namespace keyturn::studio

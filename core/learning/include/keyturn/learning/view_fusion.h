@@ -66,6 +66,34 @@ struct FusedSequence {
   std::size_t stopped_after = 0;            // views until the highest belief reached the threshold (all if never)
 };
 
+// The evidence of one sequence so far, a view at a time: fuseViews adds each view of a sequence,
+// next best view (next_best_view.h) reads the belief between views to choose the next angle.
+class FusionState {
+ public:
+  explicit FusionState(const FusionOptions& options);  // throws for an unknown method
+  // Throws keyturn::Error for a view whose class count differs from the first's, a view without an
+  // azimuth, or (pose fusion) a view without pose evidence; `index` names the view in the message.
+  void add(const FusionView& view, std::size_t index);
+  std::size_t views() const { return views_; }
+  std::size_t classes() const { return evidence_.size(); }
+  double firstAzimuth() const { return first_azimuth_; }
+  // Over the classes, summing to 1 (pose fusion: each class at its best rotation).
+  std::vector<double> belief() const;
+  // Pose fusion only: over (class c, rotation φ) — [c][φ], φ the training views' azimuth bin of the
+  // sequence's first view — the classifier's evidence of c plus the pose term at φ, normalised over
+  // all pairs (sums to 1). Throws keyturn::Error for independent fusion or before any view.
+  std::vector<std::vector<double>> jointBelief() const;
+
+ private:
+  FusionOptions options_;
+  bool pose_ = false;
+  std::size_t views_ = 0;
+  int bins_ = 0;
+  double first_azimuth_ = 0;
+  std::vector<double> evidence_;                // summed floored log-probabilities, per class
+  std::vector<std::vector<double>> aligned_;    // [c][φ]: Σ_i pose(c, φ + Δθ_i)
+};
+
 // The belief after each view. Throws keyturn::Error for an empty sequence, views with differing
 // class counts, or pose fusion of a view without pose evidence.
 FusedSequence fuseViews(const std::vector<FusionView>& views, const FusionOptions& options);

@@ -53,6 +53,11 @@ class StudioWindow : public QMainWindow {
   QString bannerText() const;    // "" when no banner is shown
   QString recognisedClass() const;
   double recognisedAgreement() const;
+  // The belief fused over the views of the table's turn: its answer ("" before any view), the
+  // answer's belief and the views fused.
+  QString fusedClass() const;
+  double fusedBelief() const;
+  int fusedViews() const;
 
  protected:
   void closeEvent(QCloseEvent* e) override;

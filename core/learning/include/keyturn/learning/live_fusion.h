@@ -1,0 +1,49 @@
+#pragma once
+// One object's live views fused as the turntable turns it (the studio's fused belief beside the
+// single view's): each view's answer, class probabilities and features arrive with the table's
+// angle; a view adds evidence only when its azimuth bin (the pose references' bin, 5°) is new to
+// the sequence, so a table at rest does not count one view many times over. Pose fusion when the
+// model holds pose references, else independent. With an open-set model a view answered
+// "unknown" adds no evidence and the fused answer is "unknown" while at least half the views are
+// (as model_fusion.h); a "no object" view is not a view of the object and is left out.
+#include <string>
+#include <vector>
+
+#include "keyturn/learning/model_file.h"
+#include "keyturn/learning/open_set.h"
+#include "keyturn/learning/view_fusion.h"
+
+namespace keyturn::learning {
+
+class LiveFusion {
+ public:
+  LiveFusion() = default;  // no model: nothing is fused
+  explicit LiveFusion(const ModelInfo& model, FusionOptions options = {});
+
+  const std::string& method() const { return options_.method; }
+  // False when the view is not taken: no model, "no object", no finite angle, a bin the sequence
+  // has, or probabilities that are not one per class. features: the classifier's input (for the
+  // pose term).
+  bool add(Answer answer, const std::vector<float>& probabilities, const std::vector<float>& features,
+           double azimuth_deg);
+  void reset();  // a new object, or a new turn
+
+  std::size_t views() const { return bins_.size(); }  // taken, "unknown" ones included
+  std::size_t unknownViews() const { return unknown_; }
+  double turnedDeg() const { return turned_deg_; }     // summed turn between the views taken
+  std::vector<double> belief() const;                 // over the classes; empty before any evidence
+  int best() const;                                   // -1 before any evidence
+  Answer answer() const;                              // NoObject before any view
+
+ private:
+  std::vector<std::string> classes_;
+  PoseReferences references_;
+  bool open_set_ = false;
+  FusionOptions options_;
+  FusionState state_{FusionOptions{}};
+  std::vector<int> bins_;
+  std::size_t unknown_ = 0;
+  double last_deg_ = 0, turned_deg_ = 0;
+};
+
+}  // namespace keyturn::learning
