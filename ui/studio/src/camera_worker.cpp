@@ -33,7 +33,7 @@ void CameraWorker::open(const rig::CameraSpec& spec, const drivers::TofSettings&
   const auto s = camera_->settings();
   const bool depth_camera = spec_.kind == rig::CameraSpec::Kind::OpenNi2 || spec_.kind == rig::CameraSpec::Kind::OniFile;
   emit opened(QString::fromStdString(camera_->deviceString()),
-              depth_camera ? QString("OpenNI2 depth camera: the SR4000's settings do not apply")
+              depth_camera ? QString("OpenNI2 · SR4000 settings unused")
                            : QString("integration %1 · %2 MHz · threshold %3")
                                  .arg(s.auto_exposure.enabled ? QString("auto") : QString::number(s.integration_time))
                                  .arg(drivers::modulationMHz(s.modulation_frequency))

@@ -90,6 +90,12 @@ void ImagePanel::setTitle(const QString& title) {
   update();
 }
 
+void ImagePanel::setPlaceholder(const QString& text) {
+  if (text == placeholder_) return;
+  placeholder_ = text;
+  update();
+}
+
 void ImagePanel::setImage(const QImage& image, const ImageScale& scale) {
   image_ = image;
   scale_ = scale;
@@ -111,7 +117,7 @@ void ImagePanel::paintEvent(QPaintEvent*) {
   if (image_.isNull()) {
     p.fillRect(area, QColor(32, 32, 32));
     p.setPen(QColor(160, 160, 160));
-    p.drawText(area, Qt::AlignCenter, tr("no camera"));
+    p.drawText(area, Qt::AlignCenter, placeholder_.isEmpty() ? tr("no camera") : placeholder_);
     return;
   }
   const QSize s = image_.size().scaled(area.size(), Qt::KeepAspectRatio);

@@ -28,6 +28,8 @@ class ImagePanel : public QWidget {
   ImagePanel(const QString& title, bool colour_bar, QWidget* parent = nullptr);
   void setImage(const QImage& image, const ImageScale& scale);
   void setTitle(const QString& title);  // the panels say what a depth camera's images are
+  // What the panel says while it has no image ("no camera" until a camera says otherwise).
+  void setPlaceholder(const QString& text);
   const QImage& image() const { return image_; }
   QSize sizeHint() const override { return {300, 260}; }
 
@@ -36,6 +38,7 @@ class ImagePanel : public QWidget {
 
  private:
   QString title_;
+  QString placeholder_;
   bool colour_bar_;
   QImage image_, bar_;
   ImageScale scale_;

@@ -135,6 +135,10 @@ void LiveView::refresh() {
     if (!frame->confidence.empty()) {
       ImageScale c;
       widgets_.confidence->setImage(greyImage(frame->confidence, fw, fh, &c, false), c);
+    } else if (!widgets_.confidence->image().isNull() || depth) {
+      // A depth camera has no confidence image: say so rather than "no camera" beside its live images.
+      widgets_.confidence->setPlaceholder(tr("none from this camera"));
+      widgets_.confidence->setImage(QImage(), ImageScale());
     }
   }
   widgets_.recognition->refresh();
