@@ -3,6 +3,7 @@
 #include <sstream>
 #include <tuple>
 
+#include "keyturn/core/camera_file.h"
 #include "keyturn/core/error.h"
 
 namespace keyturn::app {
