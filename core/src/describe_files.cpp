@@ -1,5 +1,6 @@
 #include "keyturn/core/describe_files.h"
 
+#include <cctype>
 #include <optional>
 #include <sstream>
 
@@ -13,6 +14,13 @@
 namespace keyturn {
 namespace {
 
+bool isPng(const std::string& file) {  // a depth image, as loadCloud tells them
+  if (file.size() < 4) return false;
+  std::string ext = file.substr(file.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png";
+}
+
 // What one file gave: its row, or the reason it gave none, and what the user should be told.
 struct FileResult {
   std::optional<std::string> row;
@@ -23,11 +31,15 @@ struct FileResult {
 FileResult describeFile(const std::string& file, const DescribeFilesOptions& o) {
   FileResult r;
   try {
-    const ViewDescriptor d = describeView(loadCloud(file, o.depth), o.descriptor);
+    const Cloud cloud = loadCloud(file, o.depth);
+    if (o.descriptor.filter && isPng(file)) checkDepthScale(file, cloud, o.depth.depth_scale, o.descriptor.filter_options);
+    const ViewDescriptor d = describeView(cloud, o.descriptor);
     r.row = describeCsvRow(file, d);
     r.low_keypoints = d.low_keypoints ? d.keypointCount() : 0;
     r.flags = d.filter.flaggedSummary();
     if (o.explain) r.explained = explainView(file, d);
+  } catch (const DepthScaleError& e) {
+    r.error = o.depth_scale_message ? file + ": " + o.depth_scale_message(e) : e.what();
   } catch (const Error& e) {
     const std::string msg = e.what();
     r.error = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;  // name the file once
