@@ -147,6 +147,13 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
   return c;
 }
 
+bool isDepthImagePath(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png";
+}
+
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
   if (!o.intrinsics)
     throw MissingIntrinsicsError(png + ": a depth image needs the camera's intrinsics (a camera file, or fx, fy, cx and cy)");

@@ -58,9 +58,9 @@ void checkDepthScale(const std::string& file, const Cloud& cloud, double scale, 
   std::string reciprocal;
   if (e.reciprocal()) appendFormat(reciprocal, " (1/%g)", scale);
   std::string what;
-  appendFormat(what, "%s: depth scale %g (metres per unit) puts the median distance at %s, %zu of %zu points within "
+  appendFormat(what, "%s%sdepth scale %g (metres per unit) puts the median distance at %s, %zu of %zu points within "
                "the %g–%g m the filter keeps; %g%s would put it at %s",
-               file.c_str(), scale, formatMetres(median).c_str(), in_range, r.size(), lo, hi, suggested,
+               file.c_str(), file.empty() ? "" : ": ", scale, formatMetres(median).c_str(), in_range, r.size(), lo, hi, suggested,
                reciprocal.c_str(), formatMetres(e.suggested_median_m).c_str());
   throw DepthScaleError(what, scale, median, suggested, e.suggested_median_m, in_range, r.size());
 }

@@ -1,6 +1,5 @@
 #include "keyturn/core/describe_files.h"
 
-#include <cctype>
 #include <optional>
 #include <sstream>
 
@@ -14,13 +13,6 @@
 namespace keyturn {
 namespace {
 
-bool isPng(const std::string& file) {  // a depth image, as loadCloud tells them
-  if (file.size() < 4) return false;
-  std::string ext = file.substr(file.size() - 4);
-  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return ext == ".png";
-}
-
 // What one file gave: its row, or the reason it gave none, and what the user should be told.
 struct FileResult {
   std::optional<std::string> row;
@@ -32,7 +24,7 @@ FileResult describeFile(const std::string& file, const DescribeFilesOptions& o) 
   FileResult r;
   try {
     const Cloud cloud = loadCloud(file, o.depth);
-    if (o.descriptor.filter && isPng(file)) checkDepthScale(file, cloud, o.depth.depth_scale, o.descriptor.filter_options);
+    if (o.descriptor.filter && isDepthImagePath(file)) checkDepthScale(file, cloud, o.depth.depth_scale, o.descriptor.filter_options);
     const ViewDescriptor d = describeView(cloud, o.descriptor);
     r.row = describeCsvRow(file, d);
     r.low_keypoints = d.low_keypoints ? d.keypointCount() : 0;

@@ -3,7 +3,8 @@
 # tests/data/real/mosd) described with keyturn's flat file, a ROS camera_info YAML, a CameraInfo
 # message, Open3D's PinholeCameraIntrinsic JSON and an OpenCV calibration YAML gives the same row;
 # distortion applied changes it, an unsupported model and a malformed file are one line naming the
-# file; a depth scale in units per metre (1000, 10000) says which scale fits, a right one says nothing.
+# file; a depth scale in units per metre (1000, 10000) says which scale fits (describe and classify),
+# a right one says nothing.
 set -u
 source "$(dirname "$0")/lib.sh"
 here=$(cd "$(dirname "$0")" && pwd)
@@ -97,6 +98,13 @@ for scale in 1000 10000; do
 done
 check "1000 is the reciprocal: Open3D's convention is named" \
   grep -q "\-\-depth-scale 0.001 (1/1000) would put it at 0.6 m: keyturn counts metres per unit, Open3D units per metre" "$work/scale1000.err"
+# classify words it as core does (no flag), and answers no "no object" for it: the scale is the user's to fix.
+"$KT" classify "$here/../../data/models/sim-objects" "$png" --camera "$work/open3d.json" --depth-scale 1000 -q \
+  > "$work/classify.out" 2> "$work/classify.err"
+check "classify with a wrong scale: exit 1" test $? -eq 1
+check "  one line naming the view and the scale that fits" \
+  grep -q "^keyturn classify: $png: depth scale 1000 (metres per unit) puts the median distance at .* m, 0 of [0-9]* points within the 0.1–3 m the filter keeps; 0.001 (1/1000) would put it at 0.6 m$" "$work/classify.err"
+check "  not answered 'no object'" test "$(grep -c 'no object' "$work/classify.out")" -eq 0
 "$KT" describe "$png" --camera "$work/open3d.json" --depth-scale 0.001 -q > "$work/right.csv" 2> "$work/right.err"
 check "a right scale: described, no hint" test $? -eq 0 -a ! -s "$work/right.err"
 check "  the default scale's row" cmp -s "$work/right.csv" "$work/flat.csv"

@@ -59,6 +59,9 @@ class MissingIntrinsicsError : public Error {
   using Error::Error;
 };
 
+// Whether loadCloud reads `path` as a depth image: its name ends in .png (any case).
+bool isDepthImagePath(const std::string& path);
+
 // Reads a 16-bit single-channel PNG (and its mask and crop offset) as an organized cloud. Every
 // failure (no intrinsics: MissingIntrinsicsError; 8-bit or colour image, empty or corrupt file,
 // mask of another size) throws keyturn::Error naming the file.

@@ -31,7 +31,8 @@ class DepthScaleError : public Error {
 // in the filter's range crop — fewer than 1 % of its valid points — with its median distance more
 // than ten times beyond the range, and another scale puts that median inside it: 1 / scale when it
 // does (the units-per-metre mistake), else the power of ten times `scale` nearest to 1 m. Returns
-// when the range crop is off, the cloud is empty or no scale fits. `what` starts with `file`.
+// when the range crop is off, the cloud is empty or no scale fits. `what` starts with "FILE: "
+// (nothing when `file` is "").
 void checkDepthScale(const std::string& file, const Cloud& cloud, double scale, const FilterOptions& filter);
 
 // "1,000,000 m", "1.0 m", "0.05 m": a distance as the message above writes it.
