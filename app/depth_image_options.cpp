@@ -3,13 +3,15 @@
 #include <sstream>
 #include <tuple>
 
+#include "keyturn/core/camera_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
 
 namespace keyturn::app {
 
 void DepthImageFlags::add(CLI::App& cmd) {
   const char* group = "Depth images (.png views)";
-  cmd.add_option("--camera", camera, "Camera file (JSON or YAML: fx fy cx cy in pixels, optional depth_scale)")
+  cmd.add_option("--camera", camera, "Camera file: fx fy cx cy (JSON or YAML, optional depth_scale), ROS camera_info YAML, OpenCV calibration YAML or Open3D intrinsic JSON (docs/camera.md)")
       ->group(group);
   for (auto [flag, field, what] : {std::tuple{"--fx", &fx, "Focal length in x (pixels)"},
                                    std::tuple{"--fy", &fy, "Focal length in y (pixels)"},
@@ -49,6 +51,18 @@ DepthImageOptions DepthImageFlags::toOptions() const {
     o.crop = CropOffset{u, v};
   }
   return o;
+}
+
+std::string depthScaleMessage(const DepthScaleError& e) {
+  std::string out;
+  appendFormat(out, "depth scale %g puts the median distance at %s (%zu of %zu points within the filter's range); "
+               "--depth-scale %g",
+               e.scale, formatMetres(e.median_m).c_str(), e.in_range, e.valid, e.suggested_scale);
+  if (e.reciprocal()) appendFormat(out, " (1/%g)", e.scale);
+  out += " would put it at " + formatMetres(e.suggested_median_m);
+  out += e.reciprocal() ? ": keyturn counts metres per unit, Open3D units per metre"
+                        : ": keyturn counts metres per unit (0.001 for millimetres)";
+  return out;
 }
 
 }  // namespace keyturn::app

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 
 #include "keyturn/core/depth_image.h"
+#include "keyturn/core/depth_scale_check.h"
 
 namespace keyturn::app {
 
@@ -21,5 +22,9 @@ struct DepthImageFlags {
 
 // How a depth image gets its intrinsics here, said after core's MissingIntrinsicsError.
 inline const char* const kIntrinsicsHint = "--camera FILE, or --fx --fy --cx --cy";
+
+// A wrong depth scale (core's DepthScaleError) in this tool's words: which --depth-scale fits, and
+// why Open3D users meet it (they count units per metre).
+std::string depthScaleMessage(const DepthScaleError& e);
 
 }  // namespace keyturn::app

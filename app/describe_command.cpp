@@ -58,6 +58,7 @@ int runDescribe(const DescribeArgs& a) {
   o.prefix = "keyturn describe: ";
   o.explain_hint = "--explain shows why";
   o.intrinsics_hint = kIntrinsicsHint;
+  o.depth_scale_message = depthScaleMessage;
   ViewFileList list = collectViewFiles(a.inputs, o.depth.intrinsics.has_value());
   for (const auto& e : list.errors) std::cerr << o.prefix << e << "\n";
   const std::size_t n = list.files.size();

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
-#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "keyturn/core/durable_file.h"
@@ -23,44 +22,6 @@ std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) fail(path, fs::exists(path) ? "cannot read" : "no such file");
   return std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-}
-
-std::string trim(const std::string& s) {
-  const auto b = s.find_first_not_of(" \t\r\"'");
-  if (b == std::string::npos) return "";
-  const auto e = s.find_last_not_of(" \t\r\"'");
-  return s.substr(b, e - b + 1);
-}
-
-double number(const std::string& path, const std::string& key, const std::string& text) {
-  std::size_t used = 0;
-  double v = 0;
-  try {
-    v = std::stod(text, &used);
-  } catch (const std::exception&) {
-    used = 0;
-  }
-  if (used == 0 || used != text.size() || !std::isfinite(v)) fail(path, key + " is '" + text + "', not a number");
-  return v;
-}
-
-// Flat YAML: "key: value" lines; comments, the %YAML directive and document markers skipped.
-std::vector<std::pair<std::string, std::string>> flatYaml(const std::string& path, const std::string& text) {
-  std::vector<std::pair<std::string, std::string>> out;
-  std::istringstream in(text);
-  std::string line;
-  int n = 0;
-  while (std::getline(in, line)) {
-    ++n;
-    const auto hash = line.find('#');
-    if (hash != std::string::npos) line.resize(hash);
-    line = trim(line);
-    if (line.empty() || line[0] == '%' || line == "---" || line == "...") continue;
-    const auto colon = line.find(':');
-    if (colon == std::string::npos) fail(path, "line " + std::to_string(n) + ": expected 'key: value'");
-    out.emplace_back(trim(line.substr(0, colon)), trim(line.substr(colon + 1)));
-  }
-  return out;
 }
 
 std::uint32_t crc32(const unsigned char* p, std::size_t n) {  // PNG's CRC (ISO 3309), bitwise
@@ -134,49 +95,6 @@ std::vector<std::uint8_t> readMask(const std::string& path, int width, int heigh
 
 }  // namespace
 
-DepthImageOptions readCameraFile(const std::string& path) {
-  const std::string text = readAll(path);
-  if (text.empty()) fail(path, "empty camera file");
-  std::vector<std::pair<std::string, std::string>> entries;
-  const auto first = text.find_first_not_of(" \t\r\n");
-  if (first != std::string::npos && text[first] == '{') {
-    nlohmann::json j;
-    try {
-      j = nlohmann::json::parse(text);
-    } catch (const nlohmann::json::exception& e) {
-      fail(path, std::string("not valid JSON: ") + e.what());
-    }
-    for (const auto& [k, v] : j.items()) {
-      if (!v.is_number()) continue;
-      std::ostringstream s;
-      s.precision(17);
-      s << v.get<double>();
-      entries.emplace_back(k, s.str());
-    }
-  } else {
-    entries = flatYaml(path, text);
-  }
-  DepthImageOptions out;
-  DepthIntrinsics k;
-  bool seen[4] = {false, false, false, false};
-  const char* names[4] = {"fx", "fy", "cx", "cy"};
-  double* fields[4] = {&k.fx, &k.fy, &k.cx, &k.cy};
-  for (const auto& [key, value] : entries) {
-    for (int i = 0; i < 4; ++i)
-      if (key == names[i]) {
-        *fields[i] = number(path, key, value);
-        seen[i] = true;
-      }
-    if (key == "depth_scale") out.depth_scale = number(path, key, value);
-  }
-  for (int i = 0; i < 4; ++i)
-    if (!seen[i]) fail(path, std::string("no ") + names[i] + " (a camera file holds fx, fy, cx, cy in pixels)");
-  if (!(k.fx > 0) || !(k.fy > 0)) fail(path, "fx and fy must be positive");
-  if (!(out.depth_scale > 0)) fail(path, "depth_scale must be positive");
-  out.intrinsics = k;
-  return out;
-}
-
 std::string companionMask(const std::string& depth_png) {
   for (const auto& [from, to] : {std::pair<std::string, std::string>{"_depthcrop.png", "_maskcrop.png"},
                                  {"_depth.png", "_mask.png"}}) {
@@ -213,14 +131,27 @@ Cloud depthImageToCloud(const std::vector<std::uint16_t>& depth, std::uint32_t w
   c.width = width;
   c.height = height;
   c.points.assign(depth.size(), Eigen::Vector3f::Constant(std::nanf("")));
+  const bool plain_pinhole = k.distortion.none();  // the pinhole formula as it always was, to the bit
   for (std::uint32_t v = 0; v < height; ++v)
     for (std::uint32_t u = 0; u < width; ++u) {
       const std::size_t i = static_cast<std::size_t>(v) * width + u;
       if (depth[i] == 0 || (!mask.empty() && !mask[i])) continue;  // no return, or not the object
       const double z = depth[i] * depth_scale;
-      c.points[i] = Eigen::Vector3d((u + crop.u - k.cx) * z / k.fx, (v + crop.v - k.cy) * z / k.fy, z).cast<float>();
+      if (plain_pinhole) {
+        c.points[i] = Eigen::Vector3d((u + crop.u - k.cx) * z / k.fx, (v + crop.v - k.cy) * z / k.fy, z).cast<float>();
+        continue;
+      }
+      const Eigen::Vector2d ray = k.distortion.undistort({(u + crop.u - k.cx) / k.fx, (v + crop.v - k.cy) / k.fy});
+      c.points[i] = Eigen::Vector3d(ray.x() * z, ray.y() * z, z).cast<float>();
     }
   return c;
+}
+
+bool isDepthImagePath(const std::string& path) {
+  if (path.size() < 4) return false;
+  std::string ext = path.substr(path.size() - 4);
+  for (char& c : ext) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return ext == ".png";
 }
 
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {

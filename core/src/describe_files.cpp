@@ -23,11 +23,15 @@ struct FileResult {
 FileResult describeFile(const std::string& file, const DescribeFilesOptions& o) {
   FileResult r;
   try {
-    const ViewDescriptor d = describeView(loadCloud(file, o.depth), o.descriptor);
+    const Cloud cloud = loadCloud(file, o.depth);
+    if (o.descriptor.filter && isDepthImagePath(file)) checkDepthScale(file, cloud, o.depth.depth_scale, o.descriptor.filter_options);
+    const ViewDescriptor d = describeView(cloud, o.descriptor);
     r.row = describeCsvRow(file, d);
     r.low_keypoints = d.low_keypoints ? d.keypointCount() : 0;
     r.flags = d.filter.flaggedSummary();
     if (o.explain) r.explained = explainView(file, d);
+  } catch (const DepthScaleError& e) {
+    r.error = o.depth_scale_message ? file + ": " + o.depth_scale_message(e) : e.what();
   } catch (const Error& e) {
     const std::string msg = e.what();
     r.error = msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;  // name the file once

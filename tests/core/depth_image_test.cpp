@@ -11,6 +11,7 @@
 #include <opencv2/imgcodecs.hpp>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/camera_file.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"

@@ -8,6 +8,7 @@
 #include <filesystem>
 
 #include "bindings.h"
+#include "keyturn/core/camera_file.h"
 #include "keyturn/core/cloud_io.h"
 
 namespace keyturn::python {

@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "keyturn/core/cloud_io.h"
+#include "keyturn/core/depth_scale_check.h"
 #include "keyturn/core/empty_view.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/fnv1a.h"
@@ -127,7 +128,10 @@ std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, con
   parallelFor(which.size(), jobs, [&](std::size_t k) {
     const LabelledView& v = views[which[k]];
     try {
-      rows[k] = describeCloud(loadCloud(v.path, v.depth), options, layout);
+      const Cloud cloud = loadCloud(v.path, v.depth);
+      // A wrong depth scale empties the view too, but it is the user's to fix, not "no object".
+      if (options.filter && isDepthImagePath(v.path)) checkDepthScale("", cloud, v.depth.depth_scale, options.filter_options);
+      rows[k] = describeCloud(cloud, options, layout);
     } catch (const Error& e) {
       rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
       rows[k].keypoints = -1;

@@ -5,7 +5,9 @@
 //
 //   z = depth · scale,  x = (u + crop_u − cx) · z / fx,  y = (v + crop_v − cy) · z / fy
 //
-// u, v and cx, cy are 0-based pixel coordinates (OpenCV's convention).
+// u, v and cx, cy are 0-based pixel coordinates (OpenCV's convention). With lens distortion the
+// normalised pixel ((u + crop_u − cx) / fx, (v + crop_v − cy) / fy) is undistorted first
+// (core/lens_distortion.h). Camera files are read by core/camera_file.h.
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -13,11 +15,17 @@
 
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/lens_distortion.h"
 
 namespace keyturn {
 
 struct DepthIntrinsics {
   double fx = 0, fy = 0, cx = 0, cy = 0;  // pixels
+  LensDistortion distortion;              // none unless the camera file gives non-zero coefficients
+
+  DepthIntrinsics() = default;
+  DepthIntrinsics(double fx, double fy, double cx, double cy, const LensDistortion& distortion = {})
+      : fx(fx), fy(fy), cx(cx), cy(cy), distortion(distortion) {}
 };
 
 struct CropOffset {
@@ -31,10 +39,6 @@ struct DepthImageOptions {
   std::string mask;                      // one mask for every image; "" = the image's own companion
   std::optional<CropOffset> crop;        // none = the image's own _loc.txt companion, or (0, 0)
 };
-
-// A camera file: JSON ({"fx": …, "fy": …, "cx": …, "cy": …}) or flat YAML (`fx: 570.3` lines);
-// an optional depth_scale key sets the scale too. Throws keyturn::Error naming the file.
-DepthImageOptions readCameraFile(const std::string& path);
 
 // Companions read beside NAME_depthcrop.png / NAME_depth.png when present: NAME_maskcrop.png /
 // NAME_mask.png (non-zero = object) and NAME_loc.txt ("u,v" of the crop's top-left, 1-based as
@@ -54,6 +58,9 @@ class MissingIntrinsicsError : public Error {
  public:
   using Error::Error;
 };
+
+// Whether loadCloud reads `path` as a depth image: its name ends in .png (any case).
+bool isDepthImagePath(const std::string& path);
 
 // Reads a 16-bit single-channel PNG (and its mask and crop offset) as an organized cloud. Every
 // failure (no intrinsics: MissingIntrinsicsError; 8-bit or colour image, empty or corrupt file,

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "keyturn/core/depth_image.h"
+#include "keyturn/core/depth_scale_check.h"
 #include "keyturn/core/descriptor.h"
 
 namespace keyturn {
@@ -22,6 +23,9 @@ struct DescribeFilesOptions {
   // after a flagged filter step's warning and the error of a view the filter emptied (how to see
   // each step), and after the error of a depth image without intrinsics (how to give them).
   std::string explain_hint, intrinsics_hint;
+  // A depth image whose scale leaves (almost) nothing in the range crop (core/depth_scale_check.h)
+  // said in the front end's words (after "FILE: "); empty: core's own message.
+  std::function<std::string(const DepthScaleError&)> depth_scale_message;
 };
 
 struct DescribedFiles {
