@@ -9,6 +9,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
+#include "fold_views.h"
 
 namespace keyturn::learning {
 
@@ -44,68 +45,6 @@ double FusionCurve::meanTrueBelief(std::size_t n) const {
 
 namespace {
 
-double wrapDeg(double a) {
-  a = std::fmod(a, 360.0);
-  return a < 0 ? a + 360.0 : a;
-}
-
-// One fold's test views as fusion sees them, grouped by capture group (instance and elevation).
-struct FoldViews {
-  std::vector<FusionView> views;   // per test view
-  std::vector<int> truth;
-  std::vector<std::string> group;
-  std::size_t single_correct = 0;
-};
-
-FoldViews prepareFold(const FeatureTable& t, const std::vector<double>& az, const std::vector<std::string>& blocks,
-                      const Labels& labels, const Fold& fold, const ClassifierParams& params, double bin_deg) {
-  const int classes = static_cast<int>(labels.names.size());
-  std::vector<std::size_t> train;
-  for (auto r : fold.train)
-    if (std::isfinite(az[r])) train.push_back(r);
-  std::vector<int> y;
-  std::vector<double> train_az;
-  std::vector<std::string> groups;
-  for (auto r : train) {
-    y.push_back(labels.of_row[r]);
-    train_az.push_back(az[r]);
-    groups.push_back(t.rows[r].instance + "/" + t.rows[r].elevation);
-  }
-  const Matrix xtrain = t.select(blocks, train);
-  auto clf = makeClassifier(params);
-  clf->fit(xtrain, y, classes);
-  const PoseReferences refs = fitPoseReferences(xtrain, y, train_az, groups, classes, bin_deg);
-  const Matrix xtest = t.select(blocks, fold.test);
-  const Matrix p = clf->predictProba(xtest);
-  FoldViews out;
-  for (std::size_t k = 0; k < fold.test.size(); ++k) {
-    const std::size_t r = fold.test[k];
-    const auto row = static_cast<Eigen::Index>(k);
-    FusionView v;
-    v.probabilities.assign(p.row(row).data(), p.row(row).data() + p.cols());
-    v.azimuth_deg = az[r];
-    v.pose = poseEvidence(refs, xtest.row(row));
-    Eigen::Index best = 0;
-    p.row(row).maxCoeff(&best);
-    out.single_correct += static_cast<int>(best) == labels.of_row[r];
-    out.views.push_back(std::move(v));
-    out.truth.push_back(labels.of_row[r]);
-    out.group.push_back(t.rows[r].instance + "/" + t.rows[r].elevation);
-  }
-  return out;
-}
-
-// The test view of `group` nearest azimuth a, within the tolerance; -1 when there is none.
-int viewAt(const std::vector<std::pair<double, int>>& group_views, double a, double tolerance) {
-  int best = -1;
-  double best_d = tolerance;
-  for (const auto& [az, i] : group_views) {
-    const double d = std::min(wrapDeg(az - a), wrapDeg(a - az));
-    if (d <= best_d) best_d = d, best = i;
-  }
-  return best;
-}
-
 struct Tally {
   std::vector<std::size_t> sequences, correct;
   std::vector<double> belief;
@@ -138,7 +77,8 @@ FusionProtocolResult evaluateFusion(const FeatureTable& t, const std::vector<dou
   parallelFor(proto.folds.size(), jobs, [&](std::size_t f) {
     ClassifierParams p = params;
     p.xgboost.threads = 1;  // folds train in parallel; one thread each keeps a fold's model the same on any machine
-    const FoldViews fv = prepareFold(t, az, blocks, proto.labels, proto.folds[f], p, o.fusion.bin_deg);
+    const detail::TrainedFold trained = detail::trainFold(t, az, blocks, proto.labels, proto.folds[f], p, o.fusion.bin_deg);
+    const detail::FoldViews fv = detail::predictTestViews(trained, t, az, blocks, proto.labels, proto.folds[f]);
     std::map<std::string, std::vector<std::pair<double, int>>> groups;
     for (std::size_t i = 0; i < fv.views.size(); ++i)
       if (std::isfinite(fv.views[i].azimuth_deg)) groups[fv.group[i]].push_back({fv.views[i].azimuth_deg, static_cast<int>(i)});
@@ -151,7 +91,7 @@ FusionProtocolResult evaluateFusion(const FeatureTable& t, const std::vector<dou
           for (int n = 1; n <= o.max_views; ++n) {
             std::vector<FusionView> seq;
             for (double off : o.schedules[s].offsets(n)) {
-              const int i = viewAt(members, start_az + off, o.tolerance_deg);
+              const int i = detail::viewAt(members, start_az + off, o.tolerance_deg);
               if (i < 0) break;
               seq.push_back(fv.views[static_cast<std::size_t>(i)]);
             }

@@ -6,6 +6,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
+#include "fold_views.h"
 
 namespace keyturn::learning {
 
@@ -38,30 +39,8 @@ double viewsToReach(const NbvProtocolResult& r, const std::string& policy, doubl
 
 namespace {
 
-double circularDistance(double a, double b) {
-  const double d = std::fmod(std::abs(a - b), 360.0);
-  return std::min(d, 360.0 - d);
-}
-
-// The view of a group nearest azimuth a within the tolerance; -1 when there is none.
-int viewAt(const std::vector<std::pair<double, int>>& members, double a, double tolerance) {
-  int best = -1;
-  double best_d = tolerance;
-  for (const auto& [az, i] : members) {
-    const double d = circularDistance(az, a);
-    if (d <= best_d) best_d = d, best = i;
-  }
-  return best;
-}
-
-std::string groupOf(const FeatureRow& row) { return row.instance + "/" + row.elevation; }
-
 // One fold's test views as fusion sees them, and the classifier's per-angle behaviour.
-struct FoldData {
-  std::vector<FusionView> views;
-  std::vector<int> truth;
-  std::vector<std::string> group;
-  std::size_t single_correct = 0;
+struct FoldData : detail::FoldViews {
   ViewLikelihoods likelihoods;
 };
 
@@ -116,50 +95,19 @@ FoldData prepareFold(const FeatureTable& t, const std::vector<double>& az, const
                      const std::string& protocol, const Labels& labels, const Fold& fold, const ClassifierParams& params,
                      const NbvEvaluationOptions& o) {
   const int classes = static_cast<int>(labels.names.size());
-  std::vector<std::size_t> train;
-  for (auto r : fold.train)
-    if (std::isfinite(az[r])) train.push_back(r);
-  std::vector<int> y;
-  std::vector<double> train_az;
-  std::vector<std::string> groups;
-  for (auto r : train) {
-    y.push_back(labels.of_row[r]);
-    train_az.push_back(az[r]);
-    groups.push_back(groupOf(t.rows[r]));
-  }
-  const Matrix xtrain = t.select(blocks, train);
-  auto clf = makeClassifier(params);
-  clf->fit(xtrain, y, classes);
-  const PoseReferences refs = fitPoseReferences(xtrain, y, train_az, groups, classes, o.fusion.bin_deg);
+  const detail::TrainedFold trained = detail::trainFold(t, az, blocks, labels, fold, params, o.fusion.bin_deg);
   FoldData out;
-  {
-    std::vector<int> truth;
-    std::vector<std::size_t> rows;
-    const Matrix held = heldOutProbabilities(t, train, y, blocks, protocol, params, classes, clf->predictProba(xtrain),
-                                             truth, rows);
-    std::vector<double> held_az;
-    for (auto k : rows) held_az.push_back(train_az[k]);
-    ViewLikelihoodOptions lo;
-    lo.bin_deg = o.fusion.bin_deg;
-    lo.window_deg = o.likelihood_window_deg;
-    out.likelihoods = fitViewLikelihoods(held, truth, held_az, classes, lo);
-  }
-  const Matrix xtest = t.select(blocks, fold.test);
-  const Matrix p = clf->predictProba(xtest);
-  for (std::size_t k = 0; k < fold.test.size(); ++k) {
-    const std::size_t r = fold.test[k];
-    const auto row = static_cast<Eigen::Index>(k);
-    FusionView v;
-    v.probabilities.assign(p.row(row).data(), p.row(row).data() + p.cols());
-    v.azimuth_deg = az[r];
-    v.pose = poseEvidence(refs, xtest.row(row));
-    Eigen::Index best = 0;
-    p.row(row).maxCoeff(&best);
-    out.single_correct += static_cast<int>(best) == labels.of_row[r];
-    out.views.push_back(std::move(v));
-    out.truth.push_back(labels.of_row[r]);
-    out.group.push_back(groupOf(t.rows[r]));
-  }
+  static_cast<detail::FoldViews&>(out) = detail::predictTestViews(trained, t, az, blocks, labels, fold);
+  std::vector<int> truth;
+  std::vector<std::size_t> rows;
+  const Matrix held = heldOutProbabilities(t, trained.train, trained.y, blocks, protocol, params, classes,
+                                           trained.classifier->predictProba(trained.x), truth, rows);
+  std::vector<double> held_az;
+  for (auto k : rows) held_az.push_back(trained.azimuth_deg[k]);
+  ViewLikelihoodOptions lo;
+  lo.bin_deg = o.fusion.bin_deg;
+  lo.window_deg = o.likelihood_window_deg;
+  out.likelihoods = fitViewLikelihoods(held, truth, held_az, classes, lo);
   return out;
 }
 
@@ -252,7 +200,7 @@ NbvProtocolResult evaluateNextBestView(const FeatureTable& t, const std::vector<
         // Next best view: after each view, the reachable turn with the lowest expected entropy.
         std::vector<double> reachable;
         for (double d : candidates)
-          if (viewAt(members, start_az + d, o.tolerance_deg) >= 0) reachable.push_back(d);
+          if (detail::viewAt(members, start_az + d, o.tolerance_deg) >= 0) reachable.push_back(d);
         FusionState nbv(fusion);
         nbv.add(fd.views[static_cast<std::size_t>(start)], 0);
         std::vector<std::vector<double>> beliefs = {nbv.belief()};
@@ -261,7 +209,7 @@ NbvProtocolResult evaluateNextBestView(const FeatureTable& t, const std::vector<
           const NextView next = chooseNextView(fd.likelihoods, nbv.jointBelief(), reachable, taken);
           if (taken.size() == 1) ++local.first_turns[static_cast<int>(std::lround(next.turn_deg))];
           taken.push_back(next.turn_deg);
-          nbv.add(fd.views[static_cast<std::size_t>(viewAt(members, start_az + next.turn_deg, o.tolerance_deg))],
+          nbv.add(fd.views[static_cast<std::size_t>(detail::viewAt(members, start_az + next.turn_deg, o.tolerance_deg))],
                   beliefs.size());
           beliefs.push_back(nbv.belief());
         }
@@ -271,7 +219,7 @@ NbvProtocolResult evaluateNextBestView(const FeatureTable& t, const std::vector<
           FusionState fixed(fusion);
           std::vector<std::vector<double>> fb;
           for (double off : o.fixed[k].offsets(o.max_views)) {
-            const int i = viewAt(members, start_az + off, o.tolerance_deg);
+            const int i = detail::viewAt(members, start_az + off, o.tolerance_deg);
             if (i < 0) break;
             fixed.add(fd.views[static_cast<std::size_t>(i)], fb.size());
             fb.push_back(fixed.belief());
