@@ -6,20 +6,14 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/learning/fusion_evaluation.h"
+#include "report_numbers.h"
 
 namespace keyturn::learning {
 namespace {
 
-// One number formatted (every use here is a single %f or %g).
-std::string formatString(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
-
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-
-std::string percent(double v) { return std::isfinite(v) ? formatString("%.1f", 100 * v) : "–"; }
+using detail::formatNumber;
+using detail::jsonNumber;
+using detail::percent;
 
 double singleView(const FusionProtocolResult& r) {
   return r.test_views ? static_cast<double>(r.single_view_correct) / static_cast<double>(r.test_views) : std::nan("");
@@ -39,12 +33,12 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
                    "; accuracy (%) of the fused answer after n views, pooled over the folds' sequences (one starting "
                    "at every held-out view); \"shuffled\": the same views with their poses dealt out in another "
                    "order. Stopping: views taken (up to " + std::to_string(o.max_views) + ", first schedule) until "
-                   "the highest belief reaches " + formatString("%g", o.fusion.stop_belief) + ".\n";
+                   "the highest belief reaches " + formatNumber("%g", o.fusion.stop_belief) + ".\n";
   rep.csv = "protocol,schedule,method,poses,views,sequences,accuracy,mean_true_belief\n";
   for (const auto& r : results) {
     nlohmann::json pj = {{"protocol", r.protocol},       {"label", r.label_kind},
                          {"folds", r.folds},             {"test_views", r.test_views},
-                         {"single_view_accuracy", number(singleView(r))},
+                         {"single_view_accuracy", jsonNumber(singleView(r))},
                          {"curves", nlohmann::json::array()}, {"stopping", nlohmann::json::array()}};
     md += "\n## " + r.protocol + " (" + r.label_kind + " labels, " + std::to_string(r.folds) + " folds, " +
           std::to_string(r.test_views) + " test views; single view " + percent(singleView(r)) + " %)\n\n";
@@ -65,16 +59,16 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
       md += "| " + c.schedule + " | " + c.method + " | " + (c.shuffled ? "shuffled" : "true") + " |";
       CurveSeries series{c.method + (c.shuffled ? ", shuffled poses" : ""), {}, {}};
       for (std::size_t n = 1; n <= c.sequences.size(); ++n) {
-        cj["views"].push_back({{"n", n}, {"sequences", c.sequences[n - 1]}, {"accuracy", number(c.accuracy(n))},
-                               {"mean_true_belief", number(c.meanTrueBelief(n))}});
+        cj["views"].push_back({{"n", n}, {"sequences", c.sequences[n - 1]}, {"accuracy", jsonNumber(c.accuracy(n))},
+                               {"mean_true_belief", jsonNumber(c.meanTrueBelief(n))}});
         md += " " + percent(c.accuracy(n)) + " |";
         rep.csv += r.protocol + "," + c.schedule + "," + c.method + "," + (c.shuffled ? "shuffled" : "true") + "," +
                    std::to_string(n) + "," + std::to_string(c.sequences[n - 1]) + "," +
-                   formatString("%.6f", c.accuracy(n)) + "," + formatString("%.6f", c.meanTrueBelief(n)) + "\n";
+                   formatNumber("%.6f", c.accuracy(n)) + "," + formatNumber("%.6f", c.meanTrueBelief(n)) + "\n";
         if (std::isfinite(c.accuracy(n))) series.x.push_back(static_cast<double>(n - 1)), series.y.push_back(100 * c.accuracy(n));
       }
       const double belief = c.meanTrueBelief(c.sequences.size());
-      md += " " + (std::isfinite(belief) ? formatString("%.3f", belief) : std::string("–")) + " |\n";
+      md += " " + (std::isfinite(belief) ? formatNumber("%.3f", belief) : std::string("–")) + " |\n";
       // The first schedule's methods, and the shuffled control of those that use the poses (the
       // other schedules are in the table: a plot of them all has too many lines to read).
       if (c.schedule == first && (!c.shuffled || c.method != "independent"))
@@ -92,9 +86,9 @@ FusionReport fusionReport(const std::vector<FusionProtocolResult>& results, cons
       const double acc = s.sequences ? static_cast<double>(s.correct) / static_cast<double>(s.sequences) : std::nan("");
       const double views = s.sequences ? static_cast<double>(s.views) / static_cast<double>(s.sequences) : std::nan("");
       md += "| " + s.method + " | " + std::to_string(s.sequences) + " | " + percent(acc) + " | " +
-            formatString("%.2f", views) + " |\n";
-      pj["stopping"].push_back({{"method", s.method}, {"sequences", s.sequences}, {"accuracy", number(acc)},
-                                {"mean_views", number(views)}});
+            formatNumber("%.2f", views) + " |\n";
+      pj["stopping"].push_back({{"method", s.method}, {"sequences", s.sequences}, {"accuracy", jsonNumber(acc)},
+                                {"mean_views", jsonNumber(views)}});
     }
     j["protocols"].push_back(std::move(pj));
   }

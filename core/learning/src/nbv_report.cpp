@@ -6,18 +6,15 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/learning/nbv_evaluation.h"
+#include "report_numbers.h"
 
 namespace keyturn::learning {
 namespace {
 
-std::string formatNumber(const char* format, double v) {
-  char buf[64];
-  std::snprintf(buf, sizeof buf, format, v);
-  return buf;
-}
+using detail::formatNumber;
+using detail::jsonNumber;
+using detail::percent;
 
-nlohmann::json number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
-std::string percent(double v) { return std::isfinite(v) ? formatNumber("%.1f", 100 * v) : "–"; }
 std::string views(double v) { return std::isfinite(v) ? formatNumber("%.2f", v) : "not reached"; }
 
 double singleView(const NbvProtocolResult& r) {
@@ -67,10 +64,10 @@ NbvReport nbvReport(const std::vector<NbvProtocolResult>& results, const std::st
                          {"label", r.label_kind},
                          {"folds", r.folds},
                          {"test_views", r.test_views},
-                         {"single_view_accuracy", number(singleView(r))},
-                         {"target_accuracy", number(target)},
-                         {"nbv_mean_views_to_target", number(nbv_views)},
-                         {"fixed_mean_views_to_target", number(fixed_views)},
+                         {"single_view_accuracy", jsonNumber(singleView(r))},
+                         {"target_accuracy", jsonNumber(target)},
+                         {"nbv_mean_views_to_target", jsonNumber(nbv_views)},
+                         {"fixed_mean_views_to_target", jsonNumber(fixed_views)},
                          {"curves", nlohmann::json::array()},
                          {"stopping", nlohmann::json::array()},
                          {"first_turns", nlohmann::json::object()}};
@@ -91,7 +88,7 @@ NbvReport nbvReport(const std::vector<NbvProtocolResult>& results, const std::st
       md += "| " + c.policy + " |";
       CurveSeries series{c.policy, {}, {}};
       for (std::size_t n = 1; n <= c.sequences.size(); ++n) {
-        cj["views"].push_back({{"n", n}, {"sequences", c.sequences[n - 1]}, {"accuracy", number(c.accuracy(n))}});
+        cj["views"].push_back({{"n", n}, {"sequences", c.sequences[n - 1]}, {"accuracy", jsonNumber(c.accuracy(n))}});
         md += " " + percent(c.accuracy(n)) + " |";
         rep.csv += r.protocol + "," + c.policy + ",views," + std::to_string(n) + "," + std::to_string(c.sequences[n - 1]) +
                    "," + formatNumber("%.6f", c.accuracy(n)) + "," + std::to_string(n) + "\n";
@@ -120,7 +117,7 @@ NbvReport nbvReport(const std::vector<NbvProtocolResult>& results, const std::st
       }
       md += " " + percent(s.accuracy()) + " @ " + formatNumber("%.2f", s.meanViews()) + " |";
       pj["stopping"].push_back({{"policy", s.policy}, {"stop_belief", s.stop_belief}, {"sequences", s.sequences},
-                                {"accuracy", number(s.accuracy())}, {"mean_views", number(s.meanViews())}});
+                                {"accuracy", jsonNumber(s.accuracy())}, {"mean_views", jsonNumber(s.meanViews())}});
       rep.csv += r.protocol + "," + s.policy + ",stop," + formatNumber("%g", s.stop_belief) + "," +
                  std::to_string(s.sequences) + "," + formatNumber("%.6f", s.accuracy()) + "," +
                  formatNumber("%.6f", s.meanViews()) + "\n";
