@@ -430,7 +430,8 @@ void DevicesPanel::cameraConnected(const QString& device, const QString& setting
   if (product >= 0) {
     shown = device.mid(product + 9).section('\'', 0, 0);
     if (maker >= 0) shown += " · " + device.mid(maker + 14).section('\'', 0, 0);
-  } else if (const int where = device.lastIndexOf(" ("); where > 0 && device.endsWith(')')) {
+  } else if (const int where = device.lastIndexOf(" (");
+             camera_kind_->currentIndex() == static_cast<int>(rig::CameraSpec::Kind::OpenNi2) && where > 0) {
     shown = device.left(where);  // an OpenNI2 device's "MODEL (URI)": the Device box shows its URI
   }
   camera_status_->setToolTip(device);
