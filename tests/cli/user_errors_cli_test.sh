@@ -29,7 +29,7 @@ check "no files after a failed grab" test ! -e "$work/x.pcd"
 # --camera: every choice is listed, sim included.
 "$KT" capture --camera gige --class a --instance b --out "$work/gige" 2> "$work/gige.err"
 check "an unknown camera exits 1" test $? -eq 1
-check "an unknown camera lists sim" grep -q "camera 'gige': expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP or playback:DATASET" "$work/gige.err"
+check "an unknown camera lists sim and openni2" grep -q "camera 'gige': expected sim, sim:CONFIG, usb, usb:SERIAL, eth:IP, openni2, openni2:URI, playback:DATASET" "$work/gige.err"
 check "  and leaves no dataset" test ! -e "$work/gige"
 
 # Out-of-range and missing options: one line, exit 1, like every other error.
