@@ -376,7 +376,10 @@ void DevicesPanel::setCameraChoice(rig::CameraSpec::Kind kind, const QString& si
   if (i >= 0) sim_object_->setCurrentIndex(i);
 }
 
-void DevicesPanel::setOpenNi2Uri(const QString& uri) { openni2_uri_->setEditText(uri); }
+void DevicesPanel::setOpenNi2Uri(const QString& uri) {
+  // No URI is the first device found: keep the listed one shown rather than blank the box.
+  if (!uri.isEmpty()) openni2_uri_->setEditText(uri);
+}
 
 void DevicesPanel::setAddress(const QString& address) { address_->setText(address); }
 
