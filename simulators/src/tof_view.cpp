@@ -97,6 +97,22 @@ unsigned addTriangles(RTCDevice dev, RTCScene scene, const std::vector<Eigen::Ve
   return id;
 }
 
+// The first surface along the ray from `origin` in direction `dir` (geomID invalid when none).
+RTCRayHit firstHit(RTCScene scene, RTCIntersectContext& ctx, const Eigen::Vector3f& origin, const Eigen::Vector3f& dir) {
+  RTCRayHit rh;
+  rh.ray.org_x = origin.x(); rh.ray.org_y = origin.y(); rh.ray.org_z = origin.z();
+  rh.ray.dir_x = dir.x(); rh.ray.dir_y = dir.y(); rh.ray.dir_z = dir.z();
+  rh.ray.tnear = 0.f;
+  rh.ray.tfar = std::numeric_limits<float>::infinity();
+  rh.ray.mask = ~0u;
+  rh.ray.flags = 0;
+  rh.ray.time = 0.f;
+  rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
+  rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
+  rtcIntersect1(scene, &ctx, &rh);
+  return rh;
+}
+
 struct Hit {
   bool valid = false;
   float range = 0.f;
@@ -152,17 +168,7 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
       const Eigen::Vector3f d = (cam_to_world * Eigen::Vector3f(static_cast<float>((u - k_.cx) / k_.fx),
                                                                 static_cast<float>((v - k_.cy) / k_.fy), 1.f))
                                     .normalized();
-      RTCRayHit rh;
-      rh.ray.org_x = eye.x(); rh.ray.org_y = eye.y(); rh.ray.org_z = eye.z();
-      rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
-      rh.ray.tnear = 0.f;
-      rh.ray.tfar = std::numeric_limits<float>::infinity();
-      rh.ray.mask = ~0u;
-      rh.ray.flags = 0;
-      rh.ray.time = 0.f;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene_->scene, &ctx, &rh);
+      RTCRayHit rh = firstHit(scene_->scene, ctx, eye, d);
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       Hit& h = corner[static_cast<std::size_t>(v) * cw + u];
       const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
@@ -224,17 +230,7 @@ std::vector<SurfacePixel> TofViewRenderer::castPixelCentres(const SceneView& vie
       const Eigen::Vector3f ray_cam(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
                                     static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f);
       const Eigen::Vector3f d = (placement.cam_to_world * ray_cam).normalized();
-      RTCRayHit rh;
-      rh.ray.org_x = placement.eye.x(); rh.ray.org_y = placement.eye.y(); rh.ray.org_z = placement.eye.z();
-      rh.ray.dir_x = d.x(); rh.ray.dir_y = d.y(); rh.ray.dir_z = d.z();
-      rh.ray.tnear = 0.f;
-      rh.ray.tfar = std::numeric_limits<float>::infinity();
-      rh.ray.mask = ~0u;
-      rh.ray.flags = 0;
-      rh.ray.time = 0.f;
-      rh.hit.geomID = RTC_INVALID_GEOMETRY_ID;
-      rh.hit.instID[0] = RTC_INVALID_GEOMETRY_ID;
-      rtcIntersect1(scene_->scene, &ctx, &rh);
+      RTCRayHit rh = firstHit(scene_->scene, ctx, placement.eye, d);
       if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
       SurfacePixel& s = out[static_cast<std::size_t>(v) * k_.width + u];
       const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();

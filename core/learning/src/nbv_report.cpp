@@ -99,9 +99,7 @@ NbvReport nbvReport(const std::vector<NbvProtocolResult>& results, const std::st
       plot.series.push_back(std::move(series));
       pj["curves"].push_back(std::move(cj));
     }
-    CurveSeries single{"single view", {0.0, static_cast<double>(o.max_views - 1)}, {}};
-    single.y = {100 * singleView(r), 100 * singleView(r)};
-    plot.series.push_back(std::move(single));
+    plot.series.push_back(detail::singleViewSeries(o.max_views, singleView(r)));
     rep.plots.curves.push_back(std::move(plot));
     md += "\n![accuracy against number of views, " + r.protocol + "](" + rep.plots.curves.back().file + ")\n\n";
     md += "Stopping rule (accuracy % @ mean views):\n\n| policy |";
