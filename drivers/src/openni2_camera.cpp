@@ -340,8 +340,16 @@ TofFrame OpenNi2Camera::acquireOnce() {
     return openni::OpenNI::waitForAnyStream(one, 1, &r, 100) == openni::STATUS_OK &&
            stream.readFrame(&frame) == openni::STATUS_OK && frame.isValid();
   };
+  // A side frame is used only when its buffer holds all its rows (as the depth frame is checked above).
+  auto whole = [](const openni::VideoFrameRef& frame, int bytes_per_pixel) {
+    return frame.getWidth() > 0 && frame.getHeight() > 0 &&
+           static_cast<std::size_t>(frame.getDataSize()) >=
+               static_cast<std::size_t>(frame.getStrideInBytes()) * (frame.getHeight() - 1) +
+                   static_cast<std::size_t>(frame.getWidth()) * bytes_per_pixel;
+  };
   openni::VideoFrameRef extra;
-  if (s_->has_colour && side(s_->colour, extra) && extra.getVideoMode().getPixelFormat() == openni::PIXEL_FORMAT_RGB888) {
+  if (s_->has_colour && side(s_->colour, extra) && extra.getVideoMode().getPixelFormat() == openni::PIXEL_FORMAT_RGB888 &&
+      whole(extra, 3)) {
     const std::uint32_t cw = extra.getWidth(), ch = extra.getHeight();
     auto& d = *f.depth_camera;
     d.colour_width = cw;
@@ -351,7 +359,8 @@ TofFrame OpenNi2Camera::acquireOnce() {
     for (std::uint32_t v = 0; v < ch; ++v)
       std::memcpy(&d.colour[static_cast<std::size_t>(v) * cw * 3], src + v * extra.getStrideInBytes(), cw * 3);
   }
-  if (s_->has_ir && side(s_->ir, extra) && extra.getWidth() == static_cast<int>(w) && extra.getHeight() == static_cast<int>(h)) {
+  if (s_->has_ir && side(s_->ir, extra) && extra.getWidth() == static_cast<int>(w) && extra.getHeight() == static_cast<int>(h) &&
+      whole(extra, 2)) {
     const auto* src = static_cast<const std::uint8_t*>(extra.getData());
     f.amplitude.resize(f.distance.size());
     f.cloud.amplitude.resize(f.distance.size());
