@@ -3,6 +3,7 @@
 #include <CLI/CLI.hpp>
 #include <iostream>
 
+#include "heap_reuse.h"
 #include "commands.h"
 #include "depth_image_options.h"
 #include "keyturn/core/depth_image.h"
@@ -13,6 +14,7 @@
 #endif
 
 int main(int argc, char** argv) {
+  keyturn::app::keepFreedHeapForReuse();
   CLI::App app{"keyturn: ToF keypoint shape signatures (KPD/GKPD) and capture tools"};
   app.set_version_flag("--version", KEYTURN_VERSION);
   app.require_subcommand(1);

@@ -11,6 +11,7 @@
 #include <iostream>
 #include <optional>
 
+#include "heap_reuse.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/install_layout.h"
 #include "keyturn/rig/dataset_playback.h"
@@ -33,6 +34,7 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keyturn::app::keepFreedHeapForReuse();
   keyturn::studio::catchQuitSignals();
   Args a;
   CLI::App cli("keyturn studio: live ToF capture on a turntable rig and keypoint-based recognition");

@@ -56,7 +56,11 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   PreparedView v;
   v.input_points = input.validCount();
   if (v.input_points == 0) throw EmptyViewError("no valid points (all NaN or infinite)");
-  Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working) : input;
+  const bool keep_measured = o.refine.enabled && o.working.enabled;
+  Cloud measured;
+  Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working,
+                                       keep_measured ? &measured : nullptr)
+                         : input;
   const std::size_t filtered = cloud.validCount();
   if (filtered < 3) {
     std::string why;
@@ -66,8 +70,12 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
                             " points left after filtering (" + inputKindName(v.filter.kind) + ": " +
                             (why.empty() ? "nothing removed" : why) + ")");
   }
-  if (!o.filter) subsampleToWorkingResolution(cloud, o.working, &v.working);
+  if (!o.filter) {
+    if (keep_measured) measured = cloud;
+    subsampleToWorkingResolution(cloud, o.working, &v.working);
+  }
   v.points = PointSet::fromCloud(cloud);
+  if (keep_measured && v.working.subsampled) v.measured = PointSet::fromCloud(measured);
   if (v.working.off_pixel_rays) v.points.forgetPixels();
   v.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   return v;
@@ -76,7 +84,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
 ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o, PointSet* prepared) {
   if (o.features.empty()) throw Error("no features requested");
   PreparedView v = prepareView(input, o);
-  ViewDescriptor out = describeFilteredPoints(v.points, o, v.resolutionFloor());
+  ViewDescriptor out = describeFilteredPoints(v.points, o, v.resolutionFloor(), false, &v.measured);
   out.input_points = v.input_points;
   out.filter = std::move(v.filter);
   out.working = v.working;
@@ -87,7 +95,7 @@ ViewDescriptor describeView(const Cloud& input, const DescriptorOptions& o, Poin
 }
 
 ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptions& o, double min_resolution,
-                                      bool with_geodesic_paths) {
+                                      bool with_geodesic_paths, const PointSet* measured) {
   if (o.features.empty()) throw Error("no features requested");
   ViewDescriptor out;
   out.features = o.features;
@@ -112,6 +120,8 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     out.keypoint_weight = std::move(iss.weight);
     for (int i : keypoints) out.keypoints.push_back(set.points[i]);
     out.keypoint_index = keypoints;
+    if (o.refine.enabled && measured && measured->size() >= 2)
+      out.keypoints = refineKeypointsOnMeasuredPoints(*measured, out.keypoints, out.resolution, o.iss, o.refine);
     out.times.iss = clock.lap();
     if (out.keypointCount() < o.min_keypoints)
       throw EmptyViewError("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +
@@ -133,10 +143,11 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   out.size = viewSize(set.points);  // the scaled twins' unit and the size block
   // Keypoint functions, geodesics, Osada's functions and PDFs for one keypoint set.
   // kp_weight: one per keypoint (the weighted budget), or null: each value's weight follows from it.
-  auto pdfsFor = [&](const std::vector<int>& kp_index, const std::vector<double>* kp_weight, bool with_shape_functions,
-                     GeodesicResult* geo_out, std::vector<std::vector<double>>* scaled_out) {
-    std::vector<Eigen::Vector3f> kp;
-    for (int i : kp_index) kp.push_back(set.points[i]);
+  // kp: the keypoints' positions (refined ones need not be points of the set; the geodesics start
+  // from kp_index, the graph's vertices the keypoints were found at).
+  auto pdfsFor = [&](const std::vector<Eigen::Vector3f>& kp, const std::vector<int>& kp_index,
+                     const std::vector<double>* kp_weight, bool with_shape_functions, GeodesicResult* geo_out,
+                     std::vector<std::vector<double>>* scaled_out) {
     std::vector<std::vector<float>> values(o.features.size()), weights(o.features.size());
     for (std::size_t f = 0; f < o.features.size(); ++f) {
       switch (o.features[f]) {
@@ -206,7 +217,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   };
 
   GeodesicResult geo;
-  out.pdfs = pdfsFor(keypoints, out.keypoint_weight.empty() ? nullptr : &out.keypoint_weight, true, &geo,
+  out.pdfs = pdfsFor(out.keypoints, keypoints, out.keypoint_weight.empty() ? nullptr : &out.keypoint_weight, true, &geo,
                      o.scaled_twin ? &out.scaled_pdfs : nullptr);
   out.unreachable_keypoints = geo.unreachable_from_centroid;
   out.unreachable_pairs = geo.unreachable_pairs;
@@ -221,7 +232,9 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     std::iota(all.begin(), all.end(), 0);
     std::vector<int> drawn;
     std::sample(all.begin(), all.end(), std::back_inserter(drawn), keypoints.size(), std::mt19937_64(o.random_seed));
-    out.random_keypoint_pdfs = pdfsFor(drawn, nullptr, false, nullptr, nullptr);
+    std::vector<Eigen::Vector3f> at;
+    for (int i : drawn) at.push_back(set.points[i]);
+    out.random_keypoint_pdfs = pdfsFor(at, drawn, nullptr, false, nullptr, nullptr);
   }
   graph = LocalCompleteGraph();
   out.times.total =

@@ -170,6 +170,20 @@ std::vector<DescriptorParameter> makeTable() {
                  o.iss.budget_taper = v;
                },
                "0"});
+  DescriptorParameter refine{"refine_keypoints",
+               "Keypoint refinement: move each keypoint to the most salient measured point within this many ISS "
+               "suppression radii of it, before the working resolution (0 = off: keypoints on the working points)",
+               Kind::Number,
+               [](const DescriptorOptions& o) { return cacheNumberText(o.refine.enabled ? o.refine.window : 0.0); },
+               [](DescriptorOptions& o, const std::string& t) {
+                 const double v = parseNumber(t);
+                 if (!(v >= 0) || v > 1) throw Error("must be 0 (off) or within 0..1, not '" + t + "'");
+                 o.refine.enabled = v > 0;
+                 if (v > 0) o.refine.window = v;
+               },
+               "0"};
+  refine.written_when_set = true;
+  t.push_back(refine);
   t.push_back(whole("osada_samples", "Samples per Osada shape distribution",
                     [](auto& o) -> auto& { return o.osada.samples; }, 1));
   t.push_back(whole("seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",
@@ -197,8 +211,12 @@ const DescriptorParameter& descriptorParameter(const std::string& name) {
 
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options) {
   std::map<std::string, std::string> spec;
-  for (const auto& p : descriptorParameters())
-    if (p.in_spec) spec[p.name] = p.get(options);
+  for (const auto& p : descriptorParameters()) {
+    if (!p.in_spec) continue;
+    std::string value = p.get(options);
+    if (p.written_when_set && value == p.absent_means) continue;
+    spec[p.name] = std::move(value);
+  }
   return spec;
 }
 

@@ -306,7 +306,8 @@ std::string FilterReport::flaggedSummary() const {
 }
 
 Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report,
-                  const WorkingResolutionOptions* working, WorkingResolutionReport* working_report) {
+                  const WorkingResolutionOptions* working, WorkingResolutionReport* working_report,
+                  Cloud* before_working) {
   Cloud cloud = input;
   // Points beyond kMaxCoordinate are no measurement (float squared distances between them overflow,
   // and the voxel steps' means with them): invalid, as a loader reads them.
@@ -349,6 +350,7 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
   r.after_cluster = count;
   if (working)
     step("working-resolution", working->enabled, "off", [&](FilterStep&) {
+      if (before_working) *before_working = cloud;
       WorkingResolutionReport w;
       subsampleToWorkingResolution(cloud, *working, &w);
       if (working_report) *working_report = w;

@@ -26,7 +26,8 @@ Detector parseDetector(const std::string& n) {
   if (n == "sift3d") return Detector::Sift3d;
   if (n == "uniform") return Detector::Uniform;
   if (n == "iss-chain") return Detector::IssChain;
-  throw Error("unknown detector '" + n + "' (expected iss, harris3d, sift3d, uniform, iss-chain)");
+  if (n == "iss-refined") return Detector::IssRefined;
+  throw Error("unknown detector '" + n + "' (expected iss, harris3d, sift3d, uniform, iss-chain, iss-refined)");
 }
 
 std::string detectorName(Detector d) {
@@ -36,6 +37,7 @@ std::string detectorName(Detector d) {
     case Detector::Sift3d: return "sift3d";
     case Detector::Uniform: return "uniform";
     case Detector::IssChain: return "iss-chain";
+    case Detector::IssRefined: return "iss-refined";
   }
   return "?";
 }
@@ -111,7 +113,8 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
   if (set.size() < 10) return out;
   switch (d) {
     case Detector::Iss:
-    case Detector::IssChain: {
+    case Detector::IssChain:
+    case Detector::IssRefined: {
       const RadiusSearch search(set);
       for (int i : detectIssKeypoints(set, search, res, o.iss).keypoints) out.push_back(set.points[i]);
       break;
@@ -154,7 +157,7 @@ std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet&
   }
   std::vector<double> score;
   double radius = 0;  // the detector's suppression radius, metres
-  if (d == Detector::Iss || d == Detector::IssChain) {
+  if (d == Detector::Iss || d == Detector::IssChain || d == Detector::IssRefined) {
     const RadiusSearch search(set);
     score = detectIssKeypoints(set, search, res, uncapped.iss).saliency;
     radius = o.iss.nms_radius * res;

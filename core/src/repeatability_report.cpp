@@ -90,8 +90,8 @@ std::string studyMarkdown(const Study& s, const std::string& input) {
       md << ' ' << rounded(S.absolute[e], 10) << " / " << rounded(S.absolute_equal[e], 10) << " |";
     md << "\n";
   }
-  md << "\nPlots: `absolute_vs_eps.png`, `relative_vs_eps.png`, `relative_vs_rotation.png` (native solid, equal K "
-        "marked \"@K\"); every pair, budget and ε in `repeatability.csv`; each pair's rotation and overlap in "
+  md << "\nPlots: `absolute_vs_eps.png`, `relative_vs_eps.png`, `relative_vs_rotation.png` (one colour per detector: native "
+        "solid, equal K dashed and marked \"@K\"); every pair, budget and ε in `repeatability.csv`; each pair's rotation and overlap in "
         "`pairs.csv`.\n";
   return md.str();
 }
@@ -129,18 +129,21 @@ ReportPlots studyPlots(const Study& s) {
   CurvePlot rel{"relative_vs_eps.png", "Relative repeatability", "ε (× resolution)", "repeatable / visible", {}, 0.0, 1.0};
   CurvePlot rot{"relative_vs_rotation.png", std::string("Relative repeatability at ε = ") + at + " × resolution",
                 "rotation between views (°)", "repeatable / visible", {}, 0.0, 1.0};
-  for (const auto& [d, S] : s.detectors)
+  int colour = 0;
+  for (const auto& [d, S] : s.detectors) {
     for (const bool equal : {false, true}) {
       const std::string name = detectorName(d) + (equal ? " @K" : "");
-      abs.series.push_back({name, eps, equal ? S.absolute_equal : S.absolute});
-      rel.series.push_back({name, eps, equal ? S.relative_equal : S.relative});
-      CurveSeries by_rotation{name, {}, {}};
+      abs.series.push_back({name, eps, equal ? S.absolute_equal : S.absolute, colour, equal});
+      rel.series.push_back({name, eps, equal ? S.relative_equal : S.relative, colour, equal});
+      CurveSeries by_rotation{name, {}, {}, colour, equal};
       for (const auto& [deg, b] : equal ? S.relative_equal_by_rotation : S.relative_by_rotation) {
         by_rotation.x.push_back(deg);
         by_rotation.y.push_back(b.first / b.second);
       }
       rot.series.push_back(by_rotation);
     }
+    ++colour;
+  }
   return {{abs, rel, rot}, {}};
 }
 

@@ -11,6 +11,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
+#include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/string_format.h"
 
@@ -137,7 +138,8 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     data[i].set = PointSet::fromCloud(c);
     if (data[i].set.size() < 2) throw Error(views[i].file + ": fewer than 2 points left to detect keypoints on");
     data[i].res = cloudResolution(data[i].set);
-    if (std::find(o.detectors.begin(), o.detectors.end(), Detector::IssChain) != o.detectors.end()) {
+    const auto wants = [&](Detector d) { return std::find(o.detectors.begin(), o.detectors.end(), d) != o.detectors.end(); };
+    if (wants(Detector::IssChain) || wants(Detector::IssRefined)) {
       // As describe prepares a view (prepareView): the filtered view at the working resolution,
       // its radii in multiples of the working spacing at least.
       WorkingResolutionReport w;
@@ -172,13 +174,20 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
     v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
     for (Detector d : o.detectors) {
-      const bool chain = d == Detector::IssChain;
+      const bool chain = d == Detector::IssChain || d == Detector::IssRefined;
       const PointSet& set = chain ? v.working_set : v.set;
       const double res = chain ? v.working_res : v.res;
+      // iss-refined: the chain's keypoints moved onto the measured points, as describe places them.
+      auto refined = [&](std::vector<Eigen::Vector3f> kp) {
+        if (d != Detector::IssRefined) return kp;
+        KeypointRefinementOptions r;
+        r.enabled = true;
+        return refineKeypointsOnMeasuredPoints(v.set, kp, v.working_res, o.detector.iss, r);
+      };
       const auto t0 = std::chrono::steady_clock::now();
-      v.native[d] = detectKeypoints(d, set, res, o.detector);
+      v.native[d] = refined(detectKeypoints(d, set, res, o.detector));
       v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      v.equal[d] = detectKeypointsAtBudget(d, set, res, v.budget, o.detector);
+      v.equal[d] = refined(detectKeypointsAtBudget(d, set, res, v.budget, o.detector));
     }
     progress.step();
   }

@@ -55,7 +55,7 @@ TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
   EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--extent", "--no-filter", "--no-plane",
                                           "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
                                           "--graph-radius", "--samples-across", "--voxel-grid", "--voxel-points",
-                                          "--max-keypoints", "--budget-taper", "--osada-samples", "--seed",
+                                          "--max-keypoints", "--budget-taper", "--refine-keypoints", "--osada-samples", "--seed",
                                           "--low-keypoints"}));
 }
 

@@ -25,7 +25,8 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
       return now;
     }
     case DescriptorParameter::Kind::Integer: return std::to_string(std::stoll(p.get(d)) + 3);
-    case DescriptorParameter::Kind::Number: return p.name == "budget_taper" ? "0.25" : "1.25";
+    case DescriptorParameter::Kind::Number:
+      return p.name == "budget_taper" ? "0.25" : p.name == "refine_keypoints" ? "0.5" : "1.25";
   }
   return "";
 }
@@ -46,6 +47,19 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
 }
 
+// Keypoint refinement is off by default and written only when on: the default specification (and
+// every cache named by it) is the one before the option existed, and a refined one differs.
+TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("refine_keypoints"), 0u);
+  DescriptorOptions refined;
+  descriptorParameter("refine_keypoints").set(refined, "0.5");
+  const auto spec = parameterSpec(refined);
+  ASSERT_EQ(spec.count("refine_keypoints"), 1u);
+  EXPECT_EQ(spec.at("refine_keypoints"), "0.5");
+  EXPECT_TRUE(optionsFromParameterSpec(spec, "model.json").refine.enabled);
+  EXPECT_FALSE(optionsFromParameterSpec(parameterSpec(DescriptorOptions()), "model.json").refine.enabled);
+}
+
 // Rows added after specifications were first written (issue 30's grid and binning): a cache or
 // model written before them has no such key and reads as it was made — the camera-anchored grid
 // and hard binning — while a missing older key is still an error (below).
@@ -55,11 +69,13 @@ TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
   spec.erase("binning");
   spec.erase("budget_taper");
   spec.erase("working_points");
+  spec.erase("refine_keypoints");
   const DescriptorOptions old = optionsFromParameterSpec(spec, "model.json");
   EXPECT_EQ(old.working.anchor, VoxelAnchor::CameraGrid);
   EXPECT_EQ(old.histogram.binning, Binning::Hard);
   EXPECT_EQ(old.iss.budget_taper, 0.0);
   EXPECT_EQ(old.working.points, VoxelPoints::Thinned);
+  EXPECT_FALSE(old.refine.enabled);
   EXPECT_EQ(parameterSpec(old).at("working_grid"), "camera");
 }
 

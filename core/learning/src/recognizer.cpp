@@ -76,7 +76,8 @@ Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) c
   r.filtered = std::move(prepared.points);
   r.filter_ms = msSince(t0);
   const auto t1 = std::chrono::steady_clock::now();
-  r.descriptor = describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor(), with_geodesic_paths);
+  r.descriptor =
+    describeFilteredPoints(r.filtered, options_, prepared.resolutionFloor(), with_geodesic_paths, &prepared.measured);
   r.describe_ms = msSince(t1);
   r.block_names = blockNames();
   for (const auto& b : live_) {

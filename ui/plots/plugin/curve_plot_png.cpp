@@ -54,7 +54,8 @@ void saveCurvePng(const CurvePlot& c, const std::string& path) {
   ensureApplication();
   auto* chart = new QtCharts::QChart();
   chart->setTitle(QString::fromStdString(c.title));
-  chart->legend()->setAlignment(Qt::AlignBottom);
+  // Many series: one legend entry per row at the right, where no name is elided.
+  chart->legend()->setAlignment(c.series.size() > 6 ? Qt::AlignRight : Qt::AlignBottom);
   QtCharts::QAbstractAxis* ax = nullptr;
   if (c.x_categories.empty()) {
     ax = makeAxis(c.log_x, c.x_label);
@@ -88,9 +89,10 @@ void saveCurvePng(const CurvePlot& c, const std::string& path) {
       ymin = std::min(ymin, s.y[i]);
       ymax = std::max(ymax, s.y[i]);
     }
-    QPen pen(palette[k % 8]);
+    QPen pen(palette[(s.colour >= 0 ? s.colour : k) % 8]);
     pen.setWidth(3);
-    if (k++ >= 8) pen.setStyle(Qt::DashLine);  // past the palette: the colours again, dashed
+    if (s.dashed || (s.colour < 0 && k >= 8)) pen.setStyle(Qt::DashLine);  // past the palette: the colours again, dashed
+    ++k;
     line->setPen(pen);
     line->setPointsVisible(true);
     chart->addSeries(line);

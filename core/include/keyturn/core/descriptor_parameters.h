@@ -38,13 +38,17 @@ struct DescriptorParameter {
   // False for a parameter that does not change the features (the low-keypoint warning): it
   // stays out of the specification.
   bool in_spec = true;
+  // An option that is off by default: written only when it differs from absent_means, so the
+  // default specification — hence every existing cache's name and model — is what it was before
+  // the row existed (keypoint refinement).
+  bool written_when_set = false;
 };
 
 const std::vector<DescriptorParameter>& descriptorParameters();
 // The row of a name ("bins"); throws keyturn::Error for an unknown name.
 const DescriptorParameter& descriptorParameter(const std::string& name);
 
-// The parameters' specification entries (the rows in_spec).
+// The parameters' specification entries (the rows in_spec; a written_when_set row only when set).
 std::map<std::string, std::string> parameterSpec(const DescriptorOptions& options);
 // The specification with every row added since it was written filled in with what its absence
 // means (DescriptorParameter::absent_means): how an old cache's or model's features were made.

@@ -90,9 +90,12 @@ InputKind classifyInput(const Cloud& cloud);
 
 // Returns a cloud of the same layout (organized stays organized, removed points NaN).
 // With `working`, the view is also brought to the working resolution, as the step before the
-// outlier removal (whose statistics are then those of the working spacing, and cheap).
+// outlier removal (whose statistics are then those of the working spacing, and cheap);
+// `before_working` then receives the view as that step found it (the measured points keypoint
+// refinement places keypoints on: keypoint_refinement.h).
 Cloud filterCloud(const Cloud& input, const FilterOptions& options, FilterReport* report = nullptr,
-                  const WorkingResolutionOptions* working = nullptr, WorkingResolutionReport* working_report = nullptr);
+                  const WorkingResolutionOptions* working = nullptr, WorkingResolutionReport* working_report = nullptr,
+                  Cloud* before_working = nullptr);
 
 // Individual steps, each keeping the layout.
 void cropRange(Cloud& cloud, float min_range, float max_range);

@@ -13,10 +13,12 @@ namespace keyturn {
 
 // IssChain is ISS as `describe` runs it: on the view brought to the working resolution
 // (working_resolution.h), its radii in multiples of that view's resolution. The detectors here
-// treat it as Iss; the repeatability study hands it the working-resolution view.
-enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain };
+// treat it as Iss; the repeatability study hands it the working-resolution view. IssRefined is
+// IssChain's keypoints moved onto the measured points (keypoint_refinement.h), as `describe` places
+// them with --refine-keypoints.
+enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined };
 
-Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform, iss-chain; throws keyturn::Error
+Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform, iss-chain, iss-refined; throws keyturn::Error
 std::string detectorName(Detector d);
 
 struct DetectorOptions {

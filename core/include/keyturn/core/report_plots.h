@@ -12,6 +12,10 @@ namespace keyturn {
 struct CurveSeries {
   std::string name;
   std::vector<double> x, y;
+  // Pairs of series (a detector natively and at a budget) share a colour, one dashed: colour is an
+  // index into the plotter's palette, -1 = by the series' place (past the palette: dashed).
+  int colour = -1;
+  bool dashed = false;
 };
 
 struct CurvePlot {
