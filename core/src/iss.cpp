@@ -10,6 +10,17 @@ namespace {
 constexpr double kPlanarRatio = 1e-9;
 }
 
+double issSaliency(const Eigen::Matrix3d& scatter, const IssOptions& o) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(scatter, Eigen::EigenvaluesOnly);
+  const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
+  const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
+  // A planar or linear patch has λ3 or λ2 = 0 up to float rounding of the
+  // coordinates (~1e-11 of λ1): not salient, and no ratio divides by zero.
+  if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) return 0.0;
+  return l2 / l1 < o.gamma21 && l3 / l2 < o.gamma32 ? l3 : 0.0;
+}
+
 IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,
                              const IssOptions& o) {
   const int n = static_cast<int>(set.size());
@@ -40,14 +51,7 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
       wsum += weight[j];
     }
     cov /= wsum;
-    Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-    eig.computeDirect(cov, Eigen::EigenvaluesOnly);
-    const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
-    const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
-    // A planar or linear patch has λ3 or λ2 = 0 up to float rounding of the
-    // coordinates (~1e-11 of λ1): not salient, and no ratio divides by zero.
-    if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) continue;
-    if (l2 / l1 < o.gamma21 && l3 / l2 < o.gamma32) result.saliency[i] = l3;
+    result.saliency[i] = issSaliency(cov, o);
   }
 
   // Non-maximum suppression on λ3; ties go to the lower index so the outcome

@@ -1,6 +1,5 @@
 #include "keyturn/core/keypoint_refinement.h"
 
-#include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
@@ -12,8 +11,6 @@
 
 namespace keyturn {
 namespace {
-
-constexpr double kPlanarRatio = 1e-9;  // as ISS (iss.cpp): a planar patch is not salient
 
 // The measured points in a hash grid of cubes of side r, stored cube by cube (coordinates in
 // float, contiguous per cube, so a scan is one tight loop): counts within r (ISS's density weights)
@@ -156,13 +153,8 @@ double refineAtScale(const PointSet& measured, std::vector<Eigen::Vector3f>& kp,
       Eigen::Matrix3d cov;
       cov << xx, xy, xz, xy, yy, yz, xz, yz, zz;
       cov /= wsum;
-      Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-      eig.computeDirect(cov, Eigen::EigenvaluesOnly);
-      const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
-      const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
-      if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) continue;
-      if (!(l2 / l1 < iss.gamma21 && l3 / l2 < iss.gamma32)) continue;
-      if (l3 > best_s) best_s = l3, best = i;
+      const double saliency = issSaliency(cov, iss);
+      if (saliency > best_s) best_s = saliency, best = i;
     }
     if (best >= 0) kp[k] = measured.points[static_cast<std::size_t>(best)];
   }

@@ -4,6 +4,7 @@
 // r_frame, eigenvalue-ratio tests λ2/λ1 < γ21 and λ3/λ2 < γ32, saliency λ3 and
 // non-maximum suppression in r_nms. Deterministic: the same cloud gives the
 // same keypoints in ascending index order.
+#include <Eigen/Core>
 #include <vector>
 
 #include "keyturn/core/cloud.h"
@@ -39,5 +40,10 @@ struct IssResult {
 
 IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,
                              const IssOptions& options);
+
+// ISS's test of one point: the saliency λ3 of its weighted scatter matrix (Eq. 9, already divided
+// by the weights' sum) when λ2/λ1 < γ21 and λ3/λ2 < γ32, else 0 — also 0 for a planar or linear patch
+// (λ2 or λ3 ≤ 10⁻⁹ λ1: float rounding, not shape). Shared by detection and refinement.
+double issSaliency(const Eigen::Matrix3d& scatter, const IssOptions& options);
 
 }  // namespace keyturn
