@@ -24,7 +24,8 @@ namespace keyturn::app {
 namespace {
 
 struct TrainArgs {
-  std::string dataset, features = "kpd2+gkpd2", classifier = "xgboost", label = "instance", out;
+  // The set that did best across protocols on real and simulated views (docs/results.md, "Sim-to-real")
+  std::string dataset, features = "kpa3+s_kpd2", classifier = "xgboost", label = "instance", out;
   int jobs = 0;
   bool quiet = false;
   DescriptorFlags flags;

@@ -236,9 +236,9 @@ void bindDataset(py::module_& m) {
                     "the cache file read or written (DATASET/.keyturn/features-HASH.csv); None when described in memory")
       .def("__len__", [](const Features& f) { return f.table.rows.size(); });
 
-  m.def("features_of", &featuresOf, py::arg("views"), py::arg("labels"), py::arg("blocks") = "kpd2+gkpd2",
+  m.def("features_of", &featuresOf, py::arg("views"), py::arg("labels"), py::arg("blocks") = "kpa3+s_kpd2",
         py::kw_only(), py::arg("ids") = py::none(), py::arg("kind") = "auto",
-        "features_of(views, labels, blocks='kpd2+gkpd2', *, ids=None, kind='auto', **parameters) -> Features\n\n"
+        "features_of(views, labels, blocks='kpa3+s_kpd2', *, ids=None, kind='auto', **parameters) -> Features\n\n"
         "Views from anywhere (paths, keyturn.Cloud, Open3D clouds, arrays) described one by one into Features, each "
         "row labelled (cls and instance) with its label: what Dataset.features gives for a dataset, for keyturn.train. "
         "ids name the rows (default: the file, or viewI). kind as for describe.");
@@ -282,14 +282,14 @@ void bindDataset(py::module_& m) {
         for (std::size_t i = 0; i < d.size(); ++i) l.append(d.view(i));
         return py::iter(l);
       })
-      .def("features", &PyDataset::features, py::arg("blocks") = "kpd2+gkpd2", py::arg("jobs") = 0, py::kw_only(),
+      .def("features", &PyDataset::features, py::arg("blocks") = "kpa3+s_kpd2", py::arg("jobs") = 0, py::kw_only(),
            py::arg("cache") = false,
-           ("features(blocks='kpd2+gkpd2', jobs=0, *, cache=False, **parameters) -> Features\n\n"
+           ("features(blocks='kpa3+s_kpd2', jobs=0, *, cache=False, **parameters) -> Features\n\n"
             "The dataset's features for these parameters (keyturn.parameters(); the library's defaults), as "
             "evaluate and train compute them: read from the dataset's feature cache when it holds every view, else "
             "described in memory (all cores, GIL released) and nothing written. cache=True fills the cache "
             "(DATASET/.keyturn/features-HASH.csv, as `keyturn describe DATASET --cache`) when it lacks views. "
-            "blocks: 'kpd2+gkpd2' or a list; any cache block: kpd2 … gkpcd2, d2, d3, a3, u_kpd2 … (random keypoints), "
+            "blocks: 'kpa3+s_kpd2' or a list; any cache block: kpd2 … gkpcd2, their scaled twins s_kpd2 …, d2, d3, a3, u_kpd2 … (random keypoints), "
             "s_kpd2 … s_d3 (lengths in RMS radii), size, esf, vfh, ourcvfh.\n\nParameters:\n" +
             parametersDoc())
                .c_str())

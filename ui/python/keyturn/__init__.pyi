@@ -180,7 +180,7 @@ class Dataset:
     def __getitem__(self, i: int) -> View: ...
     def __iter__(self) -> Iterator[View]: ...
     def features(
-        self, blocks: Union[str, Sequence[str]] = "kpd2+gkpd2", jobs: int = 0, *, cache: bool = False,
+        self, blocks: Union[str, Sequence[str]] = "kpa3+s_kpd2", jobs: int = 0, *, cache: bool = False,
         **parameters: Parameter
     ) -> Features: ...
 
@@ -230,7 +230,7 @@ class Model:
 def features_of(
     views: Sequence[ViewLike],
     labels: Sequence[str],
-    blocks: Union[str, Sequence[str]] = "kpd2+gkpd2",
+    blocks: Union[str, Sequence[str]] = "kpa3+s_kpd2",
     *,
     ids: Optional[Sequence[str]] = None,
     kind: Kind = "auto",
