@@ -14,8 +14,8 @@ namespace keyturn {
 // IssChain is ISS as `describe` runs it: on the view brought to the working resolution
 // (working_resolution.h), its radii in multiples of that view's resolution. The detectors here
 // treat it as Iss; the repeatability study hands it the working-resolution view. IssRefined is
-// IssChain's keypoints moved onto the measured points (keypoint_refinement.h), as `describe` places
-// them with --refine-keypoints.
+// IssChain's keypoints moved onto the measured points (keypoint_refinement.h), as the chain places
+// them when DescriptorOptions::refine is on.
 enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined };
 
 Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform, iss-chain, iss-refined; throws keyturn::Error
