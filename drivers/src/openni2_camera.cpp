@@ -379,8 +379,8 @@ TofFrame OpenNi2Camera::acquire() {
   if (s_ && !options_.loop && s_->frames_in_file > 0 && s_->frames_read >= s_->frames_in_file)
     throw EndOfRecording(options_.oni_file + ": end of the recording after its " +
                          std::to_string(s_->frames_in_file) + " frames");
-  return withRetries(
-      RetryPolicy{options_.reconnect_attempts, options_.backoff_initial_ms},
+  return withReopening(
+      name(), RetryPolicy{options_.reconnect_attempts, options_.backoff_initial_ms}, options_.log,
       [&] {
         if (!s_) throw Error("not open");  // the last reopen failed
         return acquireOnce();
@@ -389,15 +389,6 @@ TofFrame OpenNi2Camera::acquire() {
         close();
         open();
         ++reconnects_;
-      },
-      [&](int k, int wait, const std::string& last) {
-        if (options_.log)
-          options_.log(name() + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " +
-                       std::to_string(k) + " of " + std::to_string(options_.reconnect_attempts) + ")");
-      },
-      [&](const std::string& last) {
-        return Error(name() + ": giving up after " + std::to_string(options_.reconnect_attempts) +
-                     " reopen attempts: " + last);
       });
 }
 

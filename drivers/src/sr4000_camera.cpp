@@ -178,8 +178,9 @@ TofFrame Sr4000Camera::acquireOnce() {
 }
 
 TofFrame Sr4000Camera::acquire() {
-  return withRetries(
-      RetryPolicy{options_.reconnect_attempts, options_.backoff_initial_ms},
+  return withReopening(
+      name() + " (" + lib_->path + ")", RetryPolicy{options_.reconnect_attempts, options_.backoff_initial_ms},
+      options_.log,
       [&] {
         if (!cam_) throw Error("not open");  // the last reopen failed
         return acquireOnce();
@@ -189,15 +190,6 @@ TofFrame Sr4000Camera::acquire() {
         open();
         configure(wanted_);
         ++reconnects_;
-      },
-      [&](int k, int wait, const std::string& last) {
-        if (options_.log)
-          options_.log(name() + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " +
-                       std::to_string(k) + " of " + std::to_string(options_.reconnect_attempts) + ")");
-      },
-      [&](const std::string& last) {
-        return Error(name() + " (" + lib_->path + "): giving up after " +
-                     std::to_string(options_.reconnect_attempts) + " reopen attempts: " + last);
       });
 }
 

@@ -4,6 +4,7 @@
 // `retries` more times. A device's refusal is not retried: asking again will not
 // change its answer.
 #include <chrono>
+#include <functional>
 #include <string>
 #include <thread>
 
@@ -46,6 +47,24 @@ auto withRetries(const RetryPolicy& policy, Attempt&& attempt, Recover&& recover
     }
   }
   throw give_up(last);
+}
+
+// A camera's frame read under that policy: reopened between tries, each retry one line on `log`
+// ("DEVICE: LAST; reopening in W ms (attempt K of N)"), giving up as one error naming `device`.
+template <typename Attempt, typename Reopen>
+auto withReopening(const std::string& device, const RetryPolicy& policy,
+                   const std::function<void(const std::string&)>& log, Attempt&& attempt, Reopen&& reopen)
+    -> decltype(attempt()) {
+  return withRetries(
+      policy, attempt, reopen,
+      [&](int k, int wait, const std::string& last) {
+        if (log)
+          log(device + ": " + last + "; reopening in " + std::to_string(wait) + " ms (attempt " + std::to_string(k) +
+              " of " + std::to_string(policy.retries) + ")");
+      },
+      [&](const std::string& last) {
+        return Error(device + ": giving up after " + std::to_string(policy.retries) + " reopen attempts: " + last);
+      });
 }
 
 }  // namespace keyturn::drivers
