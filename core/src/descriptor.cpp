@@ -171,7 +171,7 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
         if (f == Feature::GKPD2) which |= kGkpd2;
         if (f == Feature::GKPCD2) which |= kGkpcd2;
       }
-      GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which, kp_weight);
+      GeodesicResult geo = geodesicKeypointDistances(graph, set, kp_index, which, kp_weight, o.graph.centroid_sources);
       for (std::size_t f = 0; f < o.features.size(); ++f) {
         if (o.features[f] == Feature::GKPD1) values[f] = std::move(geo.gkpd1), weights[f] = std::move(geo.gkpd1_weight);
         if (o.features[f] == Feature::GKPD2) values[f] = std::move(geo.gkpd2), weights[f] = std::move(geo.gkpd2_weight);

@@ -105,8 +105,8 @@ std::vector<DescriptorParameter> makeTable() {
                  o.histogram.mode = t == "fixed" ? RangeMode::Fixed : RangeMode::PerView;
                }});
   t.push_back({"binning",
-               "How a value is counted: hard (all in its bin) or linear (shared between the two nearest bin "
-               "centres: the PDF moves continuously with the values)",
+               "How a value is counted: hard (all in its bin), linear (shared between the two nearest bin "
+               "centres: the PDF moves continuously with the values) or quadratic (over three bins, smoother)",
                Kind::Choice, [](const DescriptorOptions& o) -> std::string { return binningName(o.histogram.binning); },
                [](DescriptorOptions& o, const std::string& t) { o.histogram.binning = parseBinning(t); }, "hard"});
   t.push_back(number("extent_m", "Object extent E in metres for fixed ranges (distances span [0,E])",
@@ -137,6 +137,31 @@ std::vector<DescriptorParameter> makeTable() {
                      [](auto& o) -> auto& { return o.iss.density_radius; }));
   t.push_back(radius("graph_radius", "Local complete graph radius",
                      [](auto& o) -> auto& { return o.graph.radius; }));
+  {
+    DescriptorParameter sources = whole(
+        "gkpd1_sources",
+        "GKPD1's sources: blend the geodesics from this many vertices nearest the centroid, so GKPD1 "
+        "changes continuously as the view moves (1 = the nearest vertex alone, before issue 30)",
+        [](auto& o) -> auto& { return o.graph.centroid_sources; }, 1, 64);
+    sources.absent_means = "1";
+    sources.written_when_set = true;  // measured, not the default (docs/descriptors.md, "Stability")
+    t.push_back(sources);
+  }
+  {
+    DescriptorParameter floor{
+        "curvature_floor",
+        "GKPCD2's floor of the curvature factor C = sin(angle between normals), within 0..1: the paper's "
+        "0.0001 makes flat parts nearly free, so the normals' noise picks the paths; more follows the surface",
+        Kind::Number, [](const DescriptorOptions& o) { return cacheNumberText(o.graph.curvature_epsilon); },
+        [](DescriptorOptions& o, const std::string& t) {
+          const double v = parseNumber(t);
+          if (!(v > 0) || v > 1) throw Error("must be within 0..1 and positive, not '" + t + "'");
+          o.graph.curvature_epsilon = v;
+        },
+        "0.0001"};
+    floor.written_when_set = true;  // measured, not the default (docs/descriptors.md, "Stability")
+    t.push_back(floor);
+  }
   // One number for two fields: 0 describes at the sensor's own spacing.
   t.push_back({"working_samples_across",
                "Working resolution: describe at spacing (view extent / this); 0 = the sensor's own spacing",

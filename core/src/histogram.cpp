@@ -16,12 +16,15 @@ int histogramBin(double v, int bins, HistogramRange range) {
   return !(t >= 0) ? 0 : t >= bins ? bins - 1 : static_cast<int>(t);
 }
 
-const char* binningName(Binning b) { return b == Binning::Hard ? "hard" : "linear"; }
+const char* binningName(Binning b) {
+  return b == Binning::Hard ? "hard" : b == Binning::Linear ? "linear" : "quadratic";
+}
 
 Binning parseBinning(const std::string& name) {
   if (name == "hard") return Binning::Hard;
   if (name == "linear") return Binning::Linear;
-  throw Error("must be hard or linear, not '" + name + "'");
+  if (name == "quadratic") return Binning::Quadratic;
+  throw Error("must be hard, linear or quadratic, not '" + name + "'");
 }
 
 void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Binning binning, double weight) {
@@ -33,6 +36,17 @@ void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Bi
   }
   // Position in bin units from the first bin's centre; bounded in double before any int.
   const double t = (v - range.lo) / width * bins - 0.5;
+  if (binning == Binning::Quadratic) {
+    // The nearest centre c and the B-spline's weights on c − 1, c, c + 1 (they sum to 1).
+    const double near = !(t > 0) ? 0.0 : !(t < bins - 1) ? bins - 1.0 : std::floor(t + 0.5);
+    const double f = std::clamp(t - near, -0.5, 0.5);  // beyond an end centre: all as at the end
+    const int c = static_cast<int>(near);
+    const double left = 0.5 * (0.5 - f) * (0.5 - f), right = 0.5 * (0.5 + f) * (0.5 + f);
+    pdf[c] += weight * (0.75 - f * f);
+    pdf[c > 0 ? c - 1 : c] += weight * left;
+    pdf[c + 1 < bins ? c + 1 : c] += weight * right;
+    return;
+  }
   if (!(t > 0)) {
     pdf.front() += weight;
   } else if (!(t < bins - 1)) {

@@ -91,7 +91,7 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
   bins = std::max(bins, 1);
   const double width = range.hi - range.lo;
   if (!(width > 0) && !weights) return histogramPdf(keypointAngles(kp), bins, range, nullptr, binning);
-  if (binning == Binning::Linear || weights) {
+  if (binning != Binning::Hard || weights) {
     std::vector<double> pdf(bins, 0.0);
     double counted = 0;
     forEachAngleCosine(kp, [&](float c, std::size_t a, std::size_t b, std::size_t d) {

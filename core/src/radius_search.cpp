@@ -212,30 +212,61 @@ void hashGridRows(const PointSet& set, float r, std::vector<int>& offset, std::v
     buckets.emplace(order[b].first, std::make_pair(b, e));
     b = e;
   }
+  // Cell by cell: the points of one cell share their 27 cells' candidates, gathered and put in index
+  // order once per cell, so each row comes out in ascending index without a sort of its own (on a
+  // real crop's 1,368 points, 113 neighbours each: the rows' sorts were most of the table's time).
+  // Rows are made in cell order and copied into index order at the end.
   const float r2 = r * r;
-  std::vector<std::pair<int, float>> row;
-  offset.assign(n + 1, 0);
-  for (int i = 0; i < n; ++i) {
-    const auto& p = set.points[i];
-    const std::int64_t cx = cell(p, 0), cy = cell(p, 1), cz = cell(p, 2);
-    row.clear();
+  std::vector<int> candidates;
+  std::vector<int> made_index;
+  std::vector<float> made_d2;
+  std::vector<int> made_begin(n), made_count(n);
+  made_index.reserve(static_cast<std::size_t>(n) * 64);
+  made_d2.reserve(static_cast<std::size_t>(n) * 64);
+  // The candidates of a cell (every point in its 27 cells), in index order without repeats: keys
+  // alias only far beyond any view's range, where two of the 27 cells can share a bucket.
+  auto gather = [&](std::int64_t cx, std::int64_t cy, std::int64_t cz, std::vector<int>& out) {
+    out.clear();
     for (std::int64_t dx = -1; dx <= 1; ++dx)
       for (std::int64_t dy = -1; dy <= 1; ++dy)
         for (std::int64_t dz = -1; dz <= 1; ++dz) {
           const auto it = buckets.find(key(cx + dx, cy + dy, cz + dz));
           if (it == buckets.end()) continue;
-          for (int k = it->second.first; k < it->second.second; ++k) {
-            const int j = order[k].second;
-            const float dd = (set.points[j] - p).squaredNorm();
-            if (dd < r2) row.emplace_back(j, dd);
-          }
+          for (int k = it->second.first; k < it->second.second; ++k) out.push_back(order[k].second);
         }
-    std::sort(row.begin(), row.end());
-    for (const auto& [j, dd] : row) {
-      index.push_back(j);
-      d2.push_back(dd);
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+  };
+  std::vector<int> own;  // a point whose bucket it shares with another cell's points (aliased keys)
+  for (int b = 0; b < n;) {
+    const int e = buckets.at(order[b].first).second;
+    const auto& p0 = set.points[order[b].second];
+    const std::int64_t cx = cell(p0, 0), cy = cell(p0, 1), cz = cell(p0, 2);
+    gather(cx, cy, cz, candidates);
+    for (int k = b; k < e; ++k) {
+      const int i = order[k].second;
+      const auto& p = set.points[i];
+      const bool same_cell = cell(p, 0) == cx && cell(p, 1) == cy && cell(p, 2) == cz;
+      if (!same_cell) gather(cell(p, 0), cell(p, 1), cell(p, 2), own);
+      made_begin[i] = static_cast<int>(made_index.size());
+      for (int j : same_cell ? candidates : own) {
+        const float dd = (set.points[j] - p).squaredNorm();
+        if (dd < r2) {
+          made_index.push_back(j);
+          made_d2.push_back(dd);
+        }
+      }
+      made_count[i] = static_cast<int>(made_index.size()) - made_begin[i];
     }
-    offset[i + 1] = static_cast<int>(index.size());
+    b = e;
+  }
+  offset.assign(n + 1, 0);
+  for (int i = 0; i < n; ++i) offset[i + 1] = offset[i] + made_count[i];
+  index.resize(offset[n]);
+  d2.resize(offset[n]);
+  for (int i = 0; i < n; ++i) {
+    std::copy_n(made_index.begin() + made_begin[i], made_count[i], index.begin() + offset[i]);
+    std::copy_n(made_d2.begin() + made_begin[i], made_count[i], d2.begin() + offset[i]);
   }
 }
 

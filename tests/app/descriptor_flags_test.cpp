@@ -54,7 +54,7 @@ TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
   for (const auto& [name, flag] : app::descriptorFlagExceptions()) EXPECT_EQ(names.count(name), 1u) << name << " is no row";
   EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--extent", "--no-filter", "--no-plane",
                                           "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
-                                          "--graph-radius", "--samples-across", "--voxel-grid", "--voxel-points",
+                                          "--graph-radius", "--gkpd1-sources", "--curvature-floor", "--samples-across", "--voxel-grid", "--voxel-points",
                                           "--max-keypoints", "--budget-taper", "--refine-keypoints", "--osada-samples", "--seed",
                                           "--low-keypoints"}));
 }

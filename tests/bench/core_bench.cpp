@@ -3,6 +3,13 @@
 // per view; this suite adds micro-benchmarks such as grid vs k-d tree search.
 #include <benchmark/benchmark.h>
 
+#include <pcl/filters/statistical_outlier_removal.h>
+#include <pcl/point_types.h>
+#include <pcl/search/kdtree.h>
+#include <pcl/segmentation/extract_clusters.h>
+
+#include <string>
+
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/cloud_resample.h"
 #include "keyturn/core/descriptor.h"
@@ -60,6 +67,74 @@ static void BM_FilterPlaneOnly(benchmark::State& s) {
 }
 BENCHMARK(BM_FilterPlaneOnly)->Unit(benchmark::kMillisecond);
 
+namespace {
+pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const Cloud& c) {
+  pcl::PointCloud<pcl::PointXYZ>::Ptr out(new pcl::PointCloud<pcl::PointXYZ>);
+  for (const auto& p : c.points)
+    if (Cloud::isValid(p)) out->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
+  return out;
+}
+// A real Kinect crop (20,792 points): what the cluster step is given for a segmented cloud.
+const Cloud& realCrop() {
+  static const Cloud c = loadCloud(std::string(KEYTURN_REAL_DATA) + "/crop/learn0_o1.pcd");
+  return c;
+}
+}  // namespace
+
+// The outlier step as the chain runs it (after the working resolution, 2,054 points), against PCL's
+// filter, which gives the same points (tests/core/outlier_removal_test.cpp).
+static void BM_OutlierRemoval(benchmark::State& s) {
+  const FilterOptions o;
+  for (auto _ : s) {
+    Cloud c = fx().filtered;
+    removeStatisticalOutliers(c, o.sor_k, o.sor_std_mul);
+    benchmark::DoNotOptimize(c);
+  }
+}
+BENCHMARK(BM_OutlierRemoval)->Unit(benchmark::kMillisecond);
+
+static void BM_PclOutlierRemoval(benchmark::State& s) {
+  const FilterOptions o;
+  const auto pts = toPcl(fx().filtered);
+  for (auto _ : s) {
+    pcl::StatisticalOutlierRemoval<pcl::PointXYZ> sor;
+    sor.setInputCloud(pts);
+    sor.setMeanK(o.sor_k);
+    sor.setStddevMulThresh(o.sor_std_mul);
+    pcl::Indices kept;
+    sor.filter(kept);
+    benchmark::DoNotOptimize(kept);
+  }
+}
+BENCHMARK(BM_PclOutlierRemoval)->Unit(benchmark::kMillisecond);
+
+// The largest connected component at 15 mm on the real crop, against PCL's Euclidean clustering.
+static void BM_LargestCluster(benchmark::State& s) {
+  const FilterOptions o;
+  for (auto _ : s) {
+    Cloud c = realCrop();
+    keepLargestCluster(c, o.cluster_tolerance);
+    benchmark::DoNotOptimize(c);
+  }
+}
+BENCHMARK(BM_LargestCluster)->Unit(benchmark::kMillisecond);
+
+static void BM_PclEuclideanClusters(benchmark::State& s) {
+  const FilterOptions o;
+  const auto pts = toPcl(realCrop());
+  for (auto _ : s) {
+    pcl::search::KdTree<pcl::PointXYZ>::Ptr tree(new pcl::search::KdTree<pcl::PointXYZ>);
+    pcl::EuclideanClusterExtraction<pcl::PointXYZ> ec;
+    ec.setClusterTolerance(o.cluster_tolerance);
+    ec.setSearchMethod(tree);
+    ec.setInputCloud(pts);
+    std::vector<pcl::PointIndices> clusters;
+    ec.extract(clusters);
+    benchmark::DoNotOptimize(clusters);
+  }
+}
+BENCHMARK(BM_PclEuclideanClusters)->Unit(benchmark::kMillisecond);
+
 static void BM_RadiusGrid(benchmark::State& s) {
   std::vector<int> nb;
   const float r = static_cast<float>(6 * fx().res);
@@ -110,10 +185,13 @@ static void BM_KpaPdf(benchmark::State& s) {
   std::vector<Eigen::Vector3f> kp;
   for (int i : fx().keypoints) kp.push_back(fx().set.points[i]);
   const HistogramRange range{0.0, M_PI};
+  // 0: every angle, then its histogram; 1: binned as computed, hard bins; 2: linear bins (the default)
   for (auto _ : s)
-    benchmark::DoNotOptimize(s.range(0) ? keypointAnglePdf(kp, 32, range) : histogramPdf(keypointAngles(kp), 32, range));
+    benchmark::DoNotOptimize(s.range(0) == 2   ? keypointAnglePdf(kp, 32, range, Binning::Linear)
+                             : s.range(0) == 1 ? keypointAnglePdf(kp, 32, range)
+                                               : histogramPdf(keypointAngles(kp), 32, range));
 }
-BENCHMARK(BM_KpaPdf)->Arg(0)->Arg(1)->Unit(benchmark::kMicrosecond);
+BENCHMARK(BM_KpaPdf)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMicrosecond);
 
 static void BM_GraphBuild(benchmark::State& s) {
   for (auto _ : s)

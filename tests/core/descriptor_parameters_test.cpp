@@ -26,7 +26,9 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
     }
     case DescriptorParameter::Kind::Integer: return std::to_string(std::stoll(p.get(d)) + 3);
     case DescriptorParameter::Kind::Number:
-      return p.name == "budget_taper" ? "0.25" : p.name == "refine_keypoints" ? "0.5" : "1.25";
+      return p.name == "budget_taper" ? "0.25" : p.name == "refine_keypoints" ? "0.5"
+             : p.name == "curvature_floor"                                 ? "0.1"
+                                                                           : "1.25";
   }
   return "";
 }
@@ -51,6 +53,14 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
 // every cache named by it) is the one before the option existed, and a refined one differs.
 TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("refine_keypoints"), 0u);
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("gkpd1_sources"), 0u);
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("curvature_floor"), 0u);
+  DescriptorOptions blended;
+  descriptorParameter("gkpd1_sources").set(blended, "8");
+  descriptorParameter("curvature_floor").set(blended, "0.1");
+  EXPECT_EQ(parameterSpec(blended).at("gkpd1_sources"), "8");
+  EXPECT_EQ(parameterSpec(blended).at("curvature_floor"), "0.1");
+  EXPECT_EQ(optionsFromParameterSpec(parameterSpec(blended), "model.json").graph.centroid_sources, 8);
   DescriptorOptions refined;
   descriptorParameter("refine_keypoints").set(refined, "0.5");
   const auto spec = parameterSpec(refined);
@@ -147,7 +157,9 @@ TEST(DescriptorParameters, BadValuesNameTheReason) {
   EXPECT_EQ(reason("extent_m", "-1"), "must be positive, not '-1'");
   EXPECT_EQ(reason("range", "log"), "must be fixed or per-view, not 'log'");
   EXPECT_EQ(reason("working_grid", "world"), "must be object or camera, not 'world'");
-  EXPECT_EQ(reason("binning", "soft"), "must be hard or linear, not 'soft'");
+  EXPECT_EQ(reason("binning", "soft"), "must be hard, linear or quadratic, not 'soft'");
+  EXPECT_EQ(reason("gkpd1_sources", "0"), "must be within 1..64, not '0'");
+  EXPECT_EQ(reason("curvature_floor", "2"), "must be within 0..1 and positive, not '2'");
   EXPECT_EQ(reason("filter", "maybe"), "must be on or off, not 'maybe'");
   EXPECT_EQ(reason("seed", "-1"), "is not a whole number: '-1'");
   EXPECT_EQ(reason("jump_edge_deg", "-5"), "must be 0 (off) or positive, not '-5'");

@@ -1,8 +1,13 @@
 #include <gtest/gtest.h>
 
+#include <Eigen/Geometry>
 #include <cmath>
+#include <functional>
+#include <numeric>
 #include <random>
+#include <string>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/filter.h"
 #include "support/synthetic_clouds.h"
 
@@ -68,6 +73,47 @@ TEST(Cluster, KeepsTheLargestComponent) {
   Cloud c = test::unorganized(pts);
   keepLargestCluster(c, 0.015f);
   EXPECT_EQ(c.validCount(), big);
+}
+
+// The cluster step against every pair of points: a real crop, thinned, with 300 stray points
+// scattered around it (many small components, some touching the object, some chains), at
+// tolerances from below to above the points' spacing.
+TEST(Cluster, KeepsExactlyTheLargestComponentOfTheToleranceGraph) {
+  const Cloud crop = loadCloud(std::string(KEYTURN_REAL_DATA) + "/crop/learn0_o1.pcd");
+  std::vector<Eigen::Vector3f> pts;
+  for (std::size_t i = 0; i < crop.points.size(); i += 5)
+    if (Cloud::isValid(crop.points[i])) pts.push_back(crop.points[i]);
+  Eigen::AlignedBox3f box;
+  for (const auto& p : pts) box.extend(p);
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> u(0.f, 1.f);
+  for (int i = 0; i < 300; ++i) {
+    const Eigen::Vector3f f(u(rng), u(rng), u(rng));
+    pts.push_back(box.min() - Eigen::Vector3f::Constant(0.05f) +
+                  f.cwiseProduct(box.sizes() + Eigen::Vector3f::Constant(0.1f)));
+  }
+  const int n = static_cast<int>(pts.size());
+  for (float t : {0.004f, 0.009f, 0.015f, 0.03f}) {
+    std::vector<int> parent(n);
+    std::iota(parent.begin(), parent.end(), 0);
+    std::function<int(int)> find = [&](int v) { return parent[v] == v ? v : parent[v] = find(parent[v]); };
+    for (int i = 0; i < n; ++i)
+      for (int j = i + 1; j < n; ++j)
+        if ((pts[i] - pts[j]).squaredNorm() < t * t) parent[find(i)] = find(j);
+    std::vector<int> size(n, 0);
+    for (int i = 0; i < n; ++i) ++size[find(i)];
+    int best = find(0);
+    for (int i = 0; i < n; ++i)
+      if (size[find(i)] > size[best]) best = find(i);  // ties: the lowest point index, as the step
+    Cloud c = test::unorganized(pts);
+    keepLargestCluster(c, t);
+    int components = 0;
+    for (int i = 0; i < n; ++i) {
+      components += find(i) == i;
+      EXPECT_EQ(Cloud::isValid(c.points[static_cast<std::size_t>(i)]), find(i) == best) << "t " << t << ", point " << i;
+    }
+    EXPECT_GT(components, 10) << "t " << t << ": the test needs several components";
+  }
 }
 
 TEST(CropRange, DropsPointsOutsideTheRange) {

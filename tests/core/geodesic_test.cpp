@@ -1,5 +1,6 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
 #include <set>
@@ -293,4 +294,43 @@ TEST(LocalCompleteGraph, CurvedGraphLeavesOutOnlyEdgesNoCheapestPathTakes) {
     EXPECT_GT(c.compared, 1000);
     EXPECT_LE(c.worst_difference, 1e-5) << "worst relative difference from the whole edge set's paths";
   }
+}
+
+// GKPD1's source (GraphOptions::centroid_sources). On a 20 × 20 grid the centroid is the centre of a
+// cell, as near to its four corners as can be; moving a far corner of the grid by ±1 mm moves the
+// centroid by micrometres and decides which corner is "nearest". With one source every GKPD1 value
+// jumps by about a grid step; blending the four corners by how much nearer each is than the fifth
+// vertex, the values move by what the centroid moved.
+TEST(Geodesic, BlendedCentroidSourcesMoveGkpd1ContinuouslyWithTheView) {
+  constexpr int kSide = 20;
+  constexpr float kStep = 0.005f;
+  const auto gkpd1 = [&](float corner_shift, int sources) {
+    std::vector<Eigen::Vector3f> pts;
+    for (int i = 0; i < kSide; ++i)
+      for (int j = 0; j < kSide; ++j) pts.emplace_back(kStep * static_cast<float>(i), kStep * static_cast<float>(j), 0.f);
+    pts[0].x() += corner_shift;
+    const PointSet set = PointSet::fromCloud(test::unorganized(pts));
+    const RadiusSearch search(set);
+    const double res = cloudResolution(set, search);
+    const auto g = buildLocalCompleteGraph(set, search, res, GraphOptions());
+    std::vector<int> kp;  // the far column (x = 95 mm)
+    for (int j = 0; j < kSide; j += 3) kp.push_back((kSide - 1) * kSide + j);
+    const CentroidSources s = centroidSources(set, sources);
+    EXPECT_EQ(static_cast<int>(s.vertex.size()), sources);
+    double total = 0;
+    for (double w : s.weight) total += w;
+    EXPECT_NEAR(total, 1.0, 1e-12);
+    auto v = geodesicKeypointDistances(g, set, kp, kGkpd1, nullptr, sources).gkpd1;
+    EXPECT_EQ(v.size(), kp.size());
+    std::sort(v.begin(), v.end());
+    return v;
+  };
+  const auto largestChange = [&](int sources) {
+    const auto a = gkpd1(-0.001f, sources), b = gkpd1(0.001f, sources);
+    float worst = 0.f;
+    for (std::size_t i = 0; i < a.size() && i < b.size(); ++i) worst = std::max(worst, std::abs(a[i] - b[i]));
+    return worst;
+  };
+  EXPECT_GT(largestChange(1), 0.4f * kStep) << "the nearest vertex should switch: the test shows nothing";
+  EXPECT_LT(largestChange(4), 0.01f * kStep);
 }

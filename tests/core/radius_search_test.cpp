@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
+#include <string>
 
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/sim/tof_view.h"
 #include "support/synthetic_clouds.h"
@@ -44,4 +47,35 @@ TEST(RadiusSearch, ResolutionOfARegularGridIsItsSpacing) {
 TEST(RadiusSearch, ResolutionNeedsTwoPoints) {
   const PointSet one = PointSet::fromCloud(test::unorganized({Eigen::Vector3f(0, 0, 1)}));
   EXPECT_THROW(cloudResolution(one), std::runtime_error);
+}
+
+// The neighbourhood table of an unorganized set (a hash grid, filled cell by cell): every cached
+// row equals a k-d tree's search, in ascending index order, on a real crop and a random cloud.
+TEST(RadiusSearch, CachedRowsOfAnUnorganizedSetMatchTheKdTree) {
+  std::vector<Eigen::Vector3f> random;
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> u(-0.1f, 0.1f);
+  for (int i = 0; i < 3000; ++i) random.emplace_back(u(rng), u(rng), 1.f + u(rng));
+  std::vector<PointSet> sets = {PointSet::fromCloud(test::unorganized(random))};
+#ifdef KEYTURN_REAL_DATA
+  sets.push_back(PointSet::fromCloud(loadCloud(std::string(KEYTURN_REAL_DATA) + "/crop/learn0_o1.pcd")));
+#endif
+  for (const PointSet& set : sets) {
+    RadiusSearch cached(set);
+    ASSERT_FALSE(cached.usesGrid());
+    const double res = cloudResolution(set, cached);
+    cached.cacheNeighbourhoods(static_cast<float>(6 * res));
+    const auto tree = RadiusSearch::kdTree(set);
+    std::vector<int> a, b;
+    std::size_t total = 0;
+    for (std::size_t i = 0; i < set.size(); i += 3)
+      for (double m : {2.0, 6.0}) {
+        const float r = static_cast<float>(m * res);
+        cached.radius(static_cast<int>(i), r, a);
+        tree->radius(static_cast<int>(i), r, b);
+        ASSERT_EQ(a, b) << "point " << i << ", radius " << r;
+        total += a.size();
+      }
+    EXPECT_GT(total, 10 * set.size() / 3) << "the rows should hold many neighbours";
+  }
 }

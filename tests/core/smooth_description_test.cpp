@@ -45,6 +45,37 @@ TEST(LinearBinning, MovesContinuouslyWithTheValues) {
   EXPECT_GT(hard, 2 * linear);
 }
 
+// The quadratic B-spline over the three nearest bins: 1/8, 3/4, 1/8 at a centre, halves at an edge,
+// the mass kept at the ends; its weights change with a continuous slope, so a few values moving a
+// little move less mass than with linear binning.
+TEST(QuadraticBinning, SpreadsAValueOverThreeBinsAndKeepsItsMass) {
+  const HistogramRange r{0.0, 1.0};  // 4 bins, centres 0.125, 0.375, 0.625, 0.875
+  const auto centre = histogramPdf({0.375f}, 4, r, nullptr, Binning::Quadratic);
+  EXPECT_NEAR(centre[0], 0.125, 1e-6);
+  EXPECT_NEAR(centre[1], 0.75, 1e-6);
+  EXPECT_NEAR(centre[2], 0.125, 1e-6);
+  EXPECT_NEAR(centre[3], 0.0, 1e-12);
+  const auto edge = histogramPdf({0.5f}, 4, r, nullptr, Binning::Quadratic);
+  EXPECT_NEAR(edge[1], 0.5, 1e-6);
+  EXPECT_NEAR(edge[2], 0.5, 1e-6);
+  // At the ends nothing leaves the range: the first bin's centre keeps 7/8, below it all of it.
+  const auto first = histogramPdf({0.125f}, 4, r, nullptr, Binning::Quadratic);
+  EXPECT_NEAR(first[0], 0.875, 1e-6);
+  EXPECT_EQ(histogramPdf({-3.f, NAN}, 4, r, nullptr, Binning::Quadratic), (std::vector<double>{1, 0, 0, 0}));
+  EXPECT_EQ(histogramPdf({7.f}, 4, r, nullptr, Binning::Quadratic), (std::vector<double>{0, 0, 0, 1}));
+  for (float v : {0.01f, 0.2f, 0.49f, 0.77f, 0.99f}) {
+    const auto pdf = histogramPdf({v}, 4, r, nullptr, Binning::Quadratic);
+    EXPECT_NEAR(std::accumulate(pdf.begin(), pdf.end(), 0.0), 1.0, 1e-12) << v;
+  }
+  // Eight values moved by a tenth of a bin: less mass moves than with linear binning.
+  std::vector<float> few, moved;
+  for (int i = 0; i < 8; ++i) few.push_back(0.06f + 0.11f * static_cast<float>(i)), moved.push_back(few.back() + 0.00625f);
+  const auto l1 = [&](Binning b) {
+    return l1Distance(histogramPdf(few, 16, r, nullptr, b), histogramPdf(moved, 16, r, nullptr, b));
+  };
+  EXPECT_LT(l1(Binning::Quadratic), 0.8 * l1(Binning::Linear));
+}
+
 TEST(WeightedHistogram, AWeightCountsAsRepeatedValues) {
   const HistogramRange r{0.0, 1.0};
   const std::vector<float> w = {2.f, 1.f, 0.5f};

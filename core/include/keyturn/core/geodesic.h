@@ -26,6 +26,12 @@ struct GraphOptions {
   // undercuts in curved cost: such an edge lies on no cheapest path, so the cheapest paths
   // are those of the whole edge set. false keeps every edge (tests compare the two).
   bool curved_dominance_pruning = true;
+  // GKPD1's source: the centroid lies off the surface, and the one vertex nearest it changes when
+  // the view moves by less than the vertex spacing, shifting every GKPD1 value by up to a spacing.
+  // With m > 1 a keypoint's GKPD1 is the blend of its distances from the centroid's m nearest
+  // vertices, each weighted by how much nearer it is than the (m+1)-th: a vertex enters or leaves
+  // the blend at weight 0, so GKPD1 changes continuously with the view. 1 = the nearest vertex alone.
+  int centroid_sources = 1;
 };
 
 // Compressed adjacency (CSR) with Euclidean edge lengths, and GKPCD2's curvature-weighted
@@ -49,7 +55,7 @@ LocalCompleteGraph buildLocalCompleteGraph(const PointSet& set, const RadiusSear
                                            double resolution, const GraphOptions& options);
 
 struct GeodesicResult {
-  std::vector<float> gkpd1;   // centroid vertex → each reachable keypoint
+  std::vector<float> gkpd1;   // centroid's source vertices → each reachable keypoint
   std::vector<float> gkpd2;   // each reachable keypoint pair (graph distance)
   std::vector<float> gkpcd2;  // Euclidean length of each pair's curvature-weighted path
   // With keypoint weights: each value's weight (w of its keypoint, w_a·w_b of its pair), in the same order.
@@ -64,10 +70,11 @@ enum GeodesicSet { kGkpd1 = 1, kGkpd2 = 2, kGkpcd2 = 4, kAllGeodesics = 7 };
 // keypoints index the graph's vertices. Unreachable keypoints are counted,
 // never put into a histogram as infinity.
 // weights, when given, one per keypoint (the weighted budget, iss.h): the result also holds each
-// value's weight.
+// value's weight. centroid_sources: GraphOptions::centroid_sources.
 GeodesicResult geodesicKeypointDistances(const LocalCompleteGraph& graph, const PointSet& set,
                                          const std::vector<int>& keypoints,
-                                         int which = kAllGeodesics, const std::vector<double>* weights = nullptr);
+                                         int which = kAllGeodesics, const std::vector<double>* weights = nullptr,
+                                         int centroid_sources = 1);
 
 // Single-source shortest paths (all vertices), exposed for tests and plots.
 // With curvature=true the path minimises the curved cost and the returned
@@ -82,6 +89,14 @@ std::vector<std::vector<int>> shortestPaths(const LocalCompleteGraph& graph, int
 
 // The graph vertex nearest the set's centroid: where GKPD1's paths start.
 int centroidVertex(const PointSet& set);
+
+// GKPD1's sources (GraphOptions::centroid_sources): the m vertices nearest the set's centroid,
+// nearest first, with blend weights summing to 1 (d_{m+1} − d_i, equal when those are all 0).
+struct CentroidSources {
+  std::vector<int> vertex;
+  std::vector<double> weight;
+};
+CentroidSources centroidSources(const PointSet& set, int m);
 
 // For display: the GKPD1 paths of a view on its graph (the one the descriptor built), from the
 // vertex nearest the centroid to each reachable keypoint (indices into `set`), as polylines.

@@ -20,8 +20,11 @@ int histogramBin(double v, int bins, HistogramRange range);
 //  Linear: shared between the two bins whose centres it lies between, in proportion to its nearness
 //    (a triangular kernel one bin wide; below the first centre or above the last, all in the end
 //    bin): the PDF moves continuously as the value moves (docs/descriptors.md, "Stability").
-enum class Binning { Hard, Linear };
-const char* binningName(Binning b);          // "hard", "linear"
+//  Quadratic: spread over the three nearest bins by the quadratic B-spline (a kernel three bins
+//    wide, with a continuous slope; what would fall outside the range goes to the end bin): the
+//    PDF also changes smoothly, and a view's few values (GKPD1's K) give a less spiky PDF.
+enum class Binning { Hard, Linear, Quadratic };
+const char* binningName(Binning b);          // "hard", "linear", "quadratic"
 Binning parseBinning(const std::string& name);  // throws keyturn::Error
 
 // Adds one value's weight to pdf (pdf.size() bins over range).
