@@ -184,9 +184,13 @@ inline std::string parameterValue(Bytes& in, const DescriptorParameter& p) {
   if (p.name == "bins") return std::to_string(b % 5 == 0 ? 4096 : 1 + in.u16() % 300);
   if (p.name == "iss_frame" || p.name == "iss_nms" || p.name == "iss_density" || p.name == "graph_radius")
     return std::to_string(std::abs(in.power(-6, 1.5)));
+  if (p.name == "gkpd1_sources") return std::to_string(static_cast<int>(b % 20) - 2);  // each source is a search
+  // Every choice row's words; a row refuses the others' (as it would a user's typo).
+  static const char* const kChoices[] = {"fixed",  "per-view", "hard",  "linear", "quadratic",
+                                         "object", "camera",   "means", "thinned"};
   switch (p.kind) {
     case DescriptorParameter::Kind::Switch: return b & 1 ? "on" : "off";
-    case DescriptorParameter::Kind::Choice: return b & 1 ? "fixed" : "per-view";
+    case DescriptorParameter::Kind::Choice: return kChoices[b % (sizeof kChoices / sizeof kChoices[0])];
     case DescriptorParameter::Kind::Integer: return std::to_string(static_cast<int>(in.u16()) - 8);
     default: {
       char t[40];
