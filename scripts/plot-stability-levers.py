@@ -1,10 +1,10 @@
 #!/usr/bin/env python3
-"""Draws docs/stability/levers/curvature_floor.png from the measured table beside it.
+"""Draws docs/stability/levers/{curvature_floor,pdf_smoothing}.png from the measured tables beside them.
 
-GKPCD2 against its curvature floor (--curvature-floor): the stability ratio on the 38 real crops
-(lower is steadier; PCL ESF's in the same session as a line) and the real objects' accuracy, so the
-trade-off the floor makes is seen at once. The figures are measurements (the CSV's header says how
-each was made); this script only draws them.
+GKPCD2 against its curvature floor (--curvature-floor), and every keypoint function against the PDFs'
+kernel width (--pdf-smoothing): the stability ratio on the 38 real crops (lower is steadier; PCL ESF's
+in the same session as a line) beside the accuracy it costs, so each lever's trade-off is seen at once.
+The figures are measurements (each CSV's header says how each was made); this script only draws them.
 
 usage: python3 scripts/plot-stability-levers.py [docs/stability/levers]
 """
@@ -21,13 +21,47 @@ ESF_RATIO = 0.162  # PCL ESF on the same crops, same session (docs/descriptors.m
 PAPER_FLOOR = 1e-4
 
 
-def main() -> int:
-    folder = Path(sys.argv[1] if len(sys.argv) > 1 else "docs/stability/levers")
-    source = folder / "curvature_floor.csv"
+def read_rows(source: Path) -> list:
     rows = [r for r in csv.DictReader(line for line in source.open() if not line.startswith("#"))]
     if not rows:
-        print(f"plot-stability-levers: {source}: no rows", file=sys.stderr)
-        return 1
+        raise SystemExit(f"plot-stability-levers: {source}: no rows")
+    return rows
+
+
+def draw_smoothing(folder: Path) -> Path:
+    rows = read_rows(folder / "pdf_smoothing.csv")
+    fig, (left, right) = plt.subplots(1, 2, figsize=(11, 4.2), dpi=110)
+    functions = ("kpd2", "kpd3", "kpa3", "gkpd1", "gkpd2", "gkpcd2", "s_kpd2")
+    for name in functions:
+        pts = [(float(r["sigma"]), float(r[name])) for r in rows if r[name]]
+        left.plot([p[0] for p in pts], [p[1] for p in pts], "o-", label=name)
+    esf = next(float(r["esf"]) for r in rows if r["esf"])
+    left.axhline(esf, color="black", linestyle=":", label=f"PCL ESF ({esf})")
+    left.set_xlabel("kernel σ (bins; 0: the histogram as binned)")
+    left.set_ylabel("stability ratio on 38 real crops (lower is steadier)")
+    left.legend(fontsize=7.5, ncol=2)
+    left.set_title("Steadier under noise with a wider kernel", fontsize=10)
+    for key, name, marker in (("mosd", "real mOSD objects (change)", "s-"), ("li27", "27 simulated, leave-instance", "o--"),
+                              ("le27", "27 simulated, leave-elevation", "^--")):
+        base = float(rows[0][key])
+        pts = [(float(r["sigma"]), float(r[key]) - base) for r in rows if r[key]]
+        right.plot([p[0] for p in pts], [p[1] for p in pts], marker, label=name)
+    right.axhline(0, color="grey", linewidth=0.6)
+    right.set_ylim(-6, 3)
+    right.set_xlabel("kernel σ (bins)")
+    right.set_ylabel("mean accuracy change, points")
+    right.legend(fontsize=7.5, loc="lower left")
+    right.set_title("What it costs (one real view is 2.6 points)", fontsize=10)
+    fig.tight_layout()
+    out = folder / "pdf_smoothing.png"
+    fig.savefig(out)
+    return out
+
+
+def main() -> int:
+    folder = Path(sys.argv[1] if len(sys.argv) > 1 else "docs/stability/levers")
+    print(draw_smoothing(folder))
+    rows = read_rows(folder / "curvature_floor.csv")
     floor = [float(r["floor"]) for r in rows]
     ratio = [float(r["ratio"]) for r in rows]
 

@@ -82,6 +82,23 @@ DescriptorParameter radius(std::string name, std::string help, Field field) {
   return number(std::move(name), std::move(help) + " (× resolution)", field, Sign::Positive);
 }
 
+// A number within [0, hi] (the message names the unit, if any), added after specifications were
+// first written: a specification without it reads as `absent`.
+template <typename Field>
+DescriptorParameter within(std::string name, std::string help, Field field, double hi, const std::string& unit,
+                           std::string absent) {
+  using T = std::decay_t<decltype(field(std::declval<DescriptorOptions&>()))>;
+  return {std::move(name), std::move(help), Kind::Number,
+          [field](const DescriptorOptions& o) { return cacheNumberText(static_cast<double>(field(o))); },
+          [field, hi, unit](DescriptorOptions& o, const std::string& t) {
+            const double v = parseNumber(t);
+            if (!(v >= 0) || v > hi)
+              throw Error("must be within 0.." + cacheNumberText(hi) + unit + ", not '" + t + "'");
+            field(o) = static_cast<T>(v);
+          },
+          std::move(absent)};
+}
+
 template <typename Field>
 DescriptorParameter onOff(std::string name, std::string help, Field field) {
   return {std::move(name), std::move(help), Kind::Switch,
@@ -109,6 +126,13 @@ std::vector<DescriptorParameter> makeTable() {
                "centres: the PDF moves continuously with the values) or quadratic (over three bins, smoother)",
                Kind::Choice, [](const DescriptorOptions& o) -> std::string { return binningName(o.histogram.binning); },
                [](DescriptorOptions& o, const std::string& t) { o.histogram.binning = parseBinning(t); }, "hard"});
+  // Issue 30, chosen by measurement on real and simulated views (docs/descriptors.md, "Stability");
+  // absent from a specification written before it: unsmoothed PDFs.
+  t.push_back(within("pdf_smoothing",
+                     "Kernel density PDFs: each length function's PDF smoothed by a Gaussian of this many bins "
+                     "(sigma; angles stay as binned), so a keypoint that noise swaps or moves moves its mass to "
+                     "the bins around it (0 = off)",
+                     [](auto& o) -> auto& { return o.histogram.smoothing; }, 64, " bins", "0"));
   t.push_back(number("extent_m", "Object extent E in metres for fixed ranges (distances span [0,E])",
                      [](auto& o) -> auto& { return o.histogram.extent; }, Sign::Positive));
   t.push_back(onOff("filter", "Use the cloud as it is (already segmented)",
@@ -185,16 +209,10 @@ std::vector<DescriptorParameter> makeTable() {
                [](DescriptorOptions& o, const std::string& t) { o.working.points = parseVoxelPoints(t); }, "thinned"});
   t.push_back(whole("max_keypoints", "Keypoint budget: keep the K most salient ISS keypoints (0 = all)",
                     [](auto& o) -> auto& { return o.iss.max_keypoints; }, 0));
-  t.push_back({"budget_taper",
-               "Weighted keypoint budget: the least salient fraction of the budget weighs less the less salient it "
-               "is, down to 0 at the first keypoint left out (0 = a hard budget)",
-               Kind::Number, [](const DescriptorOptions& o) { return cacheNumberText(o.iss.budget_taper); },
-               [](DescriptorOptions& o, const std::string& t) {
-                 const double v = parseNumber(t);
-                 if (!(v >= 0) || v > 1) throw Error("must be within 0..1, not '" + t + "'");
-                 o.iss.budget_taper = v;
-               },
-               "0"});
+  t.push_back(within("budget_taper",
+                     "Weighted keypoint budget: the least salient fraction of the budget weighs less the less salient "
+                     "it is, down to 0 at the first keypoint left out (0 = a hard budget)",
+                     [](auto& o) -> auto& { return o.iss.budget_taper; }, 1, "", "0"));
   DescriptorParameter refine{"refine_keypoints",
                "Keypoint refinement: move each keypoint to the most salient measured point within this many ISS "
                "suppression radii of it, before the working resolution (0 = off: keypoints on the working points)",

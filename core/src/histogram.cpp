@@ -80,4 +80,24 @@ std::vector<double> histogramPdf(const std::vector<float>& values, int bins, His
   return pdf;
 }
 
+void smoothPdf(std::vector<double>& pdf, double sigma_bins) {
+  const int n = static_cast<int>(pdf.size());
+  if (!(sigma_bins > 0) || n < 2) return;
+  const int reach = static_cast<int>(std::ceil(3.0 * sigma_bins));
+  std::vector<double> kernel(2 * reach + 1);
+  double kernel_sum = 0;
+  for (int d = -reach; d <= reach; ++d)
+    kernel_sum += kernel[d + reach] = std::exp(-0.5 * (d / sigma_bins) * (d / sigma_bins));
+  std::vector<double> out(pdf.size(), 0.0);
+  for (int i = 0; i < n; ++i) {
+    if (pdf[i] == 0) continue;
+    for (int d = -reach; d <= reach; ++d) {
+      int j = i + d;
+      while (j < 0 || j >= n) j = j < 0 ? -1 - j : 2 * n - 1 - j;  // reflected at the outer bin edges
+      out[j] += pdf[i] * kernel[d + reach] / kernel_sum;
+    }
+  }
+  pdf.swap(out);
+}
+
 }  // namespace keyturn

@@ -52,7 +52,7 @@ TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
     EXPECT_TRUE(flags.insert(app::descriptorFlag(p)).second) << app::descriptorFlag(p) << " twice";
   }
   for (const auto& [name, flag] : app::descriptorFlagExceptions()) EXPECT_EQ(names.count(name), 1u) << name << " is no row";
-  EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--extent", "--no-filter", "--no-plane",
+  EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--pdf-smoothing", "--extent", "--no-filter", "--no-plane",
                                           "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
                                           "--graph-radius", "--gkpd1-sources", "--curvature-floor", "--samples-across", "--voxel-grid", "--voxel-points",
                                           "--max-keypoints", "--budget-taper", "--refine-keypoints", "--osada-samples", "--seed",

@@ -45,7 +45,8 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
       {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"},
       {"binning", binningName(DescriptorOptions().histogram.binning)},  {"working_grid", "object"},
       {"working_points", "means"},
-      {"budget_taper", descriptorParameter("budget_taper").get(DescriptorOptions())}};
+      {"budget_taper", descriptorParameter("budget_taper").get(DescriptorOptions())},
+      {"pdf_smoothing", "1.5"}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
 }
 
@@ -70,9 +71,9 @@ TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
   EXPECT_FALSE(optionsFromParameterSpec(parameterSpec(DescriptorOptions()), "model.json").refine.enabled);
 }
 
-// Rows added after specifications were first written (issue 30's grid and binning): a cache or
-// model written before them has no such key and reads as it was made — the camera-anchored grid
-// and hard binning — while a missing older key is still an error (below).
+// Rows added after specifications were first written (issue 30's grid, binning and smoothing): a
+// cache or model written before them has no such key and reads as it was made — the camera-anchored
+// grid, hard binning and unsmoothed PDFs — while a missing older key is still an error (below).
 TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
   auto spec = parameterSpec(DescriptorOptions());
   spec.erase("working_grid");
@@ -80,7 +81,9 @@ TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
   spec.erase("budget_taper");
   spec.erase("working_points");
   spec.erase("refine_keypoints");
+  spec.erase("pdf_smoothing");
   const DescriptorOptions old = optionsFromParameterSpec(spec, "model.json");
+  EXPECT_EQ(old.histogram.smoothing, 0.0);  // PDFs as they were made: unsmoothed
   EXPECT_EQ(old.working.anchor, VoxelAnchor::CameraGrid);
   EXPECT_EQ(old.histogram.binning, Binning::Hard);
   EXPECT_EQ(old.iss.budget_taper, 0.0);

@@ -1,5 +1,5 @@
 // The levers that make a view's description move continuously with its input (issue 30):
-// linear binning, weighted values and ISS's weighted budget.
+// linear binning, kernel smoothing, weighted values and ISS's weighted budget.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -74,6 +74,50 @@ TEST(QuadraticBinning, SpreadsAValueOverThreeBinsAndKeepsItsMass) {
     return l1Distance(histogramPdf(few, 16, r, nullptr, b), histogramPdf(moved, 16, r, nullptr, b));
   };
   EXPECT_LT(l1(Binning::Quadratic), 0.8 * l1(Binning::Linear));
+}
+
+// A kernel density PDF: one bin's mass spread as a Gaussian of σ bins (1 : e^-1/2 : e^-2 at σ 1),
+// reflected back at the outer edges so nothing leaves the range; σ 0 leaves the PDF as it was.
+TEST(PdfSmoothing, SpreadsEachBinAsAGaussianAndKeepsTheMass) {
+  std::vector<double> delta(9, 0.0);
+  delta[4] = 1.0;
+  std::vector<double> same = delta;
+  smoothPdf(same, 0.0);
+  EXPECT_EQ(same, delta);
+  std::vector<double> g = delta;
+  smoothPdf(g, 1.0);
+  EXPECT_NEAR(g[3] / g[4], std::exp(-0.5), 1e-12);
+  EXPECT_NEAR(g[6] / g[4], std::exp(-2.0), 1e-12);
+  EXPECT_NEAR(g[3], g[5], 1e-15);
+  EXPECT_EQ(g[0], 0.0);  // beyond 3 σ
+  EXPECT_NEAR(std::accumulate(g.begin(), g.end(), 0.0), 1.0, 1e-12);
+  // At an end, what would fall past the edge is reflected back: bin 0 gets its own and its mirror's share.
+  std::vector<double> end(9, 0.0);
+  end[0] = 1.0;
+  smoothPdf(end, 1.0);
+  EXPECT_NEAR(std::accumulate(end.begin(), end.end(), 0.0), 1.0, 1e-12);
+  EXPECT_NEAR(end[1] / end[0], (std::exp(-0.5) + std::exp(-2.0)) / (1.0 + std::exp(-0.5)), 1e-12);
+  EXPECT_GT(end[0], end[1]);
+}
+
+// The lever it is for: a few values swapped for others a bin or two away move less mass once the
+// PDFs are smoothed, while two clearly different sets stay far apart.
+TEST(PdfSmoothing, ValuesMovedByABinMoveLessMassThanTwoDifferentSets) {
+  const HistogramRange r{0.0, 1.0};
+  std::vector<float> v, moved, other;
+  for (int i = 0; i < 64; ++i) {
+    v.push_back(0.2f + 0.3f * static_cast<float>(i % 8) / 8.f);
+    moved.push_back(v.back() + (i % 4 == 0 ? 0.05f : 0.f));  // a quarter moved by 1.6 bins of 32
+    other.push_back(0.5f + 0.4f * static_cast<float>(i % 8) / 8.f);
+  }
+  const auto dist = [&](const std::vector<float>& a, const std::vector<float>& b, double sigma) {
+    auto pa = histogramPdf(a, 32, r, nullptr, Binning::Linear), pb = histogramPdf(b, 32, r, nullptr, Binning::Linear);
+    smoothPdf(pa, sigma);
+    smoothPdf(pb, sigma);
+    return l1Distance(pa, pb);
+  };
+  EXPECT_LT(dist(v, moved, 1.5), 0.6 * dist(v, moved, 0.0));
+  EXPECT_GT(dist(v, other, 1.5), 0.8 * dist(v, other, 0.0));
 }
 
 TEST(WeightedHistogram, AWeightCountsAsRepeatedValues) {

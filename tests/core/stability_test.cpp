@@ -107,9 +107,20 @@ TEST(Stability, RigidMotionLeavesEveryKeypointFunctionAsItWas) {
   const StabilityStudy s = rigidStudy(WorkingResolutionOptions(), rigidStudyViews());
   ASSERT_TRUE(s.errors.empty()) << s.errors.front();
   EXPECT_EQ(s.maxAbsKeypointChange(true), 0);
-  // GKPCD2 misses the target: its PCA normals differ in the last bits after a motion, and a
-  // curvature cost that close to a tie picks another path (measured: L1 ≤ 0.03 here).
-  for (const auto& f : s.functions) EXPECT_LE(f.rigidMaxL1(), f.name == "gkpcd2" ? 0.05 : 0.01) << f.name;
+  // GKPCD2's PCA normals differ in the last bits after a motion, and a curvature cost that close
+  // to a tie can pick another path: with unsmoothed PDFs it moved by up to L1 0.03 here (below).
+  for (const auto& f : s.functions) EXPECT_LE(f.rigidMaxL1(), 0.01) << f.name;
+  DescriptorOptions unsmoothed;
+  unsmoothed.histogram.smoothing = 0.0;
+  StabilityOptions o;
+  o.descriptor = unsmoothed;
+  o.descriptor.features = {Feature::GKPCD2};
+  o.perturbations = perturbationsNamed("rigid");
+  o.repetitions = 2;
+  o.pcl_descriptors = false;
+  const StabilityStudy raw = runStabilityStudy(rigidStudyViews(), o);
+  EXPECT_GT(raw.functions.front().rigidMaxL1(), 0.01);
+  EXPECT_LE(raw.functions.front().rigidMaxL1(), 0.05);
 }
 
 // A real masked frame and a simulated SR4000 frame turned about the camera (their rays, and so
@@ -142,6 +153,34 @@ TEST(Stability, TheCameraAnchoredOrThinnedGridMovesWithTheView) {
   }
 }
 
+
+// Kernel density PDFs (pdf_smoothing): on real crops jittered far below the sensor's noise or
+// given its noise, every length function moves less in units of the distance between views, and
+// the two least steady (GKPD1, GKPCD2: 64 values, curvature-picked paths) by at least a fifth;
+// KPA3's angles stay as binned.
+TEST(Stability, SmoothedPdfsMoveLessUnderNoiseThanTheDistanceBetweenViews) {
+  const auto study = [](double sigma) {
+    StabilityOptions o;
+    o.descriptor.features = {Feature::KPD2, Feature::KPD3, Feature::KPA3, Feature::GKPD1, Feature::GKPD2, Feature::GKPCD2};
+    o.descriptor.histogram.smoothing = sigma;
+    o.perturbations = {named("jitter-0.1mm"), named("sensor-noise")};
+    o.repetitions = 2;
+    o.pcl_descriptors = false;
+    return runStabilityStudy(rigidStudyViews(), o);
+  };
+  const StabilityStudy hard = study(0.0), smooth = study(1.5);
+  ASSERT_EQ(hard.functions.size(), smooth.functions.size());
+  for (std::size_t f = 0; f < hard.functions.size(); ++f) {
+    const std::string& name = hard.functions[f].name;
+    const double before = hard.functions[f].ratioOverall(), after = smooth.functions[f].ratioOverall();
+    if (name == "kpa3") {
+      EXPECT_EQ(after, before);
+      continue;
+    }
+    EXPECT_LT(after, before) << name;
+    if (name == "gkpd1" || name == "gkpcd2") EXPECT_LT(after, 0.8 * before) << name;
+  }
+}
 
 TEST(Stability, ReportsRatiosAgainstTheDistanceBetweenViews) {
   StabilityOptions o;

@@ -152,8 +152,10 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
       {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "3"},
       {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},
       {"osada_samples", "20000"}, {"plane_removal", "on"}, {"range", "fixed"},      {"seed", "7"},
-      // issue 30's keys (a spec without them reads as before: camera grid, thinned, hard bins, no taper)
-      {"working_grid", "object"}, {"working_points", "means"}, {"binning", "linear"}, {"budget_taper", "0"}};
+      // issue 30's keys (a spec without them reads as before: camera grid, thinned, hard bins, no taper,
+      // unsmoothed PDFs)
+      {"working_grid", "object"}, {"working_points", "means"}, {"binning", "linear"}, {"budget_taper", "0"},
+      {"pdf_smoothing", "1.5"}};
   EXPECT_EQ(featureSpec(DescriptorOptions()), expected);
 }
 

@@ -34,6 +34,7 @@ struct HistogramOptions {
   RangeMode mode = RangeMode::Fixed;
   double extent = 0.35;  // E in metres
   Binning binning = Binning::Linear;  // issue 30: the PDF moves continuously with its values
+  double smoothing = 1.5;  // issue 30: kernel density PDFs, a Gaussian of this sigma in bins (0: none)
 };
 
 RangeMode parseRangeMode(const std::string& name);

@@ -36,4 +36,11 @@ std::vector<double> histogramPdf(const std::vector<float>& values, int bins, His
                                  int* clamped = nullptr, Binning binning = Binning::Hard,
                                  const std::vector<float>* weights = nullptr);
 
+// A kernel density estimate from a PDF: pdf convolved with a Gaussian of sigma_bins bins (cut at
+// 3 sigma), mass that would leave the range reflected back at its outer edges, so the sum is kept.
+// A keypoint that the view's noise swaps or moves by a bin then moves mass to the bins around it
+// instead of to one bin. sigma_bins 0 leaves pdf as it is (docs/descriptors.md, "Stability"). The
+// chain smooths the length functions' PDFs (HistogramOptions::smoothing); the angles' stay as binned.
+void smoothPdf(std::vector<double>& pdf, double sigma_bins);
+
 }  // namespace keyturn
