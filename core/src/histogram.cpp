@@ -88,13 +88,14 @@ void smoothPdf(std::vector<double>& pdf, double sigma_bins) {
   double kernel_sum = 0;
   for (int d = -reach; d <= reach; ++d)
     kernel_sum += kernel[d + reach] = std::exp(-0.5 * (d / sigma_bins) * (d / sigma_bins));
+  for (double& k : kernel) k /= kernel_sum;  // once, not per bin and tap
   std::vector<double> out(pdf.size(), 0.0);
   for (int i = 0; i < n; ++i) {
     if (pdf[i] == 0) continue;
     for (int d = -reach; d <= reach; ++d) {
       int j = i + d;
       while (j < 0 || j >= n) j = j < 0 ? -1 - j : 2 * n - 1 - j;  // reflected at the outer bin edges
-      out[j] += pdf[i] * kernel[d + reach] / kernel_sum;
+      out[j] += pdf[i] * kernel[d + reach];
     }
   }
   pdf.swap(out);
