@@ -34,9 +34,9 @@ void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Bi
     pdf[histogramBin(v, bins, range)] += weight;
     return;
   }
-  // Position in bin units from the first bin's centre; bounded in double before any int.
-  const double t = (v - range.lo) / width * bins - 0.5;
   if (binning == Binning::Quadratic) {
+    // Position in bin units from the first bin's centre; bounded in double before any int.
+    const double t = (v - range.lo) / width * bins - 0.5;
     // The nearest centre c and the B-spline's weights on c − 1, c, c + 1 (they sum to 1).
     const double near = !(t > 0) ? 0.0 : !(t < bins - 1) ? bins - 1.0 : std::floor(t + 0.5);
     const double f = std::clamp(t - near, -0.5, 0.5);  // beyond an end centre: all as at the end
@@ -47,16 +47,7 @@ void addToHistogram(std::vector<double>& pdf, double v, HistogramRange range, Bi
     pdf[c + 1 < bins ? c + 1 : c] += weight * right;
     return;
   }
-  if (!(t > 0)) {
-    pdf.front() += weight;
-  } else if (!(t < bins - 1)) {
-    pdf.back() += weight;
-  } else {
-    const int b = static_cast<int>(t);
-    const double f = t - b;
-    pdf[b] += weight * (1.0 - f);
-    pdf[b + 1] += weight * f;
-  }
+  addLinearToHistogram(pdf.data(), bins, v, range, weight);
 }
 
 std::vector<double> histogramPdf(const std::vector<float>& values, int bins, HistogramRange range,

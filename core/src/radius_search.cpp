@@ -14,10 +14,12 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <mutex>
 #include <unordered_map>
 #include <utility>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/nearest_neighbours.h"
 #include "voxel_key.h"
 
 namespace keyturn {
@@ -33,13 +35,9 @@ namespace {
 
 class KdTreeSearch final : public RadiusSearch::Impl {
  public:
-  explicit KdTreeSearch(const PointSet& set) : cloud_(new pcl::PointCloud<pcl::PointXYZ>) {
-    cloud_->resize(set.size());
-    for (std::size_t i = 0; i < set.size(); ++i)
-      (*cloud_)[i] = pcl::PointXYZ(set.points[i].x(), set.points[i].y(), set.points[i].z());
-    if (!cloud_->empty()) tree_.setInputCloud(cloud_);
-  }
+  explicit KdTreeSearch(const PointSet& set) : set_(set), cloud_(new pcl::PointCloud<pcl::PointXYZ>) {}
   void radius(int i, float r, std::vector<int>& out) const override {
+    build();
     out.clear();
     pcl::Indices idx;
     std::vector<float> d2;
@@ -50,6 +48,7 @@ class KdTreeSearch final : public RadiusSearch::Impl {
     std::sort(out.begin(), out.end());
   }
   float nearest(int i) const override {
+    build();
     if (cloud_->size() < 2) return std::numeric_limits<float>::infinity();
     pcl::Indices idx;
     std::vector<float> d2;
@@ -61,8 +60,20 @@ class KdTreeSearch final : public RadiusSearch::Impl {
   bool grid() const override { return false; }
 
  private:
+  // Built on the first query: a chain that reads every neighbourhood from the cached table and
+  // its resolution from the hash grid never needs the tree.
+  void build() const {
+    std::call_once(built_, [this] {
+      cloud_->resize(set_.size());
+      for (std::size_t i = 0; i < set_.size(); ++i)
+        (*cloud_)[i] = pcl::PointXYZ(set_.points[i].x(), set_.points[i].y(), set_.points[i].z());
+      if (!cloud_->empty()) tree_.setInputCloud(cloud_);
+    });
+  }
+  const PointSet& set_;
+  mutable std::once_flag built_;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
-  pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
+  mutable pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
 };
 
 class GridSearch final : public RadiusSearch::Impl {
@@ -335,10 +346,15 @@ double cloudResolution(const PointSet& set, const RadiusSearch& search) {
   if (far > kMaxCoordinate)
     throw Error("degenerate cloud: coordinates up to " + shortNumber(far) + " m from the origin (beyond " +
                 shortNumber(kMaxCoordinate) + " m, float distances overflow)");
+  // An unorganized set without a table asks all its nearest distances at once (a hash grid: the
+  // same distances as the k-d tree point by point, nearest_neighbours.h); the second nearest counting
+  // the point itself is its nearest other point (0 for a twin, as the tree gives).
+  std::vector<float> batch;
+  if (!search.usesGrid() && !(search.cachedRadius() > 0.f)) batch = nearestSquaredDistances(set.points, 2);
   double sum = 0.0;
   std::size_t n = 0, apart = 0;
   for (std::size_t i = 0; i < set.size(); ++i) {
-    const float d = search.nearestDistance(static_cast<int>(i));
+    const float d = batch.empty() ? search.nearestDistance(static_cast<int>(i)) : std::sqrt(batch[2 * i + 1]);
     if (std::isfinite(d)) {
       sum += d;
       ++n;

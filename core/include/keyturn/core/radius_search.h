@@ -1,7 +1,7 @@
 #pragma once
 // Fixed-radius neighbourhoods over a PointSet. Organized sets search a pixel
 // window sized from the ray spacing (exact, no tree); unorganized sets use
-// PCL's FLANN k-d tree.
+// PCL's FLANN k-d tree, built on the first query the cached table cannot serve.
 #include <memory>
 #include <vector>
 
