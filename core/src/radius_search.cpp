@@ -249,23 +249,48 @@ void hashGridRows(const PointSet& set, float r, std::vector<int>& offset, std::v
     out.erase(std::unique(out.begin(), out.end()), out.end());
   };
   std::vector<int> own;  // a point whose bucket it shares with another cell's points (aliased keys)
+  std::vector<float> row_x, row_y, row_z, row_d2;
   for (int b = 0; b < n;) {
     const int e = buckets.at(order[b].first).second;
     const auto& p0 = set.points[order[b].second];
     const std::int64_t cx = cell(p0, 0), cy = cell(p0, 1), cz = cell(p0, 2);
     gather(cx, cy, cz, candidates);
+    // The candidates' coordinates in rows, once per cell: each point's distances to them are one
+    // loop the compiler vectorises (the scalar loop over Vector3f was most of the table's time),
+    // summed as Eigen's squaredNorm sums them (x + (y + z)), so the rows hold the same floats.
+    row_x.clear(), row_y.clear(), row_z.clear();
+    for (int j : candidates) {
+      row_x.push_back(set.points[j].x()), row_y.push_back(set.points[j].y()), row_z.push_back(set.points[j].z());
+    }
     for (int k = b; k < e; ++k) {
       const int i = order[k].second;
       const auto& p = set.points[i];
       const bool same_cell = cell(p, 0) == cx && cell(p, 1) == cy && cell(p, 2) == cz;
-      if (!same_cell) gather(cell(p, 0), cell(p, 1), cell(p, 2), own);
       made_begin[i] = static_cast<int>(made_index.size());
-      for (int j : same_cell ? candidates : own) {
-        const float dd = (set.points[j] - p).squaredNorm();
-        if (dd < r2) {
-          made_index.push_back(j);
-          made_d2.push_back(dd);
+      if (!same_cell) {
+        gather(cell(p, 0), cell(p, 1), cell(p, 2), own);
+        for (int j : own) {
+          const float dd = (set.points[j] - p).squaredNorm();
+          if (dd < r2) {
+            made_index.push_back(j);
+            made_d2.push_back(dd);
+          }
         }
+      } else {
+        const std::size_t nc = candidates.size();
+        row_d2.resize(nc);
+        const float px = p.x(), py = p.y(), pz = p.z();
+        const float *xs = row_x.data(), *ys = row_y.data(), *zs = row_z.data();
+        float* d2s = row_d2.data();
+        for (std::size_t c = 0; c < nc; ++c) {
+          const float dx = xs[c] - px, dy = ys[c] - py, dz = zs[c] - pz;
+          d2s[c] = dx * dx + (dy * dy + dz * dz);
+        }
+        for (std::size_t c = 0; c < nc; ++c)
+          if (d2s[c] < r2) {
+            made_index.push_back(candidates[c]);
+            made_d2.push_back(d2s[c]);
+          }
       }
       made_count[i] = static_cast<int>(made_index.size()) - made_begin[i];
     }
