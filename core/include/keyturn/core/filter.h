@@ -106,6 +106,14 @@ std::size_t removeJumpEdges(Cloud& cloud, float angle_deg);
 bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane,
                          std::string* decision = nullptr);
 void keepLargestCluster(Cloud& cloud, float tolerance);
+
+namespace detail {
+// How many of the points (x, y, z) lie strictly within `threshold` of the plane (a, b, c, d):
+// the count PCL's SampleConsensusModelPlane::countWithinDistance gives, point for point (tested),
+// in a loop over rows the compiler vectorises. The plane step's RANSAC scores its hypotheses by it.
+std::size_t countPlaneInliers(const std::vector<float>& x, const std::vector<float>& y, const std::vector<float>& z,
+                              const Eigen::Vector4f& plane, double threshold);
+}  // namespace detail
 // PCL's StatisticalOutlierRemoval rule, point for point (a test compares them): a point goes when
 // its mean distance to its k nearest neighbours exceeds the mean of those means by std_mul standard
 // deviations. The neighbours' squared distances are exactly those PCL's FLANN k-d tree gives, all
