@@ -72,12 +72,11 @@ std::vector<float> nearestSquaredDistances(const std::vector<Eigen::Vector3f>& p
   side = std::max(side, extent[0] * 1e-6);
   if (!(side > 0) || !std::isfinite(side)) side = 1.0;  // every point at one place
   const double inv = 1.0 / side;
-  auto cellOf = [&](const Eigen::Vector3f& p) {
-    return Eigen::Matrix<std::int64_t, 3, 1>(detail::voxelCell(p.x() - lo.x(), inv),
-                                             detail::voxelCell(p.y() - lo.y(), inv),
-                                             detail::voxelCell(p.z() - lo.z(), inv));
-  };
   using Cell = Eigen::Matrix<std::int64_t, 3, 1>;
+  auto cellOf = [&](const Eigen::Vector3f& p) {
+    return Cell(detail::voxelCell(p.x() - lo.x(), inv), detail::voxelCell(p.y() - lo.y(), inv),
+                detail::voxelCell(p.z() - lo.z(), inv));
+  };
   auto keyOf = [](const Cell& c) { return detail::voxelKey(c.x(), c.y(), c.z()); };
 
   // Points in key order; a key orders cells by z, then y, then x, so the three cells x − 1 … x + 1
@@ -143,7 +142,8 @@ std::vector<float> nearestSquaredDistances(const std::vector<Eigen::Vector3f>& p
       }
       // Only values below the 27 cells' bound can be among the k nearest once k of them are: they
       // are kept without a branch, and the selection sorts those few.
-      const float below = static_cast<float>(std::pow(boundOutside(q, c, 1) * (1.0 - 1e-6), 2.0));
+      const double safe27 = boundOutside(q, c, 1) * (1.0 - 1e-6);  // float distances' rounding, with room
+      const float below = static_cast<float>(safe27 * safe27);
       std::size_t kept = 0;
       for (std::size_t j = 0; j < nc; ++j) {
         near[kept] = pd[j];
@@ -158,13 +158,12 @@ std::vector<float> nearestSquaredDistances(const std::vector<Eigen::Vector3f>& p
       for (std::size_t j = 0; j < nc; ++j) best.add(pd[j]);
       for (std::int64_t r = 1;; ++r) {
         // Every point not yet seen lies outside the cube of cells c ± r: at least `bound` away.
-        const double bound = boundOutside(q, c, r);
-        bool everything = true;
-        for (int a = 0; a < 3; ++a) everything = everything && c[a] - r <= 0 && c[a] + r >= top[a];
-        const double safe = bound * (1.0 - 1e-6);  // float distances' rounding, with room
-        if (everything || (best.full() && bound > 0 && static_cast<double>(best.worst()) <= safe * safe)) break;
+        const double safe = boundOutside(q, c, r) * (1.0 - 1e-6);
+        const bool everything = (c.array() - r <= 0).all() && (c.array() + r >= top.array()).all();
+        if (everything || (best.full() && safe > 0 && static_cast<double>(best.worst()) <= safe * safe)) break;
         const std::int64_t s = r + 1;  // next: the cells at Chebyshev distance s from c
-        if (std::pow(2.0 * static_cast<double>(s) + 1.0, 2.0) > static_cast<double>(keys.size())) {
+        const double rows_of_shell = (2.0 * static_cast<double>(s) + 1.0) * (2.0 * static_cast<double>(s) + 1.0);
+        if (rows_of_shell > static_cast<double>(keys.size())) {
           best.clear();  // far from the rest (an outlier): every point, cheaper than the shells
           for (std::size_t j = 0; j < n; ++j) best.add(squaredDistance(q, pts[j]));
           break;

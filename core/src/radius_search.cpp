@@ -47,21 +47,19 @@ class KdTreeSearch final : public RadiusSearch::Impl {
       if (d2[k] < r2) out.push_back(idx[k]);
     std::sort(out.begin(), out.end());
   }
+  // Every point's nearest distance at once, on the first ask (the hash grid of nearest_neighbours.h:
+  // the values of the k-d tree point by point, tested); the second nearest counting the point
+  // itself is its nearest other point (0 for a twin, as the tree gives).
   float nearest(int i) const override {
-    build();
-    if (cloud_->size() < 2) return std::numeric_limits<float>::infinity();
-    pcl::Indices idx;
-    std::vector<float> d2;
-    tree_.nearestKSearch((*cloud_)[i], 2, idx, d2);
-    for (std::size_t k = 0; k < idx.size(); ++k)
-      if (idx[k] != i) return std::sqrt(d2[k]);
-    return std::numeric_limits<float>::infinity();
+    if (set_.size() < 2) return std::numeric_limits<float>::infinity();
+    std::call_once(nearest_done_, [this] { nearest_d2_ = nearestSquaredDistances(set_.points, 2); });
+    return std::sqrt(nearest_d2_[2 * static_cast<std::size_t>(i) + 1]);
   }
   bool grid() const override { return false; }
 
  private:
-  // Built on the first query: a chain that reads every neighbourhood from the cached table and
-  // its resolution from the hash grid never needs the tree.
+  // Built on the first radius query the cached table cannot serve: the chain reads every
+  // neighbourhood from the table, so it never needs the tree.
   void build() const {
     std::call_once(built_, [this] {
       cloud_->resize(set_.size());
@@ -74,6 +72,8 @@ class KdTreeSearch final : public RadiusSearch::Impl {
   mutable std::once_flag built_;
   pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
   mutable pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
+  mutable std::once_flag nearest_done_;
+  mutable std::vector<float> nearest_d2_;
 };
 
 class GridSearch final : public RadiusSearch::Impl {
@@ -248,49 +248,48 @@ void hashGridRows(const PointSet& set, float r, std::vector<int>& offset, std::v
     std::sort(out.begin(), out.end());
     out.erase(std::unique(out.begin(), out.end()), out.end());
   };
+  // Candidates' coordinates in rows, so that a point's distances to them are one loop the compiler
+  // vectorises (the scalar loop over Vector3f was most of the table's time), summed as Eigen's
+  // squaredNorm sums them (x + (y + z)): the rows hold the same floats.
+  struct Rows {
+    std::vector<float> x, y, z, d2;
+    void fill(const PointSet& set, const std::vector<int>& points) {
+      x.clear(), y.clear(), z.clear();
+      for (int j : points) x.push_back(set.points[j].x()), y.push_back(set.points[j].y()), z.push_back(set.points[j].z());
+      d2.resize(points.size());
+    }
+  };
+  // Appends the candidates within r of p to the rows being made.
+  auto appendWithin = [&](Rows& rows, const std::vector<int>& points, const Eigen::Vector3f& p) {
+    const float px = p.x(), py = p.y(), pz = p.z();
+    for (std::size_t c = 0; c < points.size(); ++c) {
+      const float dx = rows.x[c] - px, dy = rows.y[c] - py, dz = rows.z[c] - pz;
+      rows.d2[c] = dx * dx + (dy * dy + dz * dz);
+    }
+    for (std::size_t c = 0; c < points.size(); ++c)
+      if (rows.d2[c] < r2) {
+        made_index.push_back(points[c]);
+        made_d2.push_back(rows.d2[c]);
+      }
+  };
   std::vector<int> own;  // a point whose bucket it shares with another cell's points (aliased keys)
-  std::vector<float> row_x, row_y, row_z, row_d2;
+  Rows cell_rows, own_rows;
   for (int b = 0; b < n;) {
     const int e = buckets.at(order[b].first).second;
     const auto& p0 = set.points[order[b].second];
     const std::int64_t cx = cell(p0, 0), cy = cell(p0, 1), cz = cell(p0, 2);
     gather(cx, cy, cz, candidates);
-    // The candidates' coordinates in rows, once per cell: each point's distances to them are one
-    // loop the compiler vectorises (the scalar loop over Vector3f was most of the table's time),
-    // summed as Eigen's squaredNorm sums them (x + (y + z)), so the rows hold the same floats.
-    row_x.clear(), row_y.clear(), row_z.clear();
-    for (int j : candidates) {
-      row_x.push_back(set.points[j].x()), row_y.push_back(set.points[j].y()), row_z.push_back(set.points[j].z());
-    }
+    cell_rows.fill(set, candidates);
     for (int k = b; k < e; ++k) {
       const int i = order[k].second;
       const auto& p = set.points[i];
-      const bool same_cell = cell(p, 0) == cx && cell(p, 1) == cy && cell(p, 2) == cz;
       made_begin[i] = static_cast<int>(made_index.size());
-      if (!same_cell) {
-        gather(cell(p, 0), cell(p, 1), cell(p, 2), own);
-        for (int j : own) {
-          const float dd = (set.points[j] - p).squaredNorm();
-          if (dd < r2) {
-            made_index.push_back(j);
-            made_d2.push_back(dd);
-          }
-        }
+      if (cell(p, 0) == cx && cell(p, 1) == cy && cell(p, 2) == cz) {
+        appendWithin(cell_rows, candidates, p);
       } else {
-        const std::size_t nc = candidates.size();
-        row_d2.resize(nc);
-        const float px = p.x(), py = p.y(), pz = p.z();
-        const float *xs = row_x.data(), *ys = row_y.data(), *zs = row_z.data();
-        float* d2s = row_d2.data();
-        for (std::size_t c = 0; c < nc; ++c) {
-          const float dx = xs[c] - px, dy = ys[c] - py, dz = zs[c] - pz;
-          d2s[c] = dx * dx + (dy * dy + dz * dz);
-        }
-        for (std::size_t c = 0; c < nc; ++c)
-          if (d2s[c] < r2) {
-            made_index.push_back(candidates[c]);
-            made_d2.push_back(d2s[c]);
-          }
+        gather(cell(p, 0), cell(p, 1), cell(p, 2), own);
+        own_rows.fill(set, own);
+        appendWithin(own_rows, own, p);
       }
       made_count[i] = static_cast<int>(made_index.size()) - made_begin[i];
     }
@@ -371,15 +370,10 @@ double cloudResolution(const PointSet& set, const RadiusSearch& search) {
   if (far > kMaxCoordinate)
     throw Error("degenerate cloud: coordinates up to " + shortNumber(far) + " m from the origin (beyond " +
                 shortNumber(kMaxCoordinate) + " m, float distances overflow)");
-  // An unorganized set without a table asks all its nearest distances at once (a hash grid: the
-  // same distances as the k-d tree point by point, nearest_neighbours.h); the second nearest counting
-  // the point itself is its nearest other point (0 for a twin, as the tree gives).
-  std::vector<float> batch;
-  if (!search.usesGrid() && !(search.cachedRadius() > 0.f)) batch = nearestSquaredDistances(set.points, 2);
   double sum = 0.0;
   std::size_t n = 0, apart = 0;
   for (std::size_t i = 0; i < set.size(); ++i) {
-    const float d = batch.empty() ? search.nearestDistance(static_cast<int>(i)) : std::sqrt(batch[2 * i + 1]);
+    const float d = search.nearestDistance(static_cast<int>(i));
     if (std::isfinite(d)) {
       sum += d;
       ++n;

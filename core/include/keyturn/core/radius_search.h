@@ -1,7 +1,8 @@
 #pragma once
 // Fixed-radius neighbourhoods over a PointSet. Organized sets search a pixel
-// window sized from the ray spacing (exact, no tree); unorganized sets use
-// PCL's FLANN k-d tree, built on the first query the cached table cannot serve.
+// window sized from the ray spacing (exact, no tree); unorganized sets take their
+// nearest distances from a hash grid (nearest_neighbours.h) and use PCL's FLANN
+// k-d tree, built on first use, for radius queries the cached table cannot serve.
 #include <memory>
 #include <vector>
 
