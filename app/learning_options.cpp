@@ -38,7 +38,8 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
   if (method)
     cmd.add_option("--open-set", *method,
                    "Open-set answers: none (closed-set: every view gets a class), knn (distance to the chosen class's "
-                   "nearest training views), max-probability, or auto (" + std::string(learning::defaultOpenSetMethod()) +
+                   "nearest training views), knn-relative (that distance over the class's own spread), max-probability, "
+                   "or auto (" + std::string(learning::defaultOpenSetMethod()) +
                    " when the data has at least 3 categories, else closed-set)")
         ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,

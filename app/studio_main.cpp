@@ -50,7 +50,9 @@ int main(int argc, char** argv) {
                  "Start with this camera connected, named as keyturn grab names it (openni2, openni2:URI, "
                  "playback:FILE.oni, usb, eth:IP)")
       ->excludes(simulated);
-  cli.add_option("--object", a.object, "Instance on the simulated turntable (data/objects/objects.csv), e.g. ycb_035_power_drill");
+  cli.add_option("--object", a.object,
+                 "Instance on the simulated turntable (data/objects/objects-27.csv: the built-in model's 15 and 12 it "
+                 "never saw), e.g. ycb_035_power_drill");
   cli.add_option("--model", a.model, "Model folder (keyturn train --out …); with --simulated or --playback the built-in one by default");
   cli.add_option("--dataset", a.dataset, "Capture dataset folder");
   cli.add_option("--threads", a.threads, "Recognition threads")->capture_default_str()->check(CLI::Range(1, 16));
@@ -76,7 +78,9 @@ int main(int argc, char** argv) {
     std::cerr << "keyturn-studio: " << e.what() << "\n";
     return 1;
   }
-  const std::string objects_csv = data + "/objects/objects.csv";
+  // The simulated turntable offers the 27 objects: the built-in model knows the first 15
+  // (objects.csv) and answers "unknown" for the others.
+  const std::string objects_csv = data + "/objects/objects-27.csv";
   keyturn::studio::StudioRigFactory factory(objects_csv);
   // Refused here: the window would otherwise fall back to the object used last.
   if (const std::string bad = keyturn::studio::unknownSimObject(factory.simObjects(), a.object, objects_csv);

@@ -38,10 +38,25 @@ check "  and its problem" jq -e '.[2].problem | test("points left after filterin
 check "the table shows the score against the threshold" grep -q "/can/ycb_005_tomato_soup_can/e30/a0.0.pcd	ycb_005_tomato_soup_can	.*	knn [0-9.]* >= [0-9.]* (ycb_005_tomato_soup_can)" "$work/classify.txt"
 check "the table shows no object" grep -q "two_points.pcd	no object	-	K=-1	" "$work/classify.txt"
 
-# A model from before open-set answers (the shipped one) stays closed-set.
-"$KT" classify "$(dirname "$0")/../../data/models/sim-objects" "$drill" --json -q > "$work/old.json"
+# A model from before open-set answers (the shipped one without its open_set) stays closed-set.
+shipped="$(dirname "$0")/../../data/models/sim-objects"
+mkdir -p "$work/old"
+jq 'del(.open_set, .pose_references)' "$shipped/model.json" > "$work/old/model.json"
+cp "$shipped/model.xgb.json" "$work/old/"
+"$KT" classify "$work/old" "$drill" --json -q > "$work/old.json"
 check "an old model answers a class, with no open-set test" \
   test "$(jq -r '.[0] | "\(.answer) \(.open_set) \(.score) \(.threshold)"' "$work/old.json")" = "class null null null"
+# The shipped model answers open-set, and the drill it was trained on is its class.
+"$KT" classify "$shipped" "$drill" --json -q > "$work/shipped.json"
+check "the shipped model is knn-relative open-set and knows the drill" \
+  test "$(jq -r '.[0] | "\(.open_set) \(.answer) \(.class)"' "$work/shipped.json")" = "knn-relative class ycb_035_power_drill"
+
+# knn-relative: each class's own scale kept beside the references; auto picks it.
+"$KT" train "$work/ds" --features kpd2+kpa3 --open-set auto $fast -q --out "$work/mrel"
+check "auto is knn-relative, with a scale per class" \
+  test "$(jq -r '.open_set | "\(.method) \(.class_scale | length) \(.references | length)"' "$work/mrel/model.json")" = "knn-relative 4 64"
+check "  and the pose references name the open set's rows instead of repeating them" \
+  test "$(jq -r '.pose_references | "\(.rows_of) \(.reference_bins | length) \(has("references"))"' "$work/mrel/model.json")" = "open_set 64 false"
 
 # Two categories cannot be calibrated: asked for, an error; with auto, a closed-set model.
 "$KT" simulate --objects "$data/objects-two-categories.csv" --elevations 30 --step 90 -q --out "$work/two"
@@ -54,7 +69,7 @@ check "  without open_set in its sidecar" test "$(jq '.open_set' "$work/m3/model
 "$KT" train "$work/ds" --features kpd2 $fast -q --out "$work/m5"
 check "train without --open-set is closed-set (the default)" test "$(jq '.open_set' "$work/m5/model.json")" = null
 "$KT" train "$work/ds" --features kpd2 --open-set entropy --out "$work/m4" 2> "$work/m4.err"
-check "an unknown method is named" grep -q -- "--open-set: open-set method 'entropy' is not one of auto, max-probability, knn, none" "$work/m4.err"
+check "an unknown method is named" grep -q -- "--open-set: open-set method 'entropy' is not one of auto, max-probability, knn, knn-relative, none" "$work/m4.err"
 
 # evaluate's open-set protocol: whole categories held out, figures per method, ROC curves.
 "$KT" evaluate "$work/ds" --features kpd2+kpa3 --classifier xgboost,mlp --protocol open-set4 $fast -q \
@@ -65,7 +80,7 @@ for c in xgboost mlp; do
   check "a ROC curve for $c" test -s "$work/report/roc/open-set4_32bins_${c}_kpd2_kpa3.png"
 done
 check "each row reports both methods" \
-  test "$(jq '[.rows[] | .open_set.methods | map(.method)] | unique' -c "$work/report.json")" = '[["max-probability","knn"]]'
+  test "$(jq '[.rows[] | .open_set.methods | map(.method)] | unique' -c "$work/report.json")" = '[["max-probability","knn","knn-relative"]]'
 check "AUROC and rates are fractions" \
   test "$(jq '[.rows[].open_set.methods[] | (.auroc_mean, .false_accept, .known_accuracy_open, .known_rejected) | (. >= 0 and . <= 1)] | all' "$work/report.json")" = true
 check "every view is an unknown once" test "$(jq '[.rows[0].open_set.methods[0].unknown_views] | add' "$work/report.json")" -eq 64

@@ -1,10 +1,12 @@
 // Open-set answers (issue 34): scores, calibration for a stated false-accept rate, the model
 // file's open_set, old models staying closed-set, and degenerate views and features.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <random>
 
 #include "keyturn/core/empty_view.h"
@@ -18,6 +20,7 @@
 #include "keyturn/learning/protocols.h"
 #include "keyturn/learning/recognizer.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using namespace keyturn::learning;
@@ -37,7 +40,9 @@ struct Clusters {
   std::vector<std::string> category;
 };
 
-Clusters clusters(int categories, int first, int per, int dims, std::uint64_t seed, float spread = 6.f) {
+// Categories numbered from `noisy_from` on spread `noisy_sd` times as wide (small objects: few keypoints).
+Clusters clusters(int categories, int first, int per, int dims, std::uint64_t seed, float spread = 6.f,
+                  int noisy_from = 1 << 30, float noisy_sd = 1.f) {
   std::mt19937_64 rng(seed);
   std::normal_distribution<float> noise(0.f, 1.f);
   Clusters c;
@@ -45,7 +50,8 @@ Clusters clusters(int categories, int first, int per, int dims, std::uint64_t se
   for (int k = 0; k < categories; ++k)
     for (int i = 0; i < per; ++i) {
       const Eigen::Index r = k * per + i;
-      for (int d = 0; d < dims; ++d) c.x(r, d) = (d == (first + k) % dims ? spread : 0.f) + noise(rng);
+      const float sd = first + k >= noisy_from ? noisy_sd : 1.f;
+      for (int d = 0; d < dims; ++d) c.x(r, d) = (d == (first + k) % dims ? spread : 0.f) + sd * noise(rng);
       c.y.push_back(k);
       c.category.push_back("c" + std::to_string(first + k));
     }
@@ -108,7 +114,8 @@ TEST(OpenSetScores, AurocThresholdAndRocCurveCountAsStated) {
   EXPECT_DOUBLE_EQ(c.true_accept[1], 0.5);
   EXPECT_DOUBLE_EQ(c.false_accept.back(), 1.0);
   EXPECT_DOUBLE_EQ(c.true_accept.back(), 1.0);
-  EXPECT_EQ(errorOf([] { checkOpenSetMethod("entropy"); }), "open-set method 'entropy' is not one of max-probability, knn");
+  EXPECT_EQ(errorOf([] { checkOpenSetMethod("entropy"); }),
+            "open-set method 'entropy' is not one of max-probability, knn, knn-relative");
 }
 
 // The issue's calibration test: on a small simulated set, categories never trained on are accepted
@@ -137,8 +144,14 @@ TEST_P(OpenSetCalibration, UnseenCategoriesAreAcceptedAtAboutTheStatedRate) {
     const std::vector<double> ks = openSetScores(s, known.x, pk), us = openSetScores(s, unknown.x, pu);
     if (GetParam() == "knn") {
       EXPECT_NEAR(acceptedFraction(s, us), stated, tolerance) << "stated " << stated;
-    } else {  // XGBoost's probabilities saturate on separated classes: ties at the top, so it rejects more
+    } else {
+      // XGBoost's probabilities saturate on separated classes: ties at the top, so max-probability
+      // rejects more. knn-relative errs the same way here (measured 1.8 % at 5 %, 8.3 % at 20 %):
+      // with every class equally spread its per-class scales only add their sampling noise. On the
+      // simulated objects, whose classes are not alike, it holds the rate better than knn
+      // (docs/results.md, "Open-set answers").
       EXPECT_LE(acceptedFraction(s, us), stated + tolerance) << "stated " << stated;
+      if (GetParam() == "knn-relative") EXPECT_GT(acceptedFraction(s, us), stated / 3) << "stated " << stated;
     }
     double closed = 0, open = 0;
     for (std::size_t i = 0; i < best.size(); ++i) {
@@ -148,14 +161,44 @@ TEST_P(OpenSetCalibration, UnseenCategoriesAreAcceptedAtAboutTheStatedRate) {
     closed /= static_cast<double>(best.size());
     open /= static_cast<double>(best.size());
     EXPECT_GT(closed, 0.9);
-    if (GetParam() == "knn") {  // the issue's target: within 2 points of closed-set
+    if (GetParam() != "max-probability") {  // the issue's target: within 2 points of closed-set
       EXPECT_GT(open, closed - 0.02) << "stated " << stated;
       EXPECT_GT(auroc(ks, us), 0.97);
     }
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(Methods, OpenSetCalibration, ::testing::Values("knn", "max-probability"));
+INSTANTIATE_TEST_SUITE_P(Methods, OpenSetCalibration, ::testing::Values("knn", "knn-relative", "max-probability"));
+
+// Classes of unequal spread (the banana and the screwdriver against the boxes): knn's raw distance
+// puts a noisy known class's views far below a tight one's, so one threshold rejects the noisy
+// class most of the time; knn-relative divides each distance by its class's own spread, and
+// known views of both score alike.
+TEST(OpenSetScores, KnnRelativeScoresNoisyAndTightKnownClassesAlike) {
+  const int dims = 8, noisy_from = 4;
+  const Clusters train = clusters(8, 0, 40, dims, 1, 12.f, noisy_from, 2.5f);
+  const Clusters known = clusters(8, 0, 40, dims, 11, 12.f, noisy_from, 2.5f);
+  auto clf = makeClassifier(fastXgboost());
+  clf->fit(train.x, train.y, 8);
+  const Matrix pk = clf->predictProba(known.x);
+  auto medians = [&](const OpenSet& s) {
+    const std::vector<double> ks = openSetScores(s, known.x, pk);
+    std::vector<double> tight, noisy;
+    for (std::size_t i = 0; i < ks.size(); ++i) (known.y[i] < noisy_from ? tight : noisy).push_back(ks[i]);
+    for (auto* v : {&tight, &noisy}) std::nth_element(v->begin(), v->begin() + v->size() / 2, v->end());
+    return std::pair{tight[tight.size() / 2], noisy[noisy.size() / 2]};
+  };
+  const OpenSet relative = fitOpenSetScorer("knn-relative", train.x, train.y);
+  ASSERT_EQ(relative.class_scale.size(), 8u);
+  for (int c = 0; c < noisy_from; ++c) {  // the noisy classes' own scale: about 2.5 × the tight ones'
+    EXPECT_GT(relative.class_scale[static_cast<std::size_t>(c + noisy_from)], 1.8f * relative.class_scale[static_cast<std::size_t>(c)]);
+    EXPECT_LT(relative.class_scale[static_cast<std::size_t>(c + noisy_from)], 3.5f * relative.class_scale[static_cast<std::size_t>(c)]);
+  }
+  const auto [knn_tight, knn_noisy] = medians(fitOpenSetScorer("knn", train.x, train.y));
+  const auto [rel_tight, rel_noisy] = medians(relative);
+  EXPECT_LT(knn_noisy, knn_tight - 0.1) << "knn: tight " << knn_tight << ", noisy " << knn_noisy;
+  EXPECT_NEAR(rel_noisy, rel_tight, 0.05) << "knn-relative: tight " << rel_tight << ", noisy " << rel_noisy;
+}
 
 TEST(OpenSetCalibration, NeedsThreeCategories) {
   const Clusters two = clusters(2, 0, 10, 4, 1);
@@ -167,7 +210,7 @@ TEST(OpenSetCalibration, NeedsThreeCategories) {
   const Model m = trainModel(tableOf(two), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
   EXPECT_FALSE(m.info.open_set.enabled());
   EXPECT_EQ(errorOf([&] { setOpenSetMethod(o, "entropy"); }),
-            "open-set method 'entropy' is not one of auto, max-probability, knn, none");
+            "open-set method 'entropy' is not one of auto, max-probability, knn, knn-relative, none");
 }
 
 TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
@@ -208,9 +251,41 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   fs::remove_all(dir);
 }
 
+TEST(OpenSetModel, KnnRelativeClassScalesSurviveTheModelFile) {
+  const Clusters train = clusters(6, 0, 30, 8, 1, 6.f, 3, 2.f);
+  OpenSetOptions o;
+  o.methods = {"knn-relative"};
+  const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+  ASSERT_EQ(m.info.open_set.class_scale.size(), 6u);
+  const fs::path dir = keyturn::test::scratchPath("knn_relative_model");
+  saveModel(dir.string(), m);
+  const Model back = loadModel(dir.string());
+  EXPECT_EQ(back.info.open_set.method, "knn-relative");
+  EXPECT_EQ(back.info.open_set.class_scale, m.info.open_set.class_scale);
+  const FeatureTable t = tableOf(clusters(6, 0, 2, 8, 5, 6.f, 3, 2.f));
+  const auto before = predictRows(m, t, "m"), after = predictRows(back, t, "m");
+  for (std::size_t i = 0; i < t.rows.size(); ++i) EXPECT_NEAR(after[i].score, before[i].score, 1e-3);
+  // A sidecar whose class_scale does not fit the classes is named.
+  nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
+  sidecar["open_set"]["class_scale"] = {1.0, 2.0};
+  keyturn::test::writeText(dir / "model.json", sidecar.dump());
+  EXPECT_EQ(errorOf([&] { loadModel(dir.string()); }),
+            (dir / "model.json").string() + ": open_set: knn-relative needs class_scale of 6 values");
+  fs::remove_all(dir);
+}
+
 TEST(OpenSetModel, AModelWithoutOpenSetStaysClosedSet) {
-  // The shipped studio model was written before issue 34.
-  const Model shipped = loadModel(std::string(KEYTURN_DATA_DIR) + "/models/sim-objects");
+  // The shipped studio model as it was before issue 34: its sidecar without open_set.
+  const fs::path source = fs::path(KEYTURN_DATA_DIR) / "models/sim-objects";
+  EXPECT_EQ(loadModel(source.string()).info.open_set.method, "knn-relative");
+  const fs::path dir = keyturn::test::scratchPath("closed_set_model");
+  fs::create_directories(dir);
+  nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(source / "model.json"));
+  sidecar.erase("open_set");
+  sidecar.erase("pose_references");
+  keyturn::test::writeText(dir / "model.json", sidecar.dump());
+  fs::copy_file(source / "model.xgb.json", dir / "model.xgb.json", fs::copy_options::overwrite_existing);
+  const Model shipped = loadModel(dir.string());
   EXPECT_FALSE(shipped.info.open_set.enabled());
   FeatureTable t = modelLayout(shipped, "shipped");
   FeatureRow far;
@@ -239,7 +314,7 @@ TEST(OpenSetModel, ABadOpenSetInASidecarIsNamed) {
   ASSERT_NE(text.find(method), std::string::npos);
   text.replace(text.find(method), method.size(), "\"method\": \"entropy\"");
   EXPECT_EQ(errorOf([&] { parseModelSidecar(text, "m/model.json"); }),
-            "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn");
+            "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn, knn-relative");
   fs::remove_all(dir);
 }
 
@@ -327,9 +402,10 @@ TEST(OpenSetProtocol, AFoldReportsFalseAcceptsAndKnownAccuracyBesideClosedSet) {
   std::vector<FoldOutcome> folds;
   for (const Fold& f : p.folds) folds.push_back(evaluateOpenSetFold(t, {"kpd2"}, p.labels.of_row, f, fastXgboost(), o));
   const auto s = summariseOpenSet(folds);
-  ASSERT_EQ(s.size(), 2u);
+  ASSERT_EQ(s.size(), 3u);
   EXPECT_EQ(s[0].method, "max-probability");
   EXPECT_EQ(s[1].method, "knn");
+  EXPECT_EQ(s[2].method, "knn-relative");
   EXPECT_EQ(s[1].unknown_views, 240u);  // every view is an unknown in one fold
   EXPECT_EQ(s[1].known_views, 360u);    // 4 folds × 9 known categories × the 10 views at its elevation
   EXPECT_GT(s[1].auroc_mean, 0.95);

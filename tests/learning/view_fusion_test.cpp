@@ -2,6 +2,7 @@
 // fusion using the poses (shuffled poses do worse on objects told apart only by how their look
 // changes as they turn); bad input named in one line; pose references kept in a model's sidecar.
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <cmath>
 #include <filesystem>
@@ -15,6 +16,7 @@
 #include "keyturn/learning/model_file.h"
 #include "keyturn/learning/view_fusion.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using namespace keyturn::learning;
@@ -230,6 +232,51 @@ TEST(Fusion, PoseReferencesSurviveTheModelSidecar) {
   std::mt19937_64 rng(1);
   const Eigen::RowVectorXf v = look(0, 40, rng);
   EXPECT_LT((poseEvidence(refs, v) - poseEvidence(back.info.pose_references, v)).cwiseAbs().maxCoeff(), 0.05f);
+  std::filesystem::remove_all(dir);
+}
+
+// A model trained with open-set knn and pose references (as `train --open-set knn` makes them) keeps
+// their shared standardised rows once: the pose references name the open set's rows.
+TEST(Fusion, PoseReferencesShareTheOpenSetsRowsInTheSidecar) {
+  const PoseReferences refs = mirrorReferences(6);
+  ModelInfo info;
+  info.classes = {"a", "b"};
+  info.blocks = {"kpd2"};
+  info.inputs = static_cast<int>(refs.references.cols());
+  info.pose_references = refs;
+  info.open_set.method = "knn";
+  info.open_set.threshold = 0.5;
+  info.open_set.false_accept = 0.05;
+  info.open_set.mean = refs.mean, info.open_set.scale = refs.scale;
+  info.open_set.references = refs.references, info.open_set.reference_class = refs.reference_class;
+  Model m;
+  m.info = info;
+  m.classifier = makeClassifier(info.params);
+  Matrix x = refs.references;
+  m.classifier->fit(x, refs.reference_class, 2);
+  const auto dir = keyturn::test::scratchPath("fusion_shared_rows");
+  std::filesystem::remove_all(dir);
+  saveModel(dir.string(), m);
+  const std::string sidecar = keyturn::test::readText(dir / "model.json");
+  const auto j = nlohmann::json::parse(sidecar);
+  EXPECT_EQ(j.at("pose_references").at("rows_of"), "open_set");
+  EXPECT_FALSE(j.at("pose_references").contains("references"));
+  const Model back = loadModel(dir.string());
+  EXPECT_EQ(back.info.pose_references.reference_bin, refs.reference_bin);
+  EXPECT_EQ(back.info.pose_references.reference_class, refs.reference_class);
+  std::mt19937_64 rng(1);
+  const Eigen::RowVectorXf v = look(0, 40, rng);
+  EXPECT_LT((poseEvidence(refs, v) - poseEvidence(back.info.pose_references, v)).cwiseAbs().maxCoeff(), 0.05f);
+
+  // Rows that differ are written in full; rows_of without a knn open set is refused, by name.
+  m.info.open_set.references(0, 0) += 1.f;
+  saveModel(dir.string(), m);
+  EXPECT_TRUE(nlohmann::json::parse(keyturn::test::readText(dir / "model.json")).at("pose_references").contains("references"));
+  auto broken = j;
+  broken.erase("open_set");
+  keyturn::test::writeText(dir / "model.json", broken.dump());
+  EXPECT_EQ(errorOf([&] { loadModel(dir.string()); }),
+            (dir / "model.json").string() + ": pose_references: rows_of names no knn open_set of this model to take the rows from");
   std::filesystem::remove_all(dir);
 }
 

@@ -255,9 +255,17 @@ class Classify(unittest.TestCase):
         empty = m.classify(np.array([[0, 0, 0.5], [0.01, 0, 0.5]], np.float32))
         self.assertEqual((empty.cls, empty.answer, empty.best, empty.score), ("no object", "no object", "", None))
         self.assertIn("points left after filtering", empty.problem)
-        old = keyturn.Model(MODEL).classify(WORK / "mug.pcd")  # written before issue 34: closed-set
+        # A model written before issue 34 (the shipped one without its open_set) is closed-set.
+        closed = WORK / "closed-model"
+        closed.mkdir(exist_ok=True)
+        sidecar = json.loads((MODEL / "model.json").read_text())
+        del sidecar["open_set"], sidecar["pose_references"]
+        (closed / "model.json").write_text(json.dumps(sidecar))
+        shutil.copy(MODEL / "model.xgb.json", closed)
+        old = keyturn.Model(closed).classify(WORK / "mug.pcd")
         self.assertEqual((old.answer, old.score, old.threshold), ("class", None, None))
-        self.assertIsNone(keyturn.Model(MODEL).open_set)
+        self.assertIsNone(keyturn.Model(closed).open_set)
+        self.assertEqual(keyturn.Model(MODEL).open_set["method"], "knn-relative")  # the shipped model today
         trained = keyturn.train(keyturn.Dataset(WORK / "ds3").features("kpd2+kpa3"), rounds=10, open_set="max-probability")
         self.assertEqual(trained.open_set["method"], "max-probability")
         with self.assertRaises(ValueError) as e:

@@ -5,6 +5,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 namespace keyturn::test {
@@ -18,6 +19,12 @@ inline std::string writeText(const std::filesystem::path& path, const std::strin
   std::filesystem::create_directories(path.parent_path());
   std::ofstream(path) << text;
   return path.string();
+}
+
+// The whole text of PATH ("" when it cannot be read).
+inline std::string readText(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 }  // namespace keyturn::test

@@ -251,9 +251,9 @@ void bindDataset(py::module_& m) {
         "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
         "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
         "default 30) or the libtorch network (epochs, default 30). Model.save writes it; Model.classify applies it "
-        "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn' or 'max-probability' "
-        "(a threshold calibrated for false_accept on categories left out in turn; needs at least 3 categories) or "
-        "'auto' (knn where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "
+        "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn-relative', 'knn' or "
+        "'max-probability' (a threshold calibrated for false_accept on categories left out in turn; needs at least 3 "
+        "categories) or 'auto' (knn-relative where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "
         "trains.");
 
   py::class_<PyDataset>(m, "Dataset", "A keyturn dataset folder (docs/dataset-format.md)")

@@ -37,7 +37,8 @@ json toJson(const ModelInfo& m) {
             {"weights", weightsName(m.params.kind)},
             {"class_means", m.class_means}});
   if (m.open_set.enabled()) j["open_set"] = openSetJson(m.open_set);
-  if (!m.pose_references.empty()) j["pose_references"] = poseReferencesJson(m.pose_references);
+  if (!m.pose_references.empty())
+    j["pose_references"] = poseReferencesJson(m.pose_references, m.open_set.enabled() ? &m.open_set : nullptr);
   return j;
 }
 
@@ -98,7 +99,8 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
   if (j.contains("open_set") && !j.at("open_set").is_null())
     m.open_set = parseOpenSetJson(j.at("open_set"), m.inputs, static_cast<int>(m.classes.size()), source);
   if (j.contains("pose_references") && !j.at("pose_references").is_null())
-    m.pose_references = parsePoseReferencesJson(j.at("pose_references"), m.inputs, static_cast<int>(m.classes.size()), source);
+    m.pose_references = parsePoseReferencesJson(j.at("pose_references"), m.inputs, static_cast<int>(m.classes.size()),
+                                                source, m.open_set.enabled() ? &m.open_set : nullptr);
   return m;
 }
 

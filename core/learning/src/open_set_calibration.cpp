@@ -27,7 +27,7 @@ void setOpenSetMethod(OpenSetOptions& o, const std::string& method) {
   const std::string m = method == "auto" ? defaultOpenSetMethod() : method;
   const auto& known = openSetMethods();
   if (std::find(known.begin(), known.end(), m) == known.end())
-    throw Error("open-set method '" + method + "' is not one of auto, max-probability, knn, none");
+    throw Error("open-set method '" + method + "' is not one of auto, max-probability, knn, knn-relative, none");
   o.methods.push_back(m);
 }
 

@@ -6,6 +6,7 @@
 #include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
+#include "reference_value_json.h"
 
 namespace keyturn::learning {
 
@@ -16,15 +17,15 @@ json openSetJson(const OpenSet& s) {
             {"threshold", s.threshold},
             {"false_accept", s.false_accept},
             {"calibration", {{"unknown_views", s.calibration_views}, {"groups", s.calibration_groups}}}};
-  if (s.method != "knn") return j;
+  if (!keepsReferences(s.method)) return j;
+  if (s.method == "knn-relative") j["class_scale"] = s.class_scale;
   j["neighbours"] = s.neighbours;
   j["mean"] = s.mean;
   j["scale"] = s.scale;
   json refs = json::array();
   for (Eigen::Index r = 0; r < s.references.rows(); ++r) {
     json row = json::array({s.reference_class[static_cast<std::size_t>(r)]});
-    // Standardised values to 4 decimals: the distances move by < 1e-4 and the file is half the size.
-    for (Eigen::Index k = 0; k < s.references.cols(); ++k) row.push_back(std::round(s.references(r, k) * 1e4f) / 1e4f);
+    for (Eigen::Index k = 0; k < s.references.cols(); ++k) row.push_back(referenceValue(s.references(r, k)));
     refs.push_back(std::move(row));
   }
   j["references"] = std::move(refs);
@@ -50,7 +51,14 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
       s.calibration_views = jsonInteger(c, "unknown_views", 0, std::numeric_limits<int>::max(), where);
       s.calibration_groups = jsonInteger(c, "groups", 0, std::numeric_limits<int>::max(), where);
     }
-    if (s.method != "knn") return s;
+    if (!keepsReferences(s.method)) return s;
+    if (s.method == "knn-relative") {
+      s.class_scale = j.at("class_scale").get<std::vector<float>>();
+      if (s.class_scale.size() != static_cast<std::size_t>(classes))
+        throw Error(where + ": knn-relative needs class_scale of " + std::to_string(classes) + " values");
+      for (float v : s.class_scale)
+        if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": class_scale values must be positive");
+    }
     s.neighbours = jsonInteger(j, "neighbours", 1, 1 << 16, where);
     s.mean = j.at("mean").get<std::vector<float>>();
     s.scale = j.at("scale").get<std::vector<float>>();

@@ -4,20 +4,39 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_integer.h"
+#include "reference_value_json.h"
 
 namespace keyturn::learning {
 
-nlohmann::json poseReferencesJson(const PoseReferences& r) {
+namespace {
+
+// The rows, classes and standardisation the sidecar would write for both are the same.
+bool sameRows(const PoseReferences& r, const OpenSet& s) {
+  if (!keepsReferences(s.method) || r.mean != s.mean || r.scale != s.scale || r.reference_class != s.reference_class ||
+      r.references.rows() != s.references.rows() || r.references.cols() != s.references.cols())
+    return false;
+  for (Eigen::Index i = 0; i < r.references.rows(); ++i)
+    for (Eigen::Index k = 0; k < r.references.cols(); ++k)
+      if (referenceValue(r.references(i, k)) != referenceValue(s.references(i, k))) return false;
+  return true;
+}
+
+}  // namespace
+
+nlohmann::json poseReferencesJson(const PoseReferences& r, const OpenSet* open_set) {
+  if (open_set && sameRows(r, *open_set))
+    return {{"bins", r.bins}, {"sigma", r.sigma}, {"rows_of", "open_set"}, {"reference_bins", r.reference_bin}};
   nlohmann::json refs = nlohmann::json::array();
   for (Eigen::Index i = 0; i < r.references.rows(); ++i) {
     nlohmann::json row = {r.reference_class[static_cast<std::size_t>(i)], r.reference_bin[static_cast<std::size_t>(i)]};
-    for (Eigen::Index k = 0; k < r.references.cols(); ++k) row.push_back(std::round(r.references(i, k) * 1e4f) / 1e4f);
+    for (Eigen::Index k = 0; k < r.references.cols(); ++k) row.push_back(referenceValue(r.references(i, k)));
     refs.push_back(std::move(row));
   }
   return {{"bins", r.bins}, {"sigma", r.sigma}, {"mean", r.mean}, {"scale", r.scale}, {"references", std::move(refs)}};
 }
 
-PoseReferences parsePoseReferencesJson(const nlohmann::json& j, int inputs, int classes, const std::string& source) {
+PoseReferences parsePoseReferencesJson(const nlohmann::json& j, int inputs, int classes, const std::string& source,
+                                       const OpenSet* open_set) {
   const std::string where = source + ": pose_references";
   PoseReferences r;
   r.classes = classes;
@@ -25,6 +44,19 @@ PoseReferences parsePoseReferencesJson(const nlohmann::json& j, int inputs, int 
     r.bins = jsonInteger(j, "bins", 4, 3600, where);
     r.sigma = j.at("sigma").get<double>();
     if (!(r.sigma > 0) || !std::isfinite(r.sigma)) throw Error(where + ": sigma must be positive");
+    if (j.contains("rows_of")) {
+      if (j.at("rows_of") != "open_set" || !open_set || !keepsReferences(open_set->method))
+        throw Error(where + ": rows_of names no knn open_set of this model to take the rows from");
+      const auto bins = j.at("reference_bins").get<std::vector<int>>();
+      if (bins.size() != static_cast<std::size_t>(open_set->references.rows()))
+        throw Error(where + ": " + std::to_string(bins.size()) + " reference_bins for " +
+                    std::to_string(open_set->references.rows()) + " open_set rows");
+      for (int b : bins)
+        if (b < 0 || b >= r.bins) throw Error(where + ": reference bin " + std::to_string(b) + " out of range");
+      r.mean = open_set->mean, r.scale = open_set->scale;
+      r.references = open_set->references, r.reference_class = open_set->reference_class, r.reference_bin = bins;
+      return r;
+    }
     r.mean = j.at("mean").get<std::vector<float>>();
     r.scale = j.at("scale").get<std::vector<float>>();
     const auto& refs = j.at("references");

@@ -246,6 +246,6 @@ def train(
     seed: int = 7,
     rounds: Optional[int] = None,
     epochs: Optional[int] = None,
-    open_set: Literal["none", "knn", "max-probability", "auto"] = "none",
+    open_set: Literal["none", "knn", "knn-relative", "max-probability", "auto"] = "none",
     false_accept: float = 0.05,
 ) -> Model: ...

@@ -2,6 +2,7 @@
 
 #include <QComboBox>
 #include <QDateTime>
+#include <QFontMetrics>
 #include <QFileDialog>
 #include <QFormLayout>
 #include <QGridLayout>
@@ -62,6 +63,9 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   big.setPointSizeF(big.pointSizeF() * 1.6);
   big.setBold(true);
   verdict_->setFont(big);
+  // Its own line's height however the box is squeezed, and a long name never widens the dock.
+  verdict_->setMinimumHeight(QFontMetrics(big).height() + 2);
+  verdict_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
   grid->addWidget(verdict_, 0, 0, 1, 2);
   // The belief fused over the views of the table's turn, under the single view's (issue 34): one
   // line, so the window still fits a 1000 px screen.
@@ -165,13 +169,18 @@ void RecognitionPanel::setModel(const QString& path, const learning::Recognizer*
   classes_ = info.classes;
   QStringList blocks;
   for (const auto& b : info.blocks) blocks << QString::fromStdString(b);
-  model_info_->setText(QString("%1 · %2 classes · %3 · %4 bins · %5")
+  const QString open_set = info.open_set.enabled()
+                               ? tr("open-set: %1 at %2 %").arg(QString::fromStdString(info.open_set.method))
+                                     .arg(100 * info.open_set.false_accept, 0, 'g', 3)
+                               : tr("closed-set");
+  model_info_->setText(QString("%1 · %2 classes · %3 · %4 bins · %5 · %6")
                            .arg(QString::fromStdString(info.params.kind))
                            .arg(info.classes.size())
                            .arg(blocks.join("+"))
                            .arg(QString::fromStdString(info.spec.at("bins")))
+                           .arg(open_set)
                            .arg(info.pose_references.empty() ? tr("fuses a turn's views independently (no pose references)")
-                                                             : tr("fuses a turn's views by pose")));
+                                                             : tr("fuses by pose")));
 }
 
 void RecognitionPanel::showFusion(const learning::LiveFusion& f) {
@@ -269,11 +278,10 @@ void RecognitionPanel::refresh() {
       bars_[i]->setValue(has ? static_cast<int>(1000 * rec.probabilities[order[i]]) : 0);
       bars_[i]->setFormat(has ? QString("%1 %").arg(100.0 * rec.probabilities[order[i]], 0, 'f', 1) : QString());
     }
-    // An open-set model's test of this view: its score against the threshold.
+    // An open-set model's test of this view: its score against the threshold (the model line names the method).
     const learning::OpenSet& open = result->recognizer->info().open_set;
     showVerdict(open.enabled() && std::isfinite(rec.score)
-                    ? QString("  %1 %2 %3 %4")
-                          .arg(QString::fromStdString(open.method))
+                    ? QString("  %1 %2 %3")
                           .arg(rec.score, 0, 'f', 2)
                           .arg(rec.answer == learning::Answer::Class ? ">=" : "<")
                           .arg(open.threshold, 0, 'f', 2)

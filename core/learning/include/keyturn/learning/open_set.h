@@ -1,12 +1,15 @@
 #pragma once
 // Open-set answers (issue 34): a score per view saying how much it looks like the trained
 // classes, and the threshold below which the answer is "unknown" instead of a class.
-// Two scores (docs/results.md, "Open-set answers", measures them):
+// Three scores (docs/results.md, "Open-set answers", measures them):
 // - max-probability: the classifier's own highest class probability;
 // - knn: 1 / (1 + d), d the RMS per-feature distance (features standardised by the training
 //   views' mean and spread, a missing value at the mean) from the view to the nearest
-//   `neighbours` training views of the class the classifier chose (their mean distance).
-// Higher is more like a trained class for both; a view is accepted when score >= threshold.
+//   `neighbours` training views of the class the classifier chose (their mean distance);
+// - knn-relative: the same with d divided by the chosen class's own scale, the median distance
+//   from one of its training views to the nearest other (small noisy objects lie farther from
+//   their training views than large ones, known or not).
+// Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
 #include <string>
@@ -25,6 +28,8 @@ std::string answerName(Answer answer);  // "class", "unknown", "no object"
 const std::vector<std::string>& openSetMethods();
 // Throws keyturn::Error naming the method when it is not one of openSetMethods().
 void checkOpenSetMethod(const std::string& method);
+// Whether the method's scorer keeps the standardised training views (knn, knn-relative).
+bool keepsReferences(const std::string& method);
 
 struct OpenSet {
   std::string method;          // "" : closed-set (every view gets a class)
@@ -37,6 +42,7 @@ struct OpenSet {
   std::vector<float> mean, scale;
   Matrix references;
   std::vector<int> reference_class;
+  std::vector<float> class_scale;  // knn-relative: per class, the distance d is divided by
   bool enabled() const { return !method.empty(); }
   // Class when score >= threshold (or closed-set), else Unknown (a NaN score too).
   Answer answerFor(double score) const { return !enabled() || score >= threshold ? Answer::Class : Answer::Unknown; }
