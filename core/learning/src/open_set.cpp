@@ -40,15 +40,17 @@ namespace {
 // the median of the others.
 std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y) {
   const int classes = y.empty() ? 0 : *std::max_element(y.begin(), y.end()) + 1;
+  std::vector<std::vector<Eigen::Index>> rows_of(static_cast<std::size_t>(classes));
+  for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
   std::vector<std::vector<double>> nearest(static_cast<std::size_t>(classes));
   const double cols = static_cast<double>(std::max<Eigen::Index>(1, refs.cols()));
-  for (Eigen::Index a = 0; a < refs.rows(); ++a) {
-    double best = std::numeric_limits<double>::infinity();
-    for (Eigen::Index b = 0; b < refs.rows(); ++b)
-      if (b != a && y[static_cast<std::size_t>(b)] == y[static_cast<std::size_t>(a)])
-        best = std::min(best, static_cast<double>((refs.row(a) - refs.row(b)).squaredNorm()));
-    if (std::isfinite(best)) nearest[static_cast<std::size_t>(y[static_cast<std::size_t>(a)])].push_back(std::sqrt(best / cols));
-  }
+  for (std::size_t c = 0; c < rows_of.size(); ++c)  // within each class only: the sum of n_c², not n²
+    for (Eigen::Index a : rows_of[c]) {
+      double best = std::numeric_limits<double>::infinity();
+      for (Eigen::Index b : rows_of[c])
+        if (b != a) best = std::min(best, static_cast<double>((refs.row(a) - refs.row(b)).squaredNorm()));
+      if (std::isfinite(best)) nearest[c].push_back(std::sqrt(best / cols));
+    }
   auto median = [](std::vector<double> v) {
     std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
     return v[v.size() / 2];
