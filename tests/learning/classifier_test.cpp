@@ -4,6 +4,7 @@
 #include "keyturn/learning/classifier.h"
 
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include <filesystem>
 #include <fstream>
@@ -190,10 +191,10 @@ TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
     const fs::path dir = tempDir() / ("bad_" + kind);
     saveModel(dir.string(), m);
     // Claim 16 inputs in the sidecar: the weights were trained on 12.
-    std::ifstream in(dir / "model.json");
-    std::string text((std::istreambuf_iterator<char>(in)), {});
-    text.replace(text.find("\"inputs\": 12"), 12, "\"inputs\": 16");
-    std::ofstream(dir / "model.json") << text;
+    nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
+    ASSERT_EQ(sidecar.at("inputs"), 12);
+    sidecar["inputs"] = 16;
+    keyturn::test::writeText(dir / "model.json", sidecar.dump());
     const std::string msg = keyturn::test::errorOf([&] { loadModel(dir.string()); });
     EXPECT_NE(msg.find(kind == "mlp" ? "model.pt" : "model.xgb.json"), std::string::npos) << kind << ": " << msg;
     EXPECT_NE(msg.find("16"), std::string::npos) << msg;

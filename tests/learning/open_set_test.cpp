@@ -307,13 +307,10 @@ TEST(OpenSetModel, ABadOpenSetInASidecarIsNamed) {
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
   const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_bad";
   saveModel(dir.string(), m);
-  const std::string sidecar = (dir / "model.json").string();
-  std::ifstream in(sidecar);
-  std::string text((std::istreambuf_iterator<char>(in)), {});
-  const std::string method = "\"method\": \"max-probability\"";
-  ASSERT_NE(text.find(method), std::string::npos);
-  text.replace(text.find(method), method.size(), "\"method\": \"entropy\"");
-  EXPECT_EQ(errorOf([&] { parseModelSidecar(text, "m/model.json"); }),
+  nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
+  ASSERT_EQ(sidecar.at("open_set").at("method"), "max-probability");
+  sidecar["open_set"]["method"] = "entropy";
+  EXPECT_EQ(errorOf([&] { parseModelSidecar(sidecar.dump(), "m/model.json"); }),
             "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn, knn-relative");
   fs::remove_all(dir);
 }

@@ -23,7 +23,7 @@ inline std::string writeText(const std::filesystem::path& path, const std::strin
 
 // The whole text of PATH ("" when it cannot be read).
 inline std::string readText(const std::filesystem::path& path) {
-  std::ifstream in(path);
+  std::ifstream in(path, std::ios::binary);
   return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
