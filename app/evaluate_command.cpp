@@ -13,6 +13,7 @@
 #include "keyturn/core/descriptor_parameters.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/dataset/view_poses.h"
 #include "keyturn/learning/evaluation_parts.h"
 #include "keyturn/learning/evaluation_report.h"
 #include "keyturn/learning/feature_cache.h"
@@ -91,6 +92,9 @@ int runEvaluate(const EvaluateArgs& a) {
   if (!a.label.empty()) plan.label = learning::parseLabelKind(a.label);
   plan.train_extra = a.train_extra;
   plan.open_set = a.open_set;
+  // Open-set folds are also read as turns of the table: the views' angles from the manifest.
+  for (const auto& p : plan.protocols)
+    if (p.rfind("open-set", 0) == 0) plan.azimuth_deg = dataset::datasetAzimuths(a.dataset);
   const auto describe = [&a](const std::string& dataset, int bins) {
     DescriptorOptions options = a.flags.options;
     options.histogram.bins = bins;

@@ -86,6 +86,22 @@ check "AUROC and rates are fractions" \
 check "every view is an unknown once" test "$(jq '[.rows[0].open_set.methods[0].unknown_views] | add' "$work/report.json")" -eq 64
 check "open-set accuracy never exceeds closed-set" \
   test "$(jq '[.rows[].open_set.methods[] | .known_accuracy_open <= .known_accuracy_closed] | all' "$work/report.json")" = true
+# The same folds read as turns of the table (3 views over 90°, from the manifest's angles): a turn
+# starts at each of a held-out group's 8 views: 4 folds × 3 known categories × 8 at the tested
+# elevation, and each category once unknown at both elevations: 4 × 2 × 8.
+check "the report reads the folds as turns of the table" grep -q "^### Over a turn of the table" "$work/report/report.md"
+check "  every held-out view starts a turn" \
+  test "$(jq -c '[.rows[].open_set.methods[].fused | [.known_sequences, .unknown_sequences]] | unique' "$work/report.json")" = '[[96,64]]'
+check "  its rates are fractions" \
+  test "$(jq '[.rows[].open_set.methods[].fused | (.false_accept, .known_accuracy_open, .known_accuracy_closed) | (. >= 0 and . <= 1)] | all' "$work/report.json")" = true
+for part in 1/2 2/2; do
+  "$KT" evaluate "$work/ds" --features kpd2+kpa3 --classifier xgboost,mlp --protocol open-set4 $fast -q \
+    --out "$work/sharded" --shard "$part"
+done
+"$KT" evaluate "$work/ds" --features kpd2+kpa3 --classifier xgboost,mlp --protocol open-set4 $fast -q \
+  --out "$work/sharded" --merge --json > "$work/sharded.json"
+check "array jobs' parts carry the turns' figures" \
+  test "$(jq -c '[.rows[].open_set.methods[].fused]' "$work/sharded.json")" = "$(jq -c '[.rows[].open_set.methods[].fused]' "$work/report.json")"
 "$KT" evaluate "$work/two" --features kpd2 --classifier xgboost --protocol open-set $fast -q --out "$work/r2" 2> "$work/r2.err"
 check "open-set on two categories is refused, naming why" grep -q "need at least 3 categories (the data has 2)" "$work/r2.err"
 finish

@@ -412,3 +412,43 @@ TEST(OpenSetProtocol, AFoldReportsFalseAcceptsAndKnownAccuracyBesideClosedSet) {
   EXPECT_NEAR(s[1].known_accuracy_open, s[1].known_accuracy_closed, 0.1);
   EXPECT_EQ(s[1].known_scores.size(), 360u);
 }
+
+// The open-set protocol's turns: each fold's views read as an object turning (3 views over 90°),
+// fused by pose. The clusters overlap (spread 4), so single views err, and are rejected (most are
+// accepted) independently from view to view: three views must then be right and accepted more
+// often, and unknowns accepted less often, than one (the majority rule leans the way most views do).
+TEST(OpenSetProtocol, AFoldReadAsTurnsOfTheTableFusesThreeViewsOfEachObject) {
+  const int per = 16;  // 8 views per elevation, 45° apart
+  const FeatureTable t = tableOf(clusters(12, 0, per, 12, 3, 4.0f));
+  std::vector<double> az;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) az.push_back(45.0 * static_cast<double>((r % per) / 2));
+  const Protocol p = makeProtocol("open-set4", t, 7, LabelKind::Category);
+  OpenSetOptions o;
+  o.methods = {"knn"};
+  std::vector<FoldOutcome> turning, single;
+  for (const Fold& f : p.folds) {
+    turning.push_back(evaluateOpenSetFold(t, {"kpd2"}, p.labels.of_row, f, fastXgboost(), o, {}, az));
+    single.push_back(evaluateOpenSetFold(t, {"kpd2"}, p.labels.of_row, f, fastXgboost(), o));
+  }
+  const OpenSetSummary s = summariseOpenSet(turning).at(0);
+  // A turn starts at every view of a held-out capture group (8 views, wrapping round): 4 folds ×
+  // 9 known categories × 8 at the tested elevation; 3 unknown categories × 2 elevations × 8.
+  EXPECT_EQ(s.fused_known, 4u * 9u * 8u);
+  EXPECT_EQ(s.fused_unknown, 4u * 3u * 2u * 8u);
+  EXPECT_LT(s.known_accuracy_closed, 0.9);  // single views do err
+  EXPECT_GT(s.fused_known_accuracy_closed, s.known_accuracy_closed + 0.05);
+  EXPECT_GT(s.fused_known_accuracy_open, s.known_accuracy_open + 0.05);
+  EXPECT_GT(s.false_accept, 0.02);
+  EXPECT_LT(s.fused_false_accept, s.false_accept);
+  EXPECT_LE(s.fused_known_accuracy_open, s.fused_known_accuracy_closed);
+  // The single views' figures do not depend on the angles; without them there are no turns.
+  const OpenSetSummary alone = summariseOpenSet(single).at(0);
+  EXPECT_DOUBLE_EQ(alone.known_accuracy_open, s.known_accuracy_open);
+  EXPECT_DOUBLE_EQ(alone.false_accept, s.false_accept);
+  EXPECT_EQ(alone.fused_known, 0u);
+  EXPECT_TRUE(std::isnan(alone.fused_false_accept));
+  EXPECT_EQ(errorOf([&] {
+              evaluateOpenSetFold(t, {"kpd2"}, p.labels.of_row, p.folds[0], fastXgboost(), o, {}, {1.0, 2.0});
+            }),
+            "open-set fold '" + p.folds[0].name + "': " + std::to_string(t.rows.size()) + " views but 2 azimuths");
+}

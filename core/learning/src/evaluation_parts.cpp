@@ -113,6 +113,11 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
       if (f.contains("open_set")) {
         const auto& os = f.at("open_set");
         o.unknown_views = jsonInteger(os, "unknown_views", std::size_t{0}, most, path);
+        if (os.contains("fused_known")) {
+          o.fused_known = jsonInteger(os, "fused_known", std::size_t{0}, most, path);
+          o.fused_unknown = jsonInteger(os, "fused_unknown", std::size_t{0}, most, path);
+          o.fused_known_closed_correct = jsonInteger(os, "fused_known_closed_correct", std::size_t{0}, o.fused_known, path);
+        }
         for (const auto& m : os.at("methods")) {
           OpenSetFoldOutcome mo;
           mo.method = m.at("method").get<std::string>();
@@ -122,6 +127,10 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
           mo.unknown_accepted = jsonInteger(m, "unknown_accepted", std::size_t{0}, o.unknown_views, path);
           mo.known_scores = m.at("known_scores").get<std::vector<double>>();
           mo.unknown_scores = m.at("unknown_scores").get<std::vector<double>>();
+          if (m.contains("fused_known_correct")) {  // the views had angles
+            mo.fused_known_correct = jsonInteger(m, "fused_known_correct", std::size_t{0}, most, path);
+            mo.fused_unknown_accepted = jsonInteger(m, "fused_unknown_accepted", std::size_t{0}, most, path);
+          }
           if (mo.known_scores.size() != o.test_views || mo.unknown_scores.size() != o.unknown_views)
             throw Error(path + ": fold '" + name + "': open-set scores for another number of views");
           o.open_set.push_back(std::move(mo));
@@ -159,8 +168,12 @@ std::string evaluationPartJson(const EvaluationRun& run, int shard, int shards) 
       for (const auto& m : o.open_set)
         methods.push_back({{"method", m.method}, {"threshold", m.threshold}, {"known_accepted", m.known_accepted},
                            {"known_correct", m.known_correct}, {"unknown_accepted", m.unknown_accepted},
-                           {"known_scores", m.known_scores}, {"unknown_scores", m.unknown_scores}});
-      folds.back()["open_set"] = {{"unknown_views", o.unknown_views}, {"methods", methods}};
+                           {"known_scores", m.known_scores}, {"unknown_scores", m.unknown_scores},
+                           {"fused_known_correct", m.fused_known_correct},
+                           {"fused_unknown_accepted", m.fused_unknown_accepted}});
+      folds.back()["open_set"] = {{"unknown_views", o.unknown_views}, {"methods", methods},
+                                  {"fused_known", o.fused_known}, {"fused_unknown", o.fused_unknown},
+                                  {"fused_known_closed_correct", o.fused_known_closed_correct}};
     }
   }
   const json j{{"format", kFormat}, {"version", kVersion}, {"shard", shard + 1}, {"shards", shards},

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <iomanip>
 #include <mutex>
 #include <nlohmann/json.hpp>
@@ -208,6 +209,13 @@ void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, in
   const std::vector<FoldJob> jobs = foldJobs(run, shard, shards);
   for (auto& r : run.rows) r.ev.folds.assign(r.proto->folds.size(), {});
   const auto& tables = run.tables;
+  std::map<int, std::vector<double>> azimuths;  // per bin count, one per table row (twins: NaN)
+  if (!run.plan.azimuth_deg.empty())
+    for (const auto& [bins, table] : tables)
+      for (const auto& row : table.rows) {
+        const auto it = run.plan.azimuth_deg.find(row.id);
+        azimuths[bins].push_back(it == run.plan.azimuth_deg.end() ? std::nan("") : it->second);
+      }
   std::mutex mutex;
   // All the shard's folds in one pool, across rows: no row's last fold holds up the next row.
   parallelFor(jobs.size(), run.plan.jobs, [&](std::size_t i) {
@@ -224,7 +232,8 @@ void evaluateRows(EvaluationRun& run, const std::function<void()>& fold_done, in
                                                                      run.plan.inner_folds, params, run.twins.at(r.bins), inner)
                                                   : 0;
       FoldOutcome o = evaluateOpenSetFold(tables.at(r.bins), featureSetBlocks(choices[pick]), r.proto->labels.of_row,
-                                          fold, params, run.plan.open_set, run.twins.at(r.bins));
+                                          fold, params, run.plan.open_set, run.twins.at(r.bins),
+                                          azimuths.count(r.bins) ? azimuths.at(r.bins) : std::vector<double>{});
       if (choices.size() > 1) o.chosen = choices[pick], o.inner_accuracy = std::move(inner);
       r.ev.folds[jobs[i].fold] = std::move(o);
     } else {

@@ -75,7 +75,7 @@ ModelFusion fusePredictions(const Model& m, const FeatureTable& t, const std::ve
     } else {
       s.belief.assign(classes, 1.0 / static_cast<double>(std::max<std::size_t>(1, classes)));
     }
-    const bool mostly_unknown = open && 2 * unknowns[i] >= i + 1;
+    const bool mostly_unknown = open && fusedAnswerIsUnknown(unknowns[i], i + 1);
     s.answer = s.best < 0 ? (unknowns[i] ? Answer::Unknown : Answer::NoObject) : mostly_unknown ? Answer::Unknown : Answer::Class;
     if (out.stopped_after == 0 && s.answer == Answer::Class && s.belief[static_cast<std::size_t>(s.best)] >= o.stop_belief)
       out.stopped_after = i + 1;

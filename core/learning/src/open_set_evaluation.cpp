@@ -5,12 +5,78 @@
 #include <map>
 
 #include "keyturn/core/error.h"
+#include "keyturn/learning/fusion_evaluation.h"
+#include "fold_views.h"
 
 namespace keyturn::learning {
+namespace {
+
+// One side of a fold (its known test views or its unknown views) as fusion sees it: each view's
+// probabilities, angle and pose evidence, and each capture group's views by angle.
+struct TurningViews {
+  std::vector<FusionView> views;
+  std::map<std::string, std::vector<std::pair<double, int>>> groups;  // angle, index into views
+};
+
+TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>& rows, const Matrix& x,
+                          const Matrix& p, const PoseReferences& refs, const std::vector<double>& az) {
+  TurningViews out;
+  for (std::size_t k = 0; k < rows.size(); ++k) {
+    const auto row = static_cast<Eigen::Index>(k);
+    FusionView v;
+    v.probabilities.assign(p.row(row).data(), p.row(row).data() + p.cols());
+    v.azimuth_deg = az[rows[k]];
+    if (std::isfinite(v.azimuth_deg)) {
+      v.pose = poseEvidence(refs, x.row(row));
+      out.groups[detail::captureGroupOf(t.rows[rows[k]])].push_back({v.azimuth_deg, static_cast<int>(k)});
+    }
+    out.views.push_back(std::move(v));
+  }
+  return out;
+}
+
+// Calls f(views of one sequence) for the turn starting at every view whose group has all of it.
+template <class F>
+void forEachTurn(const TurningViews& tv, F f) {
+  FusionSchedule turn;
+  turn.spread_deg = kOpenSetFusedSpreadDeg;
+  const std::vector<double> offsets = turn.offsets(kOpenSetFusedViews);
+  const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
+  for (const auto& [group, members] : tv.groups)
+    for (const auto& [start_deg, start] : members) {
+      std::vector<int> seq;
+      for (double off : offsets) {
+        const int i = detail::viewAt(members, start_deg + off, tolerance_deg);
+        if (i < 0) break;
+        seq.push_back(i);
+      }
+      if (seq.size() == offsets.size()) f(seq);
+    }
+}
+
+// The fused answer of a sequence: the class index, or -1 for "unknown". Closed-set without a
+// scorer; with one, a view it rejects adds no evidence and the open-set rule decides.
+int fusedClass(const TurningViews& tv, const std::vector<int>& seq, const OpenSet* scorer = nullptr,
+               const std::vector<double>* scores = nullptr) {
+  std::vector<FusionView> evidence;
+  std::size_t unknown = 0;
+  for (int i : seq) {
+    if (scorer && scorer->answerFor((*scores)[static_cast<std::size_t>(i)]) == Answer::Unknown) {
+      ++unknown;
+      continue;
+    }
+    evidence.push_back(tv.views[static_cast<std::size_t>(i)]);
+  }
+  if (evidence.empty() || (scorer && fusedAnswerIsUnknown(unknown, seq.size()))) return -1;
+  return fuseViews(evidence, FusionOptions()).best.back();
+}
+
+}  // namespace
 
 FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                                 const std::vector<int>& labels, const Fold& fold, const ClassifierParams& params,
-                                const OpenSetOptions& options, const TwinRows& twins) {
+                                const OpenSetOptions& options, const TwinRows& twins,
+                                const std::vector<double>& az) {
   if (fold.unknown.empty()) throw Error("fold '" + fold.name + "' has no unknown views (not an open-set fold)");
   const std::vector<std::size_t> train = withTwins(fold.train, twins);
   FoldOutcome out = startFoldOutcome(fold, train);
@@ -40,6 +106,33 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
     ++cells[{truth, predicted}];
   }
   for (const auto& [tp, n] : cells) out.confusion.push_back({tp.first, tp.second, n});
+  // The turns: pose references from the training views with an angle (twins have none).
+  if (!az.empty() && az.size() != table.rows.size())
+    throw Error("open-set fold '" + fold.name + "': " + std::to_string(table.rows.size()) + " views but " +
+                std::to_string(az.size()) + " azimuths");
+  std::vector<std::size_t> posed;
+  std::vector<int> posed_y;
+  std::vector<double> posed_az;
+  std::vector<std::string> posed_group;
+  for (std::size_t k = 0; k < train.size() && !az.empty(); ++k)
+    if (std::isfinite(az[train[k]])) {
+      posed.push_back(train[k]), posed_y.push_back(compact[k]), posed_az.push_back(az[train[k]]);
+      posed_group.push_back(detail::captureGroupOf(table.rows[train[k]]));
+    }
+  TurningViews known, unknown;
+  if (!posed.empty()) {
+    const PoseReferences refs =
+        fitPoseReferences(table.select(blocks, posed), posed_y, posed_az, posed_group, classes, FusionOptions().bin_deg);
+    known = turningViews(table, fold.test, xknown, pknown, refs, az);
+    unknown = turningViews(table, fold.unknown, xunknown, punknown, refs, az);
+  }
+  const auto truthOf = [&](const std::vector<int>& seq) { return labels[fold.test[static_cast<std::size_t>(seq[0])]]; };
+  forEachTurn(known, [&](const std::vector<int>& seq) {
+    ++out.fused_known;
+    const int c = fusedClass(known, seq);
+    out.fused_known_closed_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
+  });
+  forEachTurn(unknown, [&](const std::vector<int>&) { ++out.fused_unknown; });
   for (const OpenSet& s : calibrateOpenSets(xtrain, compact, categories, params, options)) {
     OpenSetFoldOutcome o;
     o.method = s.method;
@@ -49,6 +142,13 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
     for (std::size_t k = 0; k < o.known_scores.size(); ++k)
       if (s.answerFor(o.known_scores[k]) == Answer::Class) ++o.known_accepted, o.known_correct += right[k];
     for (double u : o.unknown_scores) o.unknown_accepted += s.answerFor(u) == Answer::Class;
+    forEachTurn(known, [&](const std::vector<int>& seq) {
+      const int c = fusedClass(known, seq, &s, &o.known_scores);
+      o.fused_known_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
+    });
+    forEachTurn(unknown, [&](const std::vector<int>& seq) {
+      o.fused_unknown_accepted += fusedClass(unknown, seq, &s, &o.unknown_scores) >= 0;
+    });
     out.open_set.push_back(std::move(o));
   }
   return out;
@@ -58,13 +158,15 @@ std::vector<OpenSetSummary> summariseOpenSet(const std::vector<FoldOutcome>& fol
   std::vector<OpenSetSummary> out;
   std::vector<std::vector<double>> aurocs;
   std::vector<std::size_t> accepted_unknown, accepted_known, correct_open, correct_closed;
+  std::vector<std::size_t> fused_accepted_unknown, fused_correct_open, fused_correct_closed;
   for (const auto& f : folds)
     for (std::size_t m = 0; m < f.open_set.size(); ++m) {
       const OpenSetFoldOutcome& o = f.open_set[m];
       if (m >= out.size()) {
-        out.push_back({o.method});
+        out.emplace_back().method = o.method;
         aurocs.emplace_back();
         accepted_unknown.push_back(0), accepted_known.push_back(0), correct_open.push_back(0), correct_closed.push_back(0);
+        fused_accepted_unknown.push_back(0), fused_correct_open.push_back(0), fused_correct_closed.push_back(0);
       }
       OpenSetSummary& s = out[m];
       if (s.method != o.method) throw Error("open-set folds list their methods in different orders");
@@ -76,6 +178,11 @@ std::vector<OpenSetSummary> summariseOpenSet(const std::vector<FoldOutcome>& fol
       accepted_known[m] += o.known_accepted;
       correct_open[m] += o.known_correct;
       correct_closed[m] += f.correct;
+      s.fused_known += f.fused_known;
+      s.fused_unknown += f.fused_unknown;
+      fused_accepted_unknown[m] += o.fused_unknown_accepted;
+      fused_correct_open[m] += o.fused_known_correct;
+      fused_correct_closed[m] += f.fused_known_closed_correct;
       s.known_scores.insert(s.known_scores.end(), o.known_scores.begin(), o.known_scores.end());
       s.unknown_scores.insert(s.unknown_scores.end(), o.unknown_scores.begin(), o.unknown_scores.end());
     }
@@ -91,6 +198,12 @@ std::vector<OpenSetSummary> summariseOpenSet(const std::vector<FoldOutcome>& fol
     s.known_accuracy_open = static_cast<double>(correct_open[m]) / nk;
     s.known_accuracy_closed = static_cast<double>(correct_closed[m]) / nk;
     s.known_rejected = 1.0 - static_cast<double>(accepted_known[m]) / nk;
+    const auto rate = [](std::size_t n, std::size_t of) {
+      return of ? static_cast<double>(n) / static_cast<double>(of) : std::nan("");
+    };
+    s.fused_false_accept = rate(fused_accepted_unknown[m], s.fused_unknown);
+    s.fused_known_accuracy_open = rate(fused_correct_open[m], s.fused_known);
+    s.fused_known_accuracy_closed = rate(fused_correct_closed[m], s.fused_known);
   }
   return out;
 }

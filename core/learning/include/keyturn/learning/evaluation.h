@@ -26,6 +26,9 @@ struct OpenSetFoldOutcome {
   std::size_t known_correct = 0;    // … and given their true class
   std::size_t unknown_accepted = 0; // unknown views scoring >= threshold (false accepts)
   std::vector<double> known_scores, unknown_scores;
+  // Fused over a turn (FoldOutcome::fused_*'s sequences, the open-set rule of view_fusion.h):
+  std::size_t fused_known_correct = 0;     // known sequences answered their true class
+  std::size_t fused_unknown_accepted = 0;  // unknown sequences given a class
 };
 
 struct FoldOutcome {
@@ -42,6 +45,10 @@ struct FoldOutcome {
   // calibrated threshold and scores; test_views and correct are then the known views, closed-set.
   std::size_t unknown_views = 0;
   std::vector<OpenSetFoldOutcome> open_set;
+  // … and, where the views have turntable angles, the same views read as sequences of one object
+  // turning (kOpenSetFusedViews views over kOpenSetFusedSpreadDeg, open_set_evaluation.h), fused
+  // by pose: how many known and unknown sequences, and the known ones right closed-set.
+  std::size_t fused_known = 0, fused_unknown = 0, fused_known_closed_correct = 0;
   double accuracy() const { return test_views ? static_cast<double>(correct) / static_cast<double>(test_views) : 0.0; }
 };
 

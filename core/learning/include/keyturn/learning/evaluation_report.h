@@ -35,6 +35,9 @@ struct EvaluationPlan {
   std::vector<std::string> train_extra;     // datasets of twins to train on (training_twins.h)
   // The open-set protocol's methods (all, measured side by side), stated false-accept rate and groups.
   OpenSetOptions open_set = {openSetMethods()};
+  // Each view's turntable angle by view id (dataset/view_poses.h): the open-set protocol then also
+  // reads its folds' views as turning sequences fused by pose. Empty: single views only.
+  std::map<std::string, double> azimuth_deg;
 };
 
 struct EvaluationRow {

@@ -11,10 +11,20 @@
 
 namespace keyturn::learning {
 
+// The turn the fused figures read: this many views spread evenly over this many degrees of
+// one capture group (instance and elevation), starting at each of its views (the fusion target's
+// schedule, docs/results.md "Multi-view fusion").
+constexpr int kOpenSetFusedViews = 3;
+constexpr double kOpenSetFusedSpreadDeg = 90;
+
 // fold.unknown must not be empty; labels: class index per table row (twins included).
+// azimuth_deg: each table row's turntable angle (NaN: none); when given, the known and unknown
+// views are also read as turning sequences and fused by pose (FoldOutcome::fused_*): closed-set,
+// and per method with the open-set rule (view_fusion.h, fusedAnswerIsUnknown).
 FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                                 const std::vector<int>& labels, const Fold& fold, const ClassifierParams& params,
-                                const OpenSetOptions& options, const TwinRows& twins = {});
+                                const OpenSetOptions& options, const TwinRows& twins = {},
+                                const std::vector<double>& azimuth_deg = {});
 
 // A row's open-set figures over its folds, one per method (the folds' order of methods).
 struct OpenSetSummary {
@@ -26,6 +36,9 @@ struct OpenSetSummary {
   double known_rejected = 0;                  // known views rejected / known views
   std::size_t known_views = 0, unknown_views = 0;
   std::vector<double> known_scores, unknown_scores;  // all folds, for the ROC curve
+  // Fused over kOpenSetFusedViews views (NaN without sequences): as above, per sequence.
+  std::size_t fused_known = 0, fused_unknown = 0;
+  double fused_false_accept = 0, fused_known_accuracy_open = 0, fused_known_accuracy_closed = 0;
 };
 std::vector<OpenSetSummary> summariseOpenSet(const std::vector<FoldOutcome>& folds);
 
