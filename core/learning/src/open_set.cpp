@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "keyturn/core/error.h"
+#include "standardised_views.h"
 
 namespace keyturn::learning {
 
@@ -42,27 +43,21 @@ std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y) {
   const int classes = y.empty() ? 0 : *std::max_element(y.begin(), y.end()) + 1;
   std::vector<std::vector<Eigen::Index>> rows_of(static_cast<std::size_t>(classes));
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
-  std::vector<std::vector<double>> nearest(static_cast<std::size_t>(classes));
-  const double cols = static_cast<double>(std::max<Eigen::Index>(1, refs.cols()));
-  for (std::size_t c = 0; c < rows_of.size(); ++c)  // within each class only: the sum of n_c², not n²
+  std::vector<float> scale(static_cast<std::size_t>(classes), std::nanf(""));
+  std::vector<double> all;
+  for (std::size_t c = 0; c < rows_of.size(); ++c) {  // within each class only: the sum of n_c², not n²
+    std::vector<double> nearest;
     for (Eigen::Index a : rows_of[c]) {
       double best = std::numeric_limits<double>::infinity();
       for (Eigen::Index b : rows_of[c])
-        if (b != a) best = std::min(best, static_cast<double>((refs.row(a) - refs.row(b)).squaredNorm()));
-      if (std::isfinite(best)) nearest[c].push_back(std::sqrt(best / cols));
+        if (b != a) best = std::min(best, detail::rmsDistance(refs.row(a), refs.row(b)));
+      if (std::isfinite(best)) nearest.push_back(best);
     }
-  auto median = [](std::vector<double> v) {
-    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
-    return v[v.size() / 2];
-  };
-  std::vector<float> scale(static_cast<std::size_t>(classes), std::nanf(""));
-  std::vector<double> all;
-  for (int c = 0; c < classes; ++c)
-    if (!nearest[static_cast<std::size_t>(c)].empty()) {
-      scale[static_cast<std::size_t>(c)] = static_cast<float>(std::max(1e-6, median(nearest[static_cast<std::size_t>(c)])));
-      all.push_back(scale[static_cast<std::size_t>(c)]);
-    }
-  const float fallback = all.empty() ? 1.f : static_cast<float>(median(all));
+    if (nearest.empty()) continue;
+    scale[c] = static_cast<float>(std::max(1e-6, detail::medianOf(nearest)));
+    all.push_back(scale[c]);
+  }
+  const float fallback = all.empty() ? 1.f : static_cast<float>(detail::medianOf(all));
   for (float& v : scale)
     if (std::isnan(v)) v = fallback;
   return scale;
@@ -78,25 +73,8 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   if (neighbours < 1) throw Error("knn open-set scores need at least one neighbour (not " + std::to_string(neighbours) + ")");
   if (static_cast<std::size_t>(x.rows()) != y.size()) throw Error("knn open-set scores: rows and labels differ in number");
   s.neighbours = neighbours;
-  const Eigen::Index cols = x.cols();
-  s.mean.assign(static_cast<std::size_t>(cols), 0.f);
-  s.scale.assign(static_cast<std::size_t>(cols), 1.f);
-  for (Eigen::Index k = 0; k < cols; ++k) {
-    double sum = 0, sq = 0;
-    int n = 0;
-    for (Eigen::Index r = 0; r < x.rows(); ++r)
-      if (std::isfinite(x(r, k))) sum += x(r, k), sq += static_cast<double>(x(r, k)) * x(r, k), ++n;
-    const double m = n ? sum / n : 0.0;
-    const double sd = n ? std::sqrt(std::max(0.0, sq / n - m * m)) : 0.0;
-    s.mean[static_cast<std::size_t>(k)] = static_cast<float>(m);
-    s.scale[static_cast<std::size_t>(k)] = sd > 1e-9 ? static_cast<float>(sd) : 1.f;  // a constant column adds nothing
-  }
-  s.references.resize(x.rows(), cols);
-  for (Eigen::Index r = 0; r < x.rows(); ++r)
-    for (Eigen::Index k = 0; k < cols; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      s.references(r, k) = std::isfinite(x(r, k)) ? (x(r, k) - s.mean[kk]) / s.scale[kk] : 0.f;
-    }
+  detail::fitStandardisation(x, s.mean, s.scale);
+  s.references = detail::standardisedRows(x, s.mean, s.scale);
   s.reference_class = y;
   if (method == "knn-relative") s.class_scale = classScales(s.references, y);
   return s;
@@ -135,11 +113,7 @@ std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matri
     if (x.cols() != static_cast<Eigen::Index>(s.mean.size()))
       throw Error("knn open-set scores: the model has " + std::to_string(s.mean.size()) + " features, the view " +
                   std::to_string(x.cols()));
-    Eigen::RowVectorXf v(x.cols());
-    for (Eigen::Index k = 0; k < x.cols(); ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      v(k) = std::isfinite(x(r, k)) ? (x(r, k) - s.mean[kk]) / s.scale[kk] : 0.f;
-    }
+    const Eigen::RowVectorXf v = detail::standardisedRow(x.row(r), s.mean, s.scale);
     double d = nearestDistance(s, v, static_cast<int>(best));
     if (s.method == "knn-relative")
       d = static_cast<std::size_t>(best) < s.class_scale.size() ? d / s.class_scale[static_cast<std::size_t>(best)] : std::nan("");

@@ -35,13 +35,13 @@ TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>&
   return out;
 }
 
-// Calls f(views of one sequence) for the turn starting at every view whose group has all of it.
-template <class F>
-void forEachTurn(const TurningViews& tv, F f) {
+// Each turn's views (indices into tv.views): one starting at every view whose group has all of it.
+std::vector<std::vector<int>> turnsOf(const TurningViews& tv) {
   FusionSchedule turn;
   turn.spread_deg = kOpenSetFusedSpreadDeg;
   const std::vector<double> offsets = turn.offsets(kOpenSetFusedViews);
   const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
+  std::vector<std::vector<int>> turns;
   for (const auto& [group, members] : tv.groups)
     for (const auto& [start_deg, start] : members) {
       std::vector<int> seq;
@@ -50,8 +50,9 @@ void forEachTurn(const TurningViews& tv, F f) {
         if (i < 0) break;
         seq.push_back(i);
       }
-      if (seq.size() == offsets.size()) f(seq);
+      if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
     }
+  return turns;
 }
 
 // The fused answer of a sequence: the class index, or -1 for "unknown". Closed-set without a
@@ -126,13 +127,14 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
     known = turningViews(table, fold.test, xknown, pknown, refs, az);
     unknown = turningViews(table, fold.unknown, xunknown, punknown, refs, az);
   }
+  const std::vector<std::vector<int>> known_turns = turnsOf(known), unknown_turns = turnsOf(unknown);
   const auto truthOf = [&](const std::vector<int>& seq) { return labels[fold.test[static_cast<std::size_t>(seq[0])]]; };
-  forEachTurn(known, [&](const std::vector<int>& seq) {
-    ++out.fused_known;
+  out.fused_known = known_turns.size();
+  out.fused_unknown = unknown_turns.size();
+  for (const auto& seq : known_turns) {
     const int c = fusedClass(known, seq);
     out.fused_known_closed_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
-  });
-  forEachTurn(unknown, [&](const std::vector<int>&) { ++out.fused_unknown; });
+  }
   for (const OpenSet& s : calibrateOpenSets(xtrain, compact, categories, params, options)) {
     OpenSetFoldOutcome o;
     o.method = s.method;
@@ -142,13 +144,11 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
     for (std::size_t k = 0; k < o.known_scores.size(); ++k)
       if (s.answerFor(o.known_scores[k]) == Answer::Class) ++o.known_accepted, o.known_correct += right[k];
     for (double u : o.unknown_scores) o.unknown_accepted += s.answerFor(u) == Answer::Class;
-    forEachTurn(known, [&](const std::vector<int>& seq) {
+    for (const auto& seq : known_turns) {
       const int c = fusedClass(known, seq, &s, &o.known_scores);
       o.fused_known_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
-    });
-    forEachTurn(unknown, [&](const std::vector<int>& seq) {
-      o.fused_unknown_accepted += fusedClass(unknown, seq, &s, &o.unknown_scores) >= 0;
-    });
+    }
+    for (const auto& seq : unknown_turns) o.fused_unknown_accepted += fusedClass(unknown, seq, &s, &o.unknown_scores) >= 0;
     out.open_set.push_back(std::move(o));
   }
   return out;

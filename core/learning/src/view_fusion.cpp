@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "keyturn/core/error.h"
+#include "standardised_views.h"
 
 namespace keyturn::learning {
 namespace {
@@ -12,17 +13,6 @@ namespace {
 int binOf(double azimuth_deg, double bin_deg, int bins) {
   const long b = std::lround(azimuth_deg / bin_deg);
   return static_cast<int>(((b % bins) + bins) % bins);
-}
-
-double medianOf(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
-double rmsDistance(const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
-  return std::sqrt(static_cast<double>((a - b).squaredNorm()) / static_cast<double>(std::max<Eigen::Index>(1, a.size())));
 }
 
 // Log of a probability, floored so that one view cannot rule a class out alone.
@@ -66,24 +56,8 @@ PoseReferences fitPoseReferences(const Matrix& x, const std::vector<int>& y, con
   PoseReferences r;
   r.classes = classes;
   r.bins = static_cast<int>(std::lround(360.0 / bin_deg));
-  const Eigen::Index cols = x.cols();
-  r.mean.assign(static_cast<std::size_t>(cols), 0.f);
-  r.scale.assign(static_cast<std::size_t>(cols), 1.f);
-  for (Eigen::Index k = 0; k < cols; ++k) {
-    double sum = 0, sq = 0;
-    int m = 0;
-    for (Eigen::Index i = 0; i < x.rows(); ++i)
-      if (std::isfinite(x(i, k))) sum += x(i, k), sq += static_cast<double>(x(i, k)) * x(i, k), ++m;
-    const double mu = m ? sum / m : 0.0, sd = m ? std::sqrt(std::max(0.0, sq / m - mu * mu)) : 0.0;
-    r.mean[static_cast<std::size_t>(k)] = static_cast<float>(mu);
-    r.scale[static_cast<std::size_t>(k)] = sd > 1e-9 ? static_cast<float>(sd) : 1.f;
-  }
-  r.references.resize(x.rows(), cols);
-  for (Eigen::Index i = 0; i < x.rows(); ++i)
-    for (Eigen::Index k = 0; k < cols; ++k) {
-      const auto kk = static_cast<std::size_t>(k);
-      r.references(i, k) = std::isfinite(x(i, k)) ? (x(i, k) - r.mean[kk]) / r.scale[kk] : 0.f;
-    }
+  detail::fitStandardisation(x, r.mean, r.scale);
+  r.references = detail::standardisedRows(x, r.mean, r.scale);
   r.reference_class = y;
   for (double a : azimuth_deg) r.reference_bin.push_back(binOf(a, bin_deg, r.bins));
   // sigma: how far a training view lies from its class seen another way (another instance or
@@ -93,14 +67,14 @@ PoseReferences fitPoseReferences(const Matrix& x, const std::vector<int>& y, con
     double best_across = std::numeric_limits<double>::infinity(), best_within = best_across;
     for (std::size_t j = 0; j < n; ++j) {
       if (j == i || y[j] != y[i]) continue;
-      const double d = rmsDistance(r.references.row(static_cast<Eigen::Index>(i)), r.references.row(static_cast<Eigen::Index>(j)));
+      const double d = detail::rmsDistance(r.references.row(static_cast<Eigen::Index>(i)), r.references.row(static_cast<Eigen::Index>(j)));
       best_within = std::min(best_within, d);
       if (group[j] != group[i] && r.reference_bin[j] == r.reference_bin[i]) best_across = std::min(best_across, d);
     }
     if (std::isfinite(best_across)) across.push_back(best_across);
     if (std::isfinite(best_within)) within.push_back(best_within);
   }
-  const double s = !across.empty() ? medianOf(across) : medianOf(within);
+  const double s = !across.empty() ? detail::medianOf(across) : detail::medianOf(within);
   r.sigma = std::isfinite(s) && s > 1e-9 ? s : 1.0;
   return r;
 }
@@ -109,17 +83,13 @@ Matrix poseEvidence(const PoseReferences& r, const Eigen::RowVectorXf& x) {
   if (x.size() != static_cast<Eigen::Index>(r.mean.size()))
     throw Error("pose evidence: the references have " + std::to_string(r.mean.size()) + " features, the view " +
                 std::to_string(x.size()));
-  Eigen::RowVectorXf v(x.size());
-  for (Eigen::Index k = 0; k < x.size(); ++k) {
-    const auto kk = static_cast<std::size_t>(k);
-    v(k) = std::isfinite(x(k)) ? (x(k) - r.mean[kk]) / r.scale[kk] : 0.f;
-  }
+  const Eigen::RowVectorXf v = detail::standardisedRow(x, r.mean, r.scale);
   const double inf = std::numeric_limits<double>::infinity();
   std::vector<std::vector<double>> nearest(static_cast<std::size_t>(r.classes), std::vector<double>(static_cast<std::size_t>(r.bins), inf));
   for (Eigen::Index i = 0; i < r.references.rows(); ++i) {
     const auto c = static_cast<std::size_t>(r.reference_class[static_cast<std::size_t>(i)]);
     auto& d = nearest[c][static_cast<std::size_t>(r.reference_bin[static_cast<std::size_t>(i)])];
-    d = std::min(d, rmsDistance(v, r.references.row(i)));
+    d = std::min(d, detail::rmsDistance(v, r.references.row(i)));
   }
   Matrix e(r.classes, r.bins);
   const double two_s2 = 2 * r.sigma * r.sigma;
