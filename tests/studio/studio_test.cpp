@@ -185,8 +185,9 @@ class StudioTest : public QObject {
   }
 
   // Issue 34: the belief fused over the views of the table's turn, beside the single view's. At
-  // rest it holds one view however many frames come; a turn adds the views it brings (one per 5°
-  // bin); the finished turn's belief stays; another object starts it again.
+  // rest it holds one view however many frames come (the newest: the bowl's first frame may be
+  // unknown alone, 14 % of its frames are); a turn adds the views it brings (one per 5° bin); the
+  // finished turn's belief stays; another object starts it again.
   void theFusedBeliefFollowsTheTurningTable() {
     StudioWindow w(*factory_, simulated("ycb_035_power_drill"));
     w.show();

@@ -1,8 +1,11 @@
 #pragma once
 // One object's live views fused as the turntable turns it (the studio's fused belief beside the
 // single view's): each view's answer, class probabilities and features arrive with the table's
-// angle; a view adds evidence only when its azimuth bin (the pose references' bin, 5°) is new to
-// the sequence, so a table at rest does not count one view many times over. Pose fusion when the
+// angle; one view stands for each azimuth bin (the pose references' bin, 5°), so a table at rest
+// does not count one view many times over. While the table stays in the sequence's newest bin, the
+// newest frame stands for it: a first frame taken as the object was set down (or a noisy one)
+// does not hold the answer until the table turns. A bin the table has left is not taken again.
+// Pose fusion when the
 // model holds pose references, else independent. With an open-set model a view answered
 // "unknown" adds no evidence and the fused answer is "unknown" while at least half the views are
 // (as model_fusion.h); a "no object" view is not a view of the object and is left out.
@@ -21,14 +24,14 @@ class LiveFusion {
   explicit LiveFusion(const ModelInfo& model, FusionOptions options = {});
 
   const std::string& method() const { return options_.method; }
-  // False when the view is not taken: no model, "no object", no finite angle, a bin the sequence
-  // has, or probabilities that are not one per class. features: the classifier's input (for the
-  // pose term).
+  // False when the view is not taken: no model, "no object", no finite angle, a bin the table has
+  // left, or probabilities (features, for the pose term) that are not one per class (the
+  // classifier's input). A view in the newest bin replaces that bin's view.
   bool add(Answer answer, const std::vector<float>& probabilities, const std::vector<float>& features,
            double azimuth_deg);
   void reset();  // a new object, or a new turn
 
-  std::size_t views() const { return bins_.size(); }  // taken, "unknown" ones included
+  std::size_t views() const { return taken_.size(); }  // taken, "unknown" ones included
   std::size_t unknownViews() const { return unknown_; }
   double turnedDeg() const { return turned_deg_; }     // summed turn between the views taken
   std::vector<double> belief() const;                 // over the classes; empty before any evidence
@@ -40,10 +43,17 @@ class LiveFusion {
   PoseReferences references_;
   bool open_set_ = false;
   FusionOptions options_;
+  struct Taken {
+    int bin = 0;
+    bool unknown = false;
+    FusionView view;
+  };
+  void refuse();  // the state again from the views taken
+
+  std::vector<Taken> taken_;  // one per bin, in the order the table reached them
   FusionState state_{FusionOptions{}};
-  std::vector<int> bins_;
   std::size_t unknown_ = 0;
-  double last_deg_ = 0, turned_deg_ = 0;
+  double turned_deg_ = 0;
 };
 
 }  // namespace keyturn::learning
