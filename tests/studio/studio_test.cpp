@@ -168,6 +168,10 @@ class StudioTest : public QObject {
       QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString(object), waitMs(20000));
       QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, waitMs(20000));
       QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
+      auto* legend = w.findChild<QLabel*>("pdfLegend");  // the chart's series, named above it
+      QVERIFY(legend);
+      QTRY_VERIFY2_WITH_TIMEOUT(legend->text().contains(QString("mean of %1").arg(object)), qPrintable(legend->text()),
+                                waitMs(5000));
     }
   }
 

@@ -98,37 +98,36 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   layout->addWidget(top);
 
 
-  auto* pdf_box = new QGroupBox(tr("PDFs: this view over the class mean"));
+  auto* pdf_box = new QGroupBox(tr("PDFs over their bins: this view and the class mean"));
   auto* pl = new QVBoxLayout(pdf_box);
   block_ = new QComboBox;
   pl->addWidget(block_);
   chart_ = new QChart;
   chart_->setMargins(QMargins(2, 2, 2, 2));
-  chart_->legend()->setAlignment(Qt::AlignBottom);
+  // The series are named in a line above the chart, not in its legend, and the x axis has no
+  // title (the bins are in the box's title): in a 140 px chart Qt Charts gave the legend and
+  // title the height first and elided every x label to "…".
+  chart_->legend()->hide();
+  pdf_legend_ = new QLabel;
+  pdf_legend_->setObjectName("pdfLegend");
+  pdf_legend_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Preferred);  // a long class name never widens the dock
+  pl->addWidget(pdf_legend_);
   view_series_ = new QLineSeries;
-  view_series_->setName(tr("this view"));
   view_series_->setPen(QPen(QColor(41, 128, 185), 2));
   mean_series_ = new QLineSeries;
-  mean_series_->setName(tr("class mean"));
   mean_series_->setPen(QPen(QColor(230, 126, 34), 2, Qt::DashLine));
+  showPdfLegend(QString());
   chart_->addSeries(mean_series_);
   chart_->addSeries(view_series_);
   x_axis_ = new QValueAxis;
   y_axis_ = new QValueAxis;
-  // A small chart in a side dock: at the default font its labels and titles were elided to "…".
   QFont small = chart_->font();
   small.setPointSizeF(std::max(6.0, small.pointSizeF() * 0.75));
-  for (auto* axis : {x_axis_, y_axis_}) {
-    axis->setLabelsFont(small);
-    axis->setTitleFont(small);
-  }
-  chart_->legend()->setFont(small);
-  x_axis_->setTitleText(tr("bin"));
+  for (auto* axis : {x_axis_, y_axis_}) axis->setLabelsFont(small);
   x_axis_->setLabelFormat("%d");
   x_axis_->setTickType(QValueAxis::TicksDynamic);  // whole bins: 0, B/4, B/2, …
   x_axis_->setTickAnchor(0);
   x_axis_->setTickInterval(8);  // never 0: a dynamic axis with no interval makes ticks without end
-  y_axis_->setTitleText(tr("p"));
   y_axis_->setLabelFormat("%.2f");
   y_axis_->setTickCount(3);
   chart_->addAxis(x_axis_, Qt::AlignBottom);
@@ -139,7 +138,7 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   }
   auto* view = new QChartView(chart_);
   view->setRenderHint(QPainter::Antialiasing);
-  view->setMinimumHeight(140);  // grows with the dock; at 220 the window did not fit a 1000 px screen
+  view->setMinimumHeight(120);  // grows with the dock; at 220 the window did not fit a 1000 px screen
   pl->addWidget(view, 1);
   layout->addWidget(pdf_box, 1);
 
@@ -316,13 +315,18 @@ void RecognitionPanel::plot(const ViewResult& r) {
       mean.append(QPointF(static_cast<double>(i), m[offset + i]));
       top = std::max(top, static_cast<double>(m[offset + i]));
     }
-    mean_series_->setName(tr("mean of %1").arg(QString::fromStdString(info.classes[static_cast<std::size_t>(best)])));
+    showPdfLegend(QString::fromStdString(info.classes[static_cast<std::size_t>(best)]));
   }
   view_series_->replace(view);
   mean_series_->replace(mean);
   x_axis_->setRange(0, std::max<double>(1, static_cast<double>(pdf.size()) - 1));
   x_axis_->setTickInterval(std::max(1.0, std::round(static_cast<double>(pdf.size()) / 4.0)));
   y_axis_->setRange(0, top > 0 ? top * 1.1 : 1);
+}
+
+void RecognitionPanel::showPdfLegend(const QString& cls) {
+  pdf_legend_->setText(QString("<span style='color:#2980b9'>━ %1</span> &nbsp; <span style='color:#e67e22'>╍ %2</span>")
+                           .arg(tr("this view"), (cls.isEmpty() ? tr("class mean") : tr("mean of %1").arg(cls)).toHtmlEscaped()));
 }
 
 }  // namespace keyturn::studio

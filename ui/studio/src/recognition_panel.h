@@ -53,12 +53,14 @@ class RecognitionPanel : public QWidget {
   // The stability line and the verdict (with `detail` after it, small), coloured by agreement,
   // purple for unknown, grey for no object.
   void showVerdict(const QString& detail);
+  void showPdfLegend(const QString& cls);  // the series named above the chart; cls empty: no class yet
 
   QLineEdit* model_path_;
   QLabel *model_info_, *keypoints_, *stability_label_, *verdict_;
   std::vector<QLabel*> names_;
   std::vector<QProgressBar*> bars_;
   QLabel* fused_verdict_;
+  QLabel* pdf_legend_;
   QString fused_class_;
   double fused_belief_ = 0;
   int fused_views_ = 0;
