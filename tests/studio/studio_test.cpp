@@ -167,7 +167,9 @@ class StudioTest : public QObject {
       w.show();
       QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString(object), waitMs(20000));
       QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, waitMs(20000));
-      QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));
+      // The bowl alone is unknown on 4 of 48 simulated frames at 0° (2026-12-05): at 0.8, 5 such
+      // frames of 20 would fail one run in about 50; at 0.7 (7 of 20) about one in 1,200.
+      QVERIFY2(w.recognisedAgreement() >= 0.7, qPrintable(QString::number(w.recognisedAgreement())));
       auto* legend = w.findChild<QLabel*>("pdfLegend");  // the chart's series, named above it
       QVERIFY(legend);
       QTRY_VERIFY2_WITH_TIMEOUT(legend->text().contains(QString("mean of %1").arg(object)), qPrintable(legend->text()),
