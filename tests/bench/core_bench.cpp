@@ -21,6 +21,7 @@
 #include "keyturn/core/keypoint_functions.h"
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/core/radius_search.h"
+#include "keyturn/learning/live_fusion.h"
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
@@ -243,6 +244,23 @@ static void BM_RecognizeLive(benchmark::State& s) {
   for (auto _ : s) benchmark::DoNotOptimize(recognizer.recognize(frame));
 }
 BENCHMARK(BM_RecognizeLive)->Unit(benchmark::kMillisecond);
+
+// The studio's fused belief at rest after a turn of N views (72: a whole turn; the built-in model's
+// pose references): each frame replaces the newest bin's view (its pose evidence, then the state).
+static void BM_LiveFusionFrameAtRest(benchmark::State& s) {
+  const auto recognizer = learning::Recognizer::load(KEYTURN_DATA_DIR "/models/sim-objects");
+  const auto& info = recognizer.info();
+  learning::LiveFusion fusion(info);
+  const std::vector<float> p(info.classes.size(), 1.f / static_cast<float>(info.classes.size()));
+  std::vector<float> features(info.pose_references.mean.size());
+  for (std::size_t k = 0; k < features.size(); ++k) features[k] = info.pose_references.mean[k] + 0.01f * static_cast<float>(k % 7);
+  const auto views = static_cast<std::size_t>(s.range(0));
+  for (std::size_t b = 0; b < views; ++b) fusion.add(learning::Answer::Class, p, features, 5.0 * static_cast<double>(b));
+  if (fusion.views() != views) s.SkipWithError("the turn did not take its views");
+  const double newest = 5.0 * static_cast<double>(views - 1) + 0.5;
+  for (auto _ : s) benchmark::DoNotOptimize(fusion.add(learning::Answer::Class, p, features, newest));
+}
+BENCHMARK(BM_LiveFusionFrameAtRest)->Arg(1)->Arg(72)->Unit(benchmark::kMicrosecond);
 
 // The real 640 × 480 Kinect frame at the sizes of `keyturn bench --scaling` and by the
 // same rule (docs/benchmarks.md, "Scaling"): the object the filter cuts from the full

@@ -296,6 +296,10 @@ TEST(Fusion, LiveFusionTakesOneViewPerBinAndKeepsUnknown) {
   EXPECT_FALSE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, std::nan("")));
   EXPECT_TRUE(closed.add(Answer::Class, {0.6f, 0.4f}, {}, 10.0));
   EXPECT_FALSE(closed.add(Answer::Class, {0.1f, 0.9f}, {}, 2.0));  // a bin the table has left
+  EXPECT_TRUE(closed.add(Answer::Class, {0.5f, 0.5f}, {}, 11.0));  // the newest bin's view replaced, the first kept
+  EXPECT_NEAR(closed.belief()[0], 0.8, 1e-6);
+  EXPECT_DOUBLE_EQ(closed.turnedDeg(), 10.0);
+  EXPECT_TRUE(closed.add(Answer::Class, {0.6f, 0.4f}, {}, 10.0));
   EXPECT_EQ(closed.views(), 2u);
   EXPECT_DOUBLE_EQ(closed.turnedDeg(), 9.0);
   EXPECT_NEAR(closed.belief()[0], 0.48 / (0.48 + 0.08), 1e-6);  // 0.8 · 0.6 against 0.2 · 0.4

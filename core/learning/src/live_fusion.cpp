@@ -14,7 +14,9 @@ LiveFusion::LiveFusion(const ModelInfo& m, FusionOptions o)
 
 void LiveFusion::reset() {
   taken_.clear();
-  refuse();
+  state_ = before_newest_ = FusionState(options_);
+  unknown_ = unknown_before_newest_ = 0;
+  turned_deg_ = turned_before_newest_ = 0;
 }
 
 bool LiveFusion::add(Answer answer, const std::vector<float>& p, const std::vector<float>& features, double az) {
@@ -26,34 +28,28 @@ bool LiveFusion::add(Answer answer, const std::vector<float>& p, const std::vect
   const int bin = static_cast<int>(((b % bins) + bins) % bins);
   const bool newest = !taken_.empty() && taken_.back().bin == bin;
   if (!newest && std::any_of(taken_.begin(), taken_.end(), [&](const Taken& t) { return t.bin == bin; })) return false;
-  Taken t;
-  t.bin = bin;
-  t.unknown = answer == Answer::Unknown;
-  t.view.probabilities = p;
-  t.view.azimuth_deg = az;
-  if (pose) t.view.pose = poseEvidence(references_, Eigen::Map<const Eigen::RowVectorXf>(features.data(), static_cast<Eigen::Index>(features.size())));
-  if (newest)
-    taken_.back() = std::move(t);
-  else
-    taken_.push_back(std::move(t));
-  refuse();
-  return true;
-}
-
-// At most one view per bin (72), so building the state again per frame costs little.
-void LiveFusion::refuse() {
-  state_ = FusionState(options_);
-  unknown_ = 0;
-  turned_deg_ = 0;
-  for (std::size_t i = 0; i < taken_.size(); ++i) {
-    const Taken& t = taken_[i];
-    if (i > 0) {
-      const double d = std::fmod(std::abs(t.view.azimuth_deg - taken_[i - 1].view.azimuth_deg), 360.0);
-      turned_deg_ += std::min(d, 360.0 - d);
-    }
-    unknown_ += t.unknown;
-    if (!(t.unknown && open_set_)) state_.add(t.view, state_.views());  // an open-set "unknown" adds no evidence
+  if (!newest) {  // the view that was newest is settled: the state before the newest view is all of it
+    before_newest_ = state_;
+    unknown_before_newest_ = unknown_;
+    turned_before_newest_ = turned_deg_;
+    taken_.emplace_back();
   }
+  taken_.back() = {bin, az};
+  FusionView v;
+  v.probabilities = p;
+  v.azimuth_deg = az;
+  if (pose) v.pose = poseEvidence(references_, Eigen::Map<const Eigen::RowVectorXf>(features.data(), static_cast<Eigen::Index>(features.size())));
+  // The newest view on the state of the views before it (at rest, a frame costs one view, not the turn).
+  const bool unknown = answer == Answer::Unknown;
+  state_ = before_newest_;
+  unknown_ = unknown_before_newest_ + unknown;
+  turned_deg_ = turned_before_newest_;
+  if (taken_.size() > 1) {
+    const double d = std::fmod(std::abs(az - taken_[taken_.size() - 2].azimuth_deg), 360.0);
+    turned_deg_ += std::min(d, 360.0 - d);
+  }
+  if (!(unknown && open_set_)) state_.add(v, state_.views());  // an open-set "unknown" adds no evidence
+  return true;
 }
 
 std::vector<double> LiveFusion::belief() const { return state_.views() ? state_.belief() : std::vector<double>(); }

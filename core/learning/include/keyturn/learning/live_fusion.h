@@ -45,15 +45,17 @@ class LiveFusion {
   FusionOptions options_;
   struct Taken {
     int bin = 0;
-    bool unknown = false;
-    FusionView view;
+    double azimuth_deg = 0;
   };
-  void refuse();  // the state again from the views taken
 
   std::vector<Taken> taken_;  // one per bin, in the order the table reached them
   FusionState state_{FusionOptions{}};
   std::size_t unknown_ = 0;
   double turned_deg_ = 0;
+  // The same before the newest view, which a frame in its bin replaces.
+  FusionState before_newest_{FusionOptions{}};
+  std::size_t unknown_before_newest_ = 0;
+  double turned_before_newest_ = 0;
 };
 
 }  // namespace keyturn::learning
