@@ -220,6 +220,8 @@ class StudioTest : public QObject {
     const int turned = w.fusedViews();
     QVERIFY2(turned <= 19, qPrintable(QString::number(turned)));  // at most one per 5° bin from 0° to 90°
     QVERIFY2(fused->text().contains(QString("· %1 views, ").arg(turned)), qPrintable(fused->text()));
+    QVERIFY2(fused->toolTip().contains(QString("ycb_035_power_drill")) && fused->toolTip().contains(QString("· %1 views, ").arg(turned)),
+             qPrintable(fused->toolTip()));  // whole where the line is cut
     QCOMPARE(w.fusedClass(), QString("ycb_035_power_drill"));
     QVERIFY2(w.fusedBelief() > 0.5, qPrintable(QString::number(w.fusedBelief())));
     // At rest again: the turn's belief stays.

@@ -216,6 +216,9 @@ void RecognitionPanel::showFusion(const learning::LiveFusion& f) {
   if (f.unknownViews() > 0) detail += tr(" · %1 unknown").arg(f.unknownViews());
   fused_verdict_->setText(QString("%1 <b style='color:%2'>%3</b><span style='color:%4'>%5</span>")
                               .arg(tr("Turn:"), colour, fused_class_.toHtmlEscaped(), kNoObjectColour, detail.toHtmlEscaped()));
+  // One line in a narrow dock cuts a long class name's details: the tooltip has them whole.
+  fused_verdict_->setToolTip(tr("The belief fused over the views of the table's turn (one per 5°), beside this view's:\n%1%2")
+                                 .arg(fused_class_, detail));
 }
 
 QString RecognitionPanel::modelPath() const { return model_path_->text(); }
