@@ -188,6 +188,7 @@ class StudioTest : public QObject {
     auto* verdict = w.findChild<QLabel*>("verdict");
     QVERIFY(verdict);
     QVERIFY2(verdict->text().contains(" &lt; 0.43"), qPrintable(verdict->text()));  // its score under the threshold
+    QVERIFY(verdict->toolTip().contains("last 20 frames"));  // which part is the verdict, which this frame's test
   }
 
   // Issue 34: the belief fused over the views of the table's turn, beside the single view's. At

@@ -66,6 +66,10 @@ RecognitionPanel::RecognitionPanel(QWidget* parent) : QWidget(parent) {
   // Its own line's height however the box is squeezed, and a long name never widens the dock.
   verdict_->setMinimumHeight(QFontMetrics(big).height() + 2);
   verdict_->setSizePolicy(QSizePolicy::Ignored, QSizePolicy::Fixed);
+  // The name is the last 20 frames' verdict, the small figures this frame's own test: the two can
+  // differ ("ycb_035_power_drill 0.35 < 0.43"), so the tooltip says which is which.
+  verdict_->setToolTip(tr("The answer most of the last 20 frames agree on; beside it, this frame's open-set score "
+                          "against the model's threshold (under it: this frame alone is unknown)"));
   grid->addWidget(verdict_, 0, 0, 1, 2);
   // The belief fused over the views of the table's turn, under the single view's (issue 34): one
   // line, so the window still fits a 1000 px screen.
