@@ -48,6 +48,13 @@ FoldViews predictTestViews(const TrainedFold& trained, const FeatureTable& t, co
   return out;
 }
 
+GroupedViews groupsByAngle(const std::vector<FusionView>& views, const std::vector<std::string>& group) {
+  GroupedViews out;
+  for (std::size_t i = 0; i < views.size(); ++i)
+    if (std::isfinite(views[i].azimuth_deg)) out[group[i]].push_back({views[i].azimuth_deg, static_cast<int>(i)});
+  return out;
+}
+
 int viewAt(const std::vector<std::pair<double, int>>& members, double a, double tolerance) {
   int best = -1;
   double best_d = tolerance;
@@ -57,6 +64,17 @@ int viewAt(const std::vector<std::pair<double, int>>& members, double a, double 
     if (circular <= best_d) best_d = circular, best = i;
   }
   return best;
+}
+
+std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& members, double start_deg,
+                                const std::vector<double>& offsets, double tolerance) {
+  std::vector<int> seq;
+  for (double off : offsets) {
+    const int i = viewAt(members, start_deg + off, tolerance);
+    if (i < 0) break;
+    seq.push_back(i);
+  }
+  return seq;
 }
 
 }  // namespace keyturn::learning::detail

@@ -3,6 +3,7 @@
 // next-best-view protocols: the classifier trained on the fold's training views that have a
 // turntable angle, with their pose references, and each test view's class probabilities,
 // angle and pose evidence, grouped by capture group (instance and elevation).
+#include <map>
 #include <memory>
 #include <string>
 #include <utility>
@@ -39,7 +40,16 @@ struct FoldViews {
 FoldViews predictTestViews(const TrainedFold& trained, const FeatureTable& t, const std::vector<double>& az,
                            const std::vector<std::string>& blocks, const Labels& labels, const Fold& fold);
 
+// Each capture group's views that have an angle: (angle, index into views), by group name.
+using GroupedViews = std::map<std::string, std::vector<std::pair<double, int>>>;
+GroupedViews groupsByAngle(const std::vector<FusionView>& views, const std::vector<std::string>& group);
+
 // The view of a group (its views' angles and indices) nearest azimuth a within the tolerance; -1 when none.
 int viewAt(const std::vector<std::pair<double, int>>& members, double a, double tolerance);
+
+// The views of a group at start_deg + each offset (viewAt's indices), in the offsets' order; it stops
+// at the first offset with no view, so it is shorter than offsets when the group lacks one.
+std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& members, double start_deg,
+                                const std::vector<double>& offsets, double tolerance);
 
 }  // namespace keyturn::learning::detail

@@ -79,9 +79,7 @@ FusionProtocolResult evaluateFusion(const FeatureTable& t, const std::vector<dou
     p.xgboost.threads = 1;  // folds train in parallel; one thread each keeps a fold's model the same on any machine
     const detail::TrainedFold trained = detail::trainFold(t, az, blocks, proto.labels, proto.folds[f], p, o.fusion.bin_deg);
     const detail::FoldViews fv = detail::predictTestViews(trained, t, az, blocks, proto.labels, proto.folds[f]);
-    std::map<std::string, std::vector<std::pair<double, int>>> groups;
-    for (std::size_t i = 0; i < fv.views.size(); ++i)
-      if (std::isfinite(fv.views[i].azimuth_deg)) groups[fv.group[i]].push_back({fv.views[i].azimuth_deg, static_cast<int>(i)});
+    const detail::GroupedViews groups = detail::groupsByAngle(fv.views, fv.group);
     std::vector<Tally> local(tallies.size(), zero);
     std::vector<FusionStopping> local_stop(methods);
     std::mt19937_64 rng(o.seed + f);
@@ -90,11 +88,8 @@ FusionProtocolResult evaluateFusion(const FeatureTable& t, const std::vector<dou
         for (std::size_t s = 0; s < schedules; ++s)
           for (int n = 1; n <= o.max_views; ++n) {
             std::vector<FusionView> seq;
-            for (double off : o.schedules[s].offsets(n)) {
-              const int i = detail::viewAt(members, start_az + off, o.tolerance_deg);
-              if (i < 0) break;
+            for (int i : detail::viewsAtOffsets(members, start_az, o.schedules[s].offsets(n), o.tolerance_deg))
               seq.push_back(fv.views[static_cast<std::size_t>(i)]);
-            }
             if (seq.size() != static_cast<std::size_t>(n)) continue;
             const int truth = fv.truth[static_cast<std::size_t>(start)];
             // The control: the same views, their poses dealt out in another order.

@@ -188,9 +188,7 @@ NbvProtocolResult evaluateNextBestView(const FeatureTable& t, const std::vector<
     ClassifierParams p = params;
     p.xgboost.threads = 1;  // folds train in parallel; one thread each keeps a fold's model the same on any machine
     const FoldData fd = prepareFold(t, az, blocks, protocol, proto.labels, proto.folds[f], p, o);
-    std::map<std::string, std::vector<std::pair<double, int>>> groups;
-    for (std::size_t i = 0; i < fd.views.size(); ++i)
-      if (std::isfinite(fd.views[i].azimuth_deg)) groups[fd.group[i]].push_back({fd.views[i].azimuth_deg, static_cast<int>(i)});
+    detail::GroupedViews groups = detail::groupsByAngle(fd.views, fd.group);
     Tally local = emptyTally(o);
     for (auto& [name, members] : groups) {
       std::sort(members.begin(), members.end());
@@ -218,9 +216,7 @@ NbvProtocolResult evaluateNextBestView(const FeatureTable& t, const std::vector<
         for (std::size_t k = 0; k < o.fixed.size(); ++k) {
           FusionState fixed(fusion);
           std::vector<std::vector<double>> fb;
-          for (double off : o.fixed[k].offsets(o.max_views)) {
-            const int i = detail::viewAt(members, start_az + off, o.tolerance_deg);
-            if (i < 0) break;
+          for (int i : detail::viewsAtOffsets(members, start_az, o.fixed[k].offsets(o.max_views), o.tolerance_deg)) {
             fixed.add(fd.views[static_cast<std::size_t>(i)], fb.size());
             fb.push_back(fixed.belief());
           }

@@ -15,23 +15,23 @@ namespace {
 // probabilities, angle and pose evidence, and each capture group's views by angle.
 struct TurningViews {
   std::vector<FusionView> views;
-  std::map<std::string, std::vector<std::pair<double, int>>> groups;  // angle, index into views
+  detail::GroupedViews groups;
 };
 
 TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>& rows, const Matrix& x,
                           const Matrix& p, const PoseReferences& refs, const std::vector<double>& az) {
   TurningViews out;
+  std::vector<std::string> group;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     FusionView v;
     v.probabilities.assign(p.row(row).data(), p.row(row).data() + p.cols());
     v.azimuth_deg = az[rows[k]];
-    if (std::isfinite(v.azimuth_deg)) {
-      v.pose = poseEvidence(refs, x.row(row));
-      out.groups[detail::captureGroupOf(t.rows[rows[k]])].push_back({v.azimuth_deg, static_cast<int>(k)});
-    }
+    if (std::isfinite(v.azimuth_deg)) v.pose = poseEvidence(refs, x.row(row));
     out.views.push_back(std::move(v));
+    group.push_back(detail::captureGroupOf(t.rows[rows[k]]));
   }
+  out.groups = detail::groupsByAngle(out.views, group);
   return out;
 }
 
@@ -44,12 +44,7 @@ std::vector<std::vector<int>> turnsOf(const TurningViews& tv) {
   std::vector<std::vector<int>> turns;
   for (const auto& [group, members] : tv.groups)
     for (const auto& [start_deg, start] : members) {
-      std::vector<int> seq;
-      for (double off : offsets) {
-        const int i = detail::viewAt(members, start_deg + off, tolerance_deg);
-        if (i < 0) break;
-        seq.push_back(i);
-      }
+      std::vector<int> seq = detail::viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
       if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
     }
   return turns;
