@@ -12,6 +12,9 @@ packages=(
   build-essential cmake ninja-build ccache pkg-config
   # the hardening build: clang with AddressSanitizer, UBSan and libFuzzer
   clang-$KEYTURN_CLANG_VERSION libclang-rt-$KEYTURN_CLANG_VERSION-dev
+  # llvm-symbolizer: LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) match function
+  # names, which only a symbolizer gives; without it the suppressed system leaks fail the run
+  llvm-$KEYTURN_CLANG_VERSION
   # point clouds (PCL pulls in Eigen, FLANN, Boost and VTK)
   libpcl-dev libeigen3-dev
   # ray casting for the simulated SR4000 views
@@ -62,7 +65,7 @@ packages=(
 # Commands the scripts and tests call (a package can be installed and still not
 # provide the name a script uses: clang-14 has no 'clang').
 commands=(
-  cc c++ cmake ctest ninja ccache pkg-config "$KEYTURN_CC" "$KEYTURN_CXX"
+  cc c++ cmake ctest ninja ccache pkg-config "$KEYTURN_CC" "$KEYTURN_CXX" "$KEYTURN_SYMBOLIZER"
   xvfb-run Xvfb xauth mbpoll umockdev-run umockdev-wrapper
   munged mungekey slurmctld slurmd sbatch squeue scontrol sinfo
 )

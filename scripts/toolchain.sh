@@ -5,3 +5,5 @@
 KEYTURN_CLANG_VERSION=14
 KEYTURN_CC=clang-$KEYTURN_CLANG_VERSION
 KEYTURN_CXX=clang++-$KEYTURN_CLANG_VERSION
+# The sanitizers' symbolizer (package llvm-14): suppressions by function name need it.
+KEYTURN_SYMBOLIZER=${KEYTURN_SYMBOLIZER:-/usr/lib/llvm-$KEYTURN_CLANG_VERSION/bin/llvm-symbolizer}
