@@ -382,11 +382,14 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
                   const WorkingResolutionOptions* working, WorkingResolutionReport* working_report,
                   Cloud* before_working) {
   Cloud cloud = input;
+  FilterReport r;
   // Points beyond kMaxCoordinate are no measurement (float squared distances between them overflow,
   // and the voxel steps' means with them): invalid, as a loader reads them.
   for (auto& p : cloud.points)
-    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) p = kNaN;
-  FilterReport r;
+    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      p = kNaN;
+      ++r.too_far;
+    }
   r.kind = classifyInput(input);
   r.input_valid = cloud.validCount();
   const bool camera_frame = r.kind != InputKind::SegmentedCloud;

@@ -399,6 +399,15 @@ class DegenerateClouds(unittest.TestCase):
             self.assertNotIn("\n", str(e.exception))
             self.assertIn("degenerate cloud", str(e.exception))
 
+    def test_points_too_far_to_measure_are_named_as_such(self):
+        # It said "only 0 of N points left after filtering (segmented-cloud: nothing removed)".
+        points = keyturn.load_cloud(CROP)
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.describe(points * np.float32(1e30))
+        n = len(points)
+        self.assertEqual(str(e.exception), f"points: only 0 of {n} points left after filtering "
+                         f"(segmented-cloud: {n} beyond 1e+18 m of the origin, no measurement)")
+
     def test_a_second_pcd_data_line_raises(self):
         with self.assertRaises(keyturn.Error) as e:
             keyturn.load_cloud(self.REG / "pcd_second_data_line.pcd")
