@@ -12,13 +12,14 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_error.h"
+#include "file_error.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+using detail::fail;  // "PATH: what", printable
 
 std::string readAll(const std::string& path) {
   std::error_code ec;

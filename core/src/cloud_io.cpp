@@ -20,6 +20,7 @@
 #include "keyturn/core/ply_reader.h"
 #include "keyturn/core/plugin.h"
 #include "keyturn/core/radius_search.h"
+#include "file_error.h"
 #include "pcl_io_plugin.h"
 
 namespace fs = std::filesystem;
@@ -57,9 +58,7 @@ std::string lowerExtension(const std::string& path) {
   return ext;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
-}
+using detail::fail;  // "PATH: what", printable
 
 const pcl::PCLPointField* findField(const pcl::PCLPointCloud2& blob,
                                     std::initializer_list<const char*> names) {

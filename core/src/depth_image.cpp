@@ -9,6 +9,7 @@
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "file_error.h"
 #include "png_codec.h"
 
 namespace fs = std::filesystem;
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 namespace keyturn {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+using detail::fail;  // "PATH: what", printable
 
 std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);

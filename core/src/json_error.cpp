@@ -1,9 +1,11 @@
 #include "keyturn/core/json_error.h"
 
+#include "keyturn/core/string_format.h"
+
 namespace keyturn {
 
 std::string jsonErrorText(const nlohmann::json::exception& e) {
-  std::string s = e.what();
+  std::string s = printableText(e.what());  // a parse error quotes the file's bytes
   if (s.rfind("[json.exception.", 0) == 0) {
     const auto end = s.find("] ");
     if (end != std::string::npos) s.erase(0, end + 2);

@@ -365,6 +365,22 @@ class BadInput(unittest.TestCase):
             keyturn.Dataset(SOURCE / "data/frames")  # a folder, not a dataset
         self.assert_one_line(e, "not a keyturn dataset")
 
+    def test_bytes_that_are_not_text_stay_in_the_message(self):
+        # A PCD beginning with \xff\xfe (random bytes): keyturn.Error came with an empty message, the
+        # C++ text not being UTF-8. Its bytes are written as \\xff now, by the CLI too.
+        WORK.mkdir(parents=True, exist_ok=True)
+        bad = WORK / "bom.pcd"
+        bad.write_bytes(b"\xff\xfe" + bytes(range(0x80, 0x100)) + b"\n")
+        expected = f"{bad}: not a valid PCD file (unknown header line 1: '\\xff\\xfe\\x80\\x81"
+        for call in (keyturn.load_cloud, keyturn.describe, keyturn.Model(MODEL).classify):
+            with self.assertRaises(keyturn.Error) as e:
+                call(bad)
+            self.assert_one_line(e, expected)
+        r = subprocess.run([KT, "describe", "-q", bad], capture_output=True, check=False)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stderr.decode("utf-8"), f"keyturn describe: {expected}"
+                         "\\x82\\x83\\x84\\x85\\x86\\x87\\x88\\x89\\x8a\\x8b\\x8c\\x8d\\x8e\\x8f\\x90\\x91')\n")
+
     def test_bad_parameters(self):
         with self.assertRaises(TypeError) as e:
             keyturn.describe(FRAME, binz=16)
