@@ -22,6 +22,7 @@
 #include "keyturn/core/radius_search.h"
 #include "file_error.h"
 #include "pcl_io_plugin.h"
+#include "quiet_pcl.h"
 
 namespace fs = std::filesystem;
 
@@ -42,15 +43,15 @@ bool measurable(const Eigen::Vector3f& p) { return p.allFinite() && p.cwiseAbs()
 
 }  // namespace
 
-namespace {
-
-void quietPcl() {
+void detail::quietPcl() {
   static const bool once = [] {
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
     return true;
   }();
   (void)once;
 }
+
+namespace {
 
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
@@ -315,7 +316,7 @@ Cloud loadPly(const std::string& path) {
 }  // namespace
 
 Cloud loadCloud(const std::string& path, const DepthImageOptions& depth) {
-  quietPcl();
+  detail::quietPcl();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file");
   if (fs::is_directory(path, ec)) fail(path, "is a directory, expected a .pcd, .ply or depth .png file");
@@ -333,7 +334,7 @@ Cloud loadCloud(const std::string& path, const DepthImageOptions& depth) {
 }
 
 void saveCloud(const std::string& path, const Cloud& cloud, PcdEncoding encoding) {
-  quietPcl();
+  detail::quietPcl();
   if (cloud.points.empty()) fail(path, "refusing to write an empty cloud");
   pcl::PCLPointCloud2 blob;
   blob.width = cloud.width;

@@ -13,6 +13,7 @@ import os
 import pickle
 import shutil
 import subprocess
+import sys
 import threading
 import time
 import unittest
@@ -423,6 +424,16 @@ class DegenerateClouds(unittest.TestCase):
         n = len(points)
         self.assertEqual(str(e.exception), f"points: only 0 of {n} points left after filtering "
                          f"(segmented-cloud: {n} beyond 1e+18 m of the origin, no measurement)")
+
+    def test_pcl_prints_nothing(self):
+        # Points no plane fits (on a twisted cubic): PCL's RANSAC wrote "[pcl::SampleConsensusModelPlane::
+        # optimizeModelCoefficients] Not enough inliers …" to stderr, beside keyturn's own error.
+        code = ("import numpy as np, keyturn\n"
+                "t = np.linspace(-1, 1, 12, dtype=np.float32)\n"
+                "p = np.stack([t, t * t, 2 + t * t * t], axis=1) * np.float32(2)\n"
+                "try:\n    keyturn.describe(p, kind='segmented')\nexcept keyturn.Error as e:\n    print(e)\n")
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+        self.assertEqual(r.stderr, "")
 
     def test_a_second_pcd_data_line_raises(self):
         with self.assertRaises(keyturn.Error) as e:
