@@ -143,8 +143,17 @@ int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth
     if (fused.stopped_after == i + 1) std::cout << "\tcertain (>= " << options.stop_belief << ")";
     std::cout << "\n";
   }
-  if (!a.quiet && fused.stopped_after == 0)
-    std::cerr << "keyturn classify: the fused belief never reached " << options.stop_belief << "\n";
+  if (!a.quiet && fused.stopped_after == 0) {
+    std::cerr << "keyturn classify: ";
+    if (fused.steps.empty() || fused.steps.back().best < 0)  // no view added evidence: there is no belief to speak of
+      std::cerr << "no view was answered with one of the model's classes, so there was no belief to fuse\n";
+    else if (fused.certain_while_unknown)  // the belief is over the model's classes, the answer none of them
+      std::cerr << "no class became certain: the fused belief over the model's classes reached " << options.stop_belief
+                << " (first at view " << fused.certain_while_unknown
+                << ") only where the fused answer was unknown (half or more of the views so far unknown)\n";
+    else
+      std::cerr << "the fused belief never reached " << options.stop_belief << "\n";
+  }
   return 0;
 }
 

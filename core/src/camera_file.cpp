@@ -11,13 +11,15 @@
 #include <vector>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_error.h"
+#include "file_error.h"
 
 namespace fs = std::filesystem;
 
 namespace keyturn {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+using detail::fail;  // "PATH: what", printable
 
 std::string readAll(const std::string& path) {
   std::error_code ec;
@@ -129,7 +131,7 @@ DepthImageOptions fromJson(const std::string& path, const std::string& text) {
   try {
     j = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
-    fail(path, std::string("not valid JSON: ") + e.what());
+    fail(path, "not valid JSON: " + jsonErrorText(e));
   }
   if (!j.is_object()) fail(path, "a camera file in JSON is an object ({…}), this is a " + std::string(j.type_name()));
   if (j.contains("intrinsic_matrix")) {  // Open3D: o3d.io.write_pinhole_camera_intrinsic

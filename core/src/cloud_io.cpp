@@ -20,7 +20,9 @@
 #include "keyturn/core/ply_reader.h"
 #include "keyturn/core/plugin.h"
 #include "keyturn/core/radius_search.h"
+#include "file_error.h"
 #include "pcl_io_plugin.h"
+#include "quiet_pcl.h"
 
 namespace fs = std::filesystem;
 
@@ -41,9 +43,7 @@ bool measurable(const Eigen::Vector3f& p) { return p.allFinite() && p.cwiseAbs()
 
 }  // namespace
 
-namespace {
-
-void quietPcl() {
+void detail::quietPcl() {
   static const bool once = [] {
     pcl::console::setVerbosityLevel(pcl::console::L_ALWAYS);
     return true;
@@ -51,15 +51,15 @@ void quietPcl() {
   (void)once;
 }
 
+namespace {
+
 std::string lowerExtension(const std::string& path) {
   std::string ext = fs::path(path).extension().string();
   std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return std::tolower(c); });
   return ext;
 }
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
-}
+using detail::fail;  // "PATH: what", printable
 
 const pcl::PCLPointField* findField(const pcl::PCLPointCloud2& blob,
                                     std::initializer_list<const char*> names) {
@@ -316,7 +316,7 @@ Cloud loadPly(const std::string& path) {
 }  // namespace
 
 Cloud loadCloud(const std::string& path, const DepthImageOptions& depth) {
-  quietPcl();
+  detail::quietPcl();
   std::error_code ec;
   if (!fs::exists(path, ec)) fail(path, "no such file");
   if (fs::is_directory(path, ec)) fail(path, "is a directory, expected a .pcd, .ply or depth .png file");
@@ -334,7 +334,7 @@ Cloud loadCloud(const std::string& path, const DepthImageOptions& depth) {
 }
 
 void saveCloud(const std::string& path, const Cloud& cloud, PcdEncoding encoding) {
-  quietPcl();
+  detail::quietPcl();
   if (cloud.points.empty()) fail(path, "refusing to write an empty cloud");
   pcl::PCLPointCloud2 blob;
   blob.width = cloud.width;

@@ -9,6 +9,7 @@
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "file_error.h"
 #include "png_codec.h"
 
 namespace fs = std::filesystem;
@@ -16,7 +17,7 @@ namespace fs = std::filesystem;
 namespace keyturn {
 namespace {
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) { throw Error(path + ": " + what); }
+using detail::fail;  // "PATH: what", printable
 
 std::string readAll(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
@@ -68,6 +69,16 @@ detail::DecodedImage readPng(const std::string& path, const char* what) {
   checkPngChunks(path, bytes);
   detail::DecodedImage m;
   if (!detail::decodePng(bytes, m) || m.samples.empty()) fail(path, "corrupt PNG (cannot be decoded)");
+  return m;
+}
+
+// A PNG that is a depth image: 16-bit, one channel.
+detail::DecodedImage readDepthPng(const std::string& png) {
+  detail::DecodedImage m = readPng(png, "16-bit depth");
+  if (m.channels != 1) fail(png, std::to_string(m.channels) + "-channel image; a depth image has one channel");
+  if (m.bits != 16)
+    fail(png, std::string(m.bits == 8 ? "8-bit" : "non-16-bit") +
+                  " image; a depth image is 16-bit (an 8-bit PNG holds no usable depth)");
   return m;
 }
 
@@ -155,13 +166,9 @@ bool isDepthImagePath(const std::string& path) {
 }
 
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
+  const detail::DecodedImage m = readDepthPng(png);
   if (!o.intrinsics)
     throw MissingIntrinsicsError(png + ": a depth image needs the camera's intrinsics (a camera file, or fx, fy, cx and cy)");
-  const detail::DecodedImage m = readPng(png, "16-bit depth");
-  if (m.channels != 1) fail(png, std::to_string(m.channels) + "-channel image; a depth image has one channel");
-  if (m.bits != 16)
-    fail(png, std::string(m.bits == 8 ? "8-bit" : "non-16-bit") +
-                  " image; a depth image is 16-bit (an 8-bit PNG holds no usable depth)");
   const auto w = static_cast<std::uint32_t>(m.width), h = static_cast<std::uint32_t>(m.height);
   std::vector<std::uint16_t> depth(static_cast<std::size_t>(w) * h);
   for (int v = 0; v < m.height; ++v)
@@ -177,6 +184,8 @@ Cloud loadDepthImage(const std::string& png, const DepthImageOptions& o) {
   else if (!companionCropFile(png).empty() && fs::exists(companionCropFile(png), ec)) crop = readCropFile(companionCropFile(png));
   return depthImageToCloud(depth, w, h, *o.intrinsics, o.depth_scale, mask, crop);
 }
+
+void checkDepthImage(const std::string& png) { readDepthPng(png); }
 
 std::vector<std::uint16_t> loadPng16(const std::string& path, std::uint32_t width, std::uint32_t height) {
   const detail::DecodedImage m = readPng(path, "16-bit");

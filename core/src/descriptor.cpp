@@ -11,6 +11,7 @@
 #include "keyturn/core/histogram.h"
 #include "keyturn/core/keypoint_functions.h"
 #include "keyturn/core/radius_search.h"
+#include "keyturn/core/string_format.h"
 
 namespace keyturn {
 namespace {
@@ -55,7 +56,7 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   if (input.points.empty()) throw EmptyViewError("empty point cloud");
   PreparedView v;
   v.input_points = input.validCount();
-  if (v.input_points == 0) throw EmptyViewError("no valid points (all NaN or infinite)");
+  if (v.input_points == 0) throw EmptyViewError("no valid points (all NaN, infinite or beyond 1e+18 m of the origin)");
   const bool keep_measured = o.refine.enabled && o.working.enabled;
   Cloud measured;
   Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working,
@@ -64,6 +65,8 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   const std::size_t filtered = cloud.validCount();
   if (filtered < 3) {
     std::string why;
+    if (v.filter.too_far)  // made invalid before any step
+      appendFormat(why, "%zu beyond %g m of the origin, no measurement", v.filter.too_far, kMaxCoordinate);
     for (const auto& s : v.filter.steps)
       if (s.removed() > 0) why += (why.empty() ? "" : ", ") + s.name + " −" + std::to_string(s.removed());
     throw FilteredAwayError("only " + std::to_string(filtered) + " of " + std::to_string(v.input_points) +

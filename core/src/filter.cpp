@@ -17,6 +17,7 @@
 
 #include "keyturn/core/nearest_neighbours.h"
 #include "keyturn/core/radius_search.h"
+#include "quiet_pcl.h"
 #include "voxel_key.h"
 
 namespace keyturn {
@@ -155,6 +156,7 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
   std::vector<int> index;
   auto pts = validPoints(cloud, index);
   if (pts->size() < 10) return say("too few points for a plane");
+  detail::quietPcl();  // "Not enough inliers found to optimize model coefficients" on scattered points
   // RANSAC scores its hypotheses on an even subsample (a full 640 x 480 frame has
   // 300k points; a plane needs far fewer to be found), then every point is labelled.
   pcl::PointCloud<pcl::PointXYZ>::Ptr sample = pts;
@@ -382,11 +384,14 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
                   const WorkingResolutionOptions* working, WorkingResolutionReport* working_report,
                   Cloud* before_working) {
   Cloud cloud = input;
+  FilterReport r;
   // Points beyond kMaxCoordinate are no measurement (float squared distances between them overflow,
   // and the voxel steps' means with them): invalid, as a loader reads them.
   for (auto& p : cloud.points)
-    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) p = kNaN;
-  FilterReport r;
+    if (Cloud::isValid(p) && p.cwiseAbs().maxCoeff() > kMaxCoordinate) {
+      p = kNaN;
+      ++r.too_far;
+    }
   r.kind = classifyInput(input);
   r.input_valid = cloud.validCount();
   const bool camera_frame = r.kind != InputKind::SegmentedCloud;

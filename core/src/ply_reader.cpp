@@ -10,6 +10,7 @@
 
 #include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
+#include "file_error.h"
 
 namespace keyturn {
 
@@ -18,9 +19,7 @@ namespace {
 constexpr int kMaxHeaderLines = 4096;
 constexpr std::size_t kMaxListLength = 1 << 20;
 
-[[noreturn]] void fail(const std::string& path, const std::string& what) {
-  throw Error(path + ": " + what);
-}
+using detail::fail;  // "PATH: what", printable
 
 // Byte size of a PLY scalar type (both the old and the sized names); 0 if unknown.
 std::size_t typeSize(const std::string& t) {
@@ -48,13 +47,6 @@ double decode(const unsigned char* p, const std::string& t, bool swap) {
   if (t == "uint" || t == "uint32") return as(std::uint32_t{});
   if (t == "float" || t == "float32") return as(float{});
   return as(double{});
-}
-
-// A token for a message: control bytes (NUL, ESC…) shown as '?'.
-std::string printable(std::string s) {
-  for (char& c : s)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return s;
 }
 
 bool isIntegerType(const std::string& t) {
@@ -86,13 +78,13 @@ class Payload {
     while (stop < end && !std::isspace(static_cast<unsigned char>(bytes_[stop]))) ++stop;
     const std::string token = bytes_.substr(pos_, stop - pos_);
     if (stop == end && end < bytes_.size() && !std::isspace(static_cast<unsigned char>(bytes_[end])))
-      fail(path_, "a number longer than 64 characters ('" + printable(token.substr(0, 20)) + "...') in " + what);
+      fail(path_, "a number longer than 64 characters ('" + token.substr(0, 20) + "...') in " + what);
     pos_ = stop;
     char* tail = nullptr;
     const double v = std::strtod(token.c_str(), &tail);
     // The whole token must be the number: a NUL byte would end it early for strtod.
     if (token.empty() || tail != token.c_str() + token.size())
-      fail(path_, "bad number '" + printable(token.substr(0, 20)) + "' in " + what);
+      fail(path_, "bad number '" + token.substr(0, 20) + "' in " + what);
     if (isIntegerType(type) && v != std::floor(v)) fail(path_, "non-integer '" + token.substr(0, 20) + "' in " + what);
     return v;
   }

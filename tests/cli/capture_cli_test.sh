@@ -31,6 +31,11 @@ check "every angle exactly once" test "$(tail -n +2 "$ds/manifest.csv" | cut -d,
 "$KT" verify "$ds" > "$work/verify.txt"
 check "verify passes" test $? -eq 0
 check "verify counts 36 views" grep -q "36 views, 0 missing, 0 corrupt, 0 orphan, 0 duplicate files — OK" "$work/verify.txt"
+# The studio's snapshots (Ctrl+S) go into DATASET/snapshots/: the dataset's own files, not orphans.
+mkdir -p "$ds/snapshots"
+cp "$ds/mug/builtin/e30/a0.0_distance.png" "$ds/snapshots/20260101-120000-000_distance.png"
+"$KT" verify "$ds" > "$work/verify-snap.txt"
+check "a studio snapshot leaves the dataset verified" grep -q "36 views, 0 missing, 0 corrupt, 0 orphan, 0 duplicate files — OK" "$work/verify-snap.txt"
 
 # Measured angles match the commanded ones (the table settled before each view).
 bad=$(tail -n +2 "$ds/manifest.csv" | awk -F, '{d=$5-$6; if (d<0) d=-d; if (d>0.11 && d<359.89) print}' | wc -l)

@@ -23,6 +23,26 @@ check "a PCD with a second DATA line exits 1 (rc $rc)" test "$rc" -eq 1
 check "  names the line" grep -q "pcd_second_data_line.pcd: corrupt PCD header: line 10 ('DATA') is a header line after DATA" "$work/data.err"
 check "  (one line)" one_line "$work/data.err"
 
+# A model whose sidecar lacks its feature specification, or was cut short: one line naming the file
+# and what is wrong, not the JSON library's "[json.exception.out_of_range.403] …" or 120 characters
+# of its text ending mid-word (issue 52).
+shipped=$(cd "$(dirname "$0")/../../data/models/sim-objects" && pwd)
+"$KT" render builtin:mug --angles 0 --out "$work/view.pcd" > /dev/null 2>&1
+mkdir -p "$work/nospec" "$work/cut"
+jq -c 'del(.feature_spec)' "$shipped/model.json" > "$work/nospec/model.json"
+head -c 5000 "$shipped/model.json" > "$work/cut/model.json"
+cp "$shipped/model.xgb.json" "$work/nospec/"
+cp "$shipped/model.xgb.json" "$work/cut/"
+"$KT" classify "$work/nospec" "$work/view.pcd" -q > /dev/null 2> "$work/nospec.err"
+check "a model without feature_spec exits 1" test $? -eq 1
+check "  names the file and the missing key" grep -qx "keyturn: $work/nospec/model.json: 'feature_spec' is missing" "$work/nospec.err"
+check "  (one line)" one_line "$work/nospec.err"
+"$KT" classify "$work/cut" "$work/view.pcd" -q > /dev/null 2> "$work/cut.err"
+check "a cut model.json exits 1" test $? -eq 1
+check "  names the file and where it ends, whole" \
+  grep -qx "keyturn: $work/cut/model.json: not valid JSON (parse error at line 1, column 5001: .*; expected .*)" "$work/cut.err"
+check "  (one line)" one_line "$work/cut.err"
+
 # verify: a row naming a file outside the dataset and one with a name no file system holds are
 # bad rows, named; the views of the other rows are verified.
 "$KT" capture --class mug --instance m1 --mesh builtin:mug --step 120 -q --out "$work/ds" > /dev/null 2>&1

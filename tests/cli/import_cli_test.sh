@@ -56,6 +56,18 @@ check "an unknown label is refused" grep -q "label colour: expected instance or 
 check "depth images without intrinsics are refused" test $? -ne 0 -a "$(wc -l < "$work/nocam.err")" -eq 1
 check "the refusal names a PNG and the flags" grep -q "_depth.png: depth images need the camera's intrinsics (--camera FILE" "$work/nocam.err"
 check "and nothing was written" test ! -e "$work/fold_nocam"
+# Clouds with one 8-bit PNG among them (a thumbnail, no depth image), no --camera: the PNG is one
+# line, the clouds imported (the whole import stopped at the PNG before).
+cp -r "$work/src/folders" "$work/mixed"
+find "$work/mixed" -name '*_depth.png' -delete
+m=$(cd "$work/mixed" && find . -name '*_mask.png' | sort | head -1)
+cp "$work/mixed/$m" "$work/mixed/$(dirname "$m")/thumb.png"
+"$KT" import folders "$work/mixed" --out "$work/mixed_ds" -q > "$work/mixed.out" 2> "$work/mixed.err"
+check "an 8-bit PNG among clouds: exit 1 for the one problem" test $? -eq 1
+check "  the PNG is one line naming it" \
+  grep -q "^$work/mixed/$(dirname "${m#./}")/thumb.png: 8-bit image; a depth image is 16-bit" "$work/mixed.out"
+check "  and the 15 clouds are imported" grep -q "mixed → $work/mixed_ds: 15 views imported, 1 problem$" "$work/mixed.out"
+check "  nothing on stderr" test ! -s "$work/mixed.err"
 "$KT" import folders "$work/src/folders" --camera "$cam" --out "$work/fold" -q > "$work/fold.out"
 check "the folders import cleanly" grep -q ": 30 views imported, 0 problems" "$work/fold.out"
 "$KT" verify "$work/fold" > /dev/null

@@ -6,6 +6,7 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
 #include "support/synthetic_clouds.h"
 
 namespace fs = std::filesystem;
@@ -95,6 +96,27 @@ TEST(CloudIo, GarbageHeader) {
   const std::string path = (tempDir() / "garbage.pcd").string();
   std::ofstream(path) << "this is not a point cloud\n";
   EXPECT_NE(expectError(path).find("not a valid PCD"), std::string::npos);
+}
+
+TEST(CloudIo, BytesOfAFileThatAreNotTextAreEscapedInTheMessage) {
+  // A PCD beginning with a UTF-16 byte order mark: the message quoted its header bytes raw, which
+  // a terminal printed as they were and Python could not decode (keyturn.Error with no message).
+  const std::string path = (tempDir() / "bom.pcd").string();
+  std::ofstream(path, std::ios::binary) << "\xff\xfe# .PCD v.7\x1b[31m\nVERSION .7\n";
+  EXPECT_EQ(expectError(path), path + ": not a valid PCD file (unknown header line 1: '\\xff\\xfe#')");
+  const std::string ply = (tempDir() / "ctrl.ply").string();
+  std::ofstream(ply, std::ios::binary) << "ply\nformat \x1b[2J\xc3\xa9t\xc3 1.0\n";
+  EXPECT_EQ(expectError(ply), ply + ": header line 2: unknown format '\\x1b[2J\xc3\xa9t\\xc3'");  // é is kept
+}
+
+TEST(CloudIo, PrintableTextKeepsUtf8AndEscapesEveryOtherByte) {
+  EXPECT_EQ(printableText("mug × 2 — ok 😀"), "mug × 2 — ok 😀");
+  EXPECT_EQ(printableText(std::string("a\0b\tc\n\x7f", 7)), "a\\x00b\\x09c\\x0a\\x7f");
+  EXPECT_EQ(printableText("\xc0\xaf"), "\\xc0\\xaf");              // overlong '/'
+  EXPECT_EQ(printableText("\xed\xa0\x80"), "\\xed\\xa0\\x80");    // a surrogate
+  EXPECT_EQ(printableText("\xf4\x90\x80\x80"), "\\xf4\\x90\\x80\\x80");  // past U+10FFFF
+  EXPECT_EQ(printableText("\xc2\x9b"), "\\xc2\\x9b");              // C1 control (CSI)
+  EXPECT_EQ(printableText("\xe2\x80"), "\\xe2\\x80");              // cut short
 }
 
 TEST(CloudIo, TruncatedBinaryAndCompressed) {

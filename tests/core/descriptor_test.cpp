@@ -140,6 +140,17 @@ TEST(Descriptor, EmptyAndAllNaNCloudsAreClearErrors) {
   EXPECT_NE(errorOf(nan, o).find("no valid points"), std::string::npos);
 }
 
+TEST(Descriptor, PointsTooFarToMeasureAreNamedAsWhatRemovedThem) {
+  // A view scaled by 1e30 (metres read as a unit 1e30 times smaller): finite floats, every one too
+  // far to measure. It said "only 0 of 2000 points left after filtering (segmented-cloud: nothing removed)".
+  DescriptorOptions o;
+  std::vector<Eigen::Vector3f> far;
+  for (const auto& p : test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))) far.push_back(1e30f * p);
+  const std::string msg = errorOf(test::unorganized(far), o);
+  EXPECT_EQ(msg, "only 0 of " + std::to_string(far.size()) + " points left after filtering (segmented-cloud: " +
+                     std::to_string(far.size()) + " beyond 1e+18 m of the origin, no measurement)");
+}
+
 TEST(Descriptor, TooFewKeypointsIsAnError) {
   DescriptorOptions o;
   o.filter = false;

@@ -185,6 +185,23 @@ TEST(SupportRule, RemovesTheTableUnderTheBox) {
 
 // A plate's flat floor with its rim rising towards the camera: in front of the plane,
 // but spread wider than it, so the floor is the object, not a support.
+TEST(PlaneRemoval, PclPrintsNothingWhereNoPlaneFits) {
+  // Twelve points on a twisted cubic, no four of them on a plane: PCL's RANSAC found its best plane
+  // through three and wrote "[pcl::SampleConsensusModelPlane::optimizeModelCoefficients] Not enough
+  // inliers found to optimize model coefficients (3)! …" to stderr, beside keyturn's own messages.
+  std::vector<Eigen::Vector3f> twisted;
+  for (int i = 0; i < 12; ++i) {
+    const float t = -1.f + 2.f * static_cast<float>(i) / 11.f;
+    twisted.push_back(2.f * Eigen::Vector3f(t, t * t, 2.f + t * t * t));  // 4 m across: 8 mm planes hold 3
+  }
+  Cloud c = test::unorganized(twisted);
+  std::string why;
+  ::testing::internal::CaptureStderr();
+  EXPECT_FALSE(removeDominantPlane(c, FilterOptions(), nullptr, &why));
+  EXPECT_EQ(::testing::internal::GetCapturedStderr(), "") << why;
+  EXPECT_EQ(c.validCount(), 12u);
+}
+
 TEST(SupportRule, KeepsAPlatesFloor) {
   std::vector<Eigen::Vector3f> pts;
   for (float x = -0.08f; x <= 0.08f; x += 0.003f)

@@ -140,7 +140,7 @@ TEST(PlyReader, MalformedFilesAreOneClearLine) {
       // A token is a number only as a whole: strtod stops at a NUL byte, and a 64-character
       // cap must not split a long one in two.
       {"nul.ply", std::string("ply\nformat ascii 1.0\nelement vertex 1\nproperty float x\nend_header\n1") + std::string(2, '\0') + "\n",
-       "bad number '1?" "?'"},
+       "bad number '1\\x00\\x00'"},
       {"long.ply", "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nend_header\n" + std::string(70, '6') + "\n",
        "a number longer than 64 characters ('66666666666666666666...')"},
   };

@@ -202,14 +202,17 @@ TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
   }
 }
 
+// A sidecar as saveModel writes it.
+const std::string kSidecar = R"({"blocks": ["kpd2"], "classes": ["bottle", "can"], "classifier": "xgboost",
+  "feature_spec": {"bins": "12", "keypoints": "iss"}, "format": "keyturn-model", "inputs": 12,
+  "mlp": {"batch": 64, "dropout": 0.1, "epochs": 30, "hidden": 200, "layers": 1, "learning_rate": 0.001,
+          "sigmoid_output": false},
+  "seed": 7, "version": 1, "weights": "model.xgb.json",
+  "xgboost": {"colsample_bytree": 1.0, "eta": 0.3, "max_depth": 6, "rounds": 20, "subsample": 1.0}})";
+
 TEST(ModelFile, SidecarIntegersThatDoNotFitAreNamedNotCast) {
-  // A sidecar as saveModel writes it; each case swaps one value.
-  const std::string good = R"({"blocks": ["kpd2"], "classes": ["bottle", "can"], "classifier": "xgboost",
-    "feature_spec": {"bins": "12", "keypoints": "iss"}, "format": "keyturn-model", "inputs": 12,
-    "mlp": {"batch": 64, "dropout": 0.1, "epochs": 30, "hidden": 200, "layers": 1, "learning_rate": 0.001,
-            "sigmoid_output": false},
-    "seed": 7, "version": 1, "weights": "model.xgb.json",
-    "xgboost": {"colsample_bytree": 1.0, "eta": 0.3, "max_depth": 6, "rounds": 20, "subsample": 1.0}})";
+  // Each case swaps one value.
+  const std::string good = kSidecar;
   auto with = [&](const std::string& from, const std::string& to) {
     std::string t = good;
     t.replace(t.find(from), from.size(), to);
@@ -222,6 +225,27 @@ TEST(ModelFile, SidecarIntegersThatDoNotFitAreNamedNotCast) {
   EXPECT_EQ(with("\"rounds\": 20", "\"rounds\": 20.5"), "m.json: xgboost: rounds must be an integer in 0..2147483647, not 20.5");
   EXPECT_EQ(with("\"seed\": 7", "\"seed\": -7"), "m.json: seed must be an integer in 0..18446744073709551615, not -7");
   EXPECT_EQ(with("\"version\": 1", "\"version\": 1e30"), "m.json: model format version 1e+30 is not supported (expected 1)");
+}
+
+TEST(ModelFile, AMissingKeyOrACutFileIsNamedInWordsNotTheJsonLibrarys) {
+  std::string no_spec = kSidecar;
+  no_spec.erase(no_spec.find("\"feature_spec\""), std::string(R"("feature_spec": {"bins": "12", "keypoints": "iss"}, )").size());
+  ASSERT_EQ(no_spec.find("feature_spec"), std::string::npos);
+  // It was "m.json: [json.exception.out_of_range.403] key 'feature_spec' not found".
+  EXPECT_EQ(keyturn::test::errorOf([&] { parseModelSidecar(no_spec, "m.json"); }), "m.json: 'feature_spec' is missing");
+  // A file cut short (a copy interrupted): the whole reason, not the first 120 characters of the
+  // library's text, which ended mid-word.
+  auto cutAt = [](std::size_t n) {
+    return keyturn::test::errorOf([&] { parseModelSidecar(kSidecar.substr(0, n), "m.json"); });
+  };
+  for (const std::string& msg : {cutAt(kSidecar.find("\"mlp\"")), cutAt(kSidecar.size() - 1)}) {
+    EXPECT_EQ(msg.rfind("m.json: not valid JSON (parse error at line ", 0), 0u) << msg;
+    EXPECT_NE(msg.find("unexpected end of input; expected "), std::string::npos) << msg;
+    EXPECT_EQ(msg.back(), ')') << msg;
+    EXPECT_EQ(msg.find("json.exception"), std::string::npos) << msg;
+  }
+  EXPECT_EQ(cutAt(kSidecar.find("xgb.json")), "m.json: not valid JSON (parse error at line 5, column 46: syntax error while parsing "
+                                              "value - invalid string: missing closing quote; last read: '\"model.')");
 }
 
 TEST(ModelFile, CorruptSidecarsAreOneClearLine) {

@@ -13,6 +13,7 @@ import os
 import pickle
 import shutil
 import subprocess
+import sys
 import threading
 import time
 import unittest
@@ -365,6 +366,22 @@ class BadInput(unittest.TestCase):
             keyturn.Dataset(SOURCE / "data/frames")  # a folder, not a dataset
         self.assert_one_line(e, "not a keyturn dataset")
 
+    def test_bytes_that_are_not_text_stay_in_the_message(self):
+        # A PCD beginning with \xff\xfe (random bytes): keyturn.Error came with an empty message, the
+        # C++ text not being UTF-8. Its bytes are written as \\xff now, by the CLI too.
+        WORK.mkdir(parents=True, exist_ok=True)
+        bad = WORK / "bom.pcd"
+        bad.write_bytes(b"\xff\xfe" + bytes(range(0x80, 0x100)) + b"\n")
+        expected = f"{bad}: not a valid PCD file (unknown header line 1: '\\xff\\xfe\\x80\\x81"
+        for call in (keyturn.load_cloud, keyturn.describe, keyturn.Model(MODEL).classify):
+            with self.assertRaises(keyturn.Error) as e:
+                call(bad)
+            self.assert_one_line(e, expected)
+        r = subprocess.run([KT, "describe", "-q", bad], capture_output=True, check=False)
+        self.assertEqual(r.returncode, 1)
+        self.assertEqual(r.stderr.decode("utf-8"), f"keyturn describe: {expected}"
+                         "\\x82\\x83\\x84\\x85\\x86\\x87\\x88\\x89\\x8a\\x8b\\x8c\\x8d\\x8e\\x8f\\x90\\x91')\n")
+
     def test_bad_parameters(self):
         with self.assertRaises(TypeError) as e:
             keyturn.describe(FRAME, binz=16)
@@ -398,6 +415,25 @@ class DegenerateClouds(unittest.TestCase):
                 keyturn.describe(cloud)
             self.assertNotIn("\n", str(e.exception))
             self.assertIn("degenerate cloud", str(e.exception))
+
+    def test_points_too_far_to_measure_are_named_as_such(self):
+        # It said "only 0 of N points left after filtering (segmented-cloud: nothing removed)".
+        points = keyturn.load_cloud(CROP)
+        with self.assertRaises(keyturn.Error) as e:
+            keyturn.describe(points * np.float32(1e30))
+        n = len(points)
+        self.assertEqual(str(e.exception), f"points: only 0 of {n} points left after filtering "
+                         f"(segmented-cloud: {n} beyond 1e+18 m of the origin, no measurement)")
+
+    def test_pcl_prints_nothing(self):
+        # Points no plane fits (on a twisted cubic): PCL's RANSAC wrote "[pcl::SampleConsensusModelPlane::
+        # optimizeModelCoefficients] Not enough inliers …" to stderr, beside keyturn's own error.
+        code = ("import numpy as np, keyturn\n"
+                "t = np.linspace(-1, 1, 12, dtype=np.float32)\n"
+                "p = np.stack([t, t * t, 2 + t * t * t], axis=1) * np.float32(2)\n"
+                "try:\n    keyturn.describe(p, kind='segmented')\nexcept keyturn.Error as e:\n    print(e)\n")
+        r = subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, check=True)
+        self.assertEqual(r.stderr, "")
 
     def test_a_second_pcd_data_line_raises(self):
         with self.assertRaises(keyturn.Error) as e:

@@ -12,6 +12,7 @@
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/rig/captured_views.h"
 #include "keyturn/rig/capture.h"
+#include "keyturn/rig/frame_files.h"
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/turntable_sim.h"
@@ -185,10 +186,10 @@ TEST_F(SimulatedRig, ATableThatNeverSettlesIsAClearError) {
   EXPECT_TRUE(dataset::Dataset::verify(ds.root()).orphans.empty());
 }
 
-TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  dataset::Dataset ds(root.string());
+namespace {
+
+// A 4 × 2 frame of the same 1 m distance everywhere.
+drivers::TofFrame tinyFrame() {
   drivers::TofFrame f;
   f.width = 4;
   f.height = 2;
@@ -199,6 +200,16 @@ TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
   f.cloud.height = 2;
   f.cloud.points.assign(8, Eigen::Vector3f(0.f, 0.f, 1.f));
   f.cloud.amplitude.assign(8, 500.f);
+  return f;
+}
+
+}  // namespace
+
+TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
+  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  dataset::Dataset ds(root.string());
+  const drivers::TofFrame f = tinyFrame();
   for (double a : {0.0, 5.0, 10.0}) rig::writeFrameView(ds, {"box", "b1", "45", a}, dataset::ViewMetadata(), f);
   EXPECT_TRUE(dataset::Dataset::verify(root.string()).ok());
   EXPECT_THROW(rig::writeFrameView(ds, {"box", "b1", "45", 5.0}, dataset::ViewMetadata(), f), Error);  // never twice
@@ -212,6 +223,24 @@ TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
   EXPECT_EQ(r.corrupt, std::vector<std::string>{"box/b1/e45/a10.0.json"});
   EXPECT_EQ(r.orphans, std::vector<std::string>{"box/b1/e45/stray.pcd"});
   EXPECT_FALSE(r.ok());
+}
+
+TEST(Dataset, TheStudiosSnapshotsAreTheDatasetsOwnNotOrphans) {
+  const fs::path root = fs::temp_directory_path() / ("keyturn_snap_" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  dataset::Dataset ds(root.string());
+  const drivers::TofFrame f = tinyFrame();
+  rig::writeFrameView(ds, {"box", "b1", "45", 0.0}, dataset::ViewMetadata(), f);
+  // What the studio's Snapshot (Ctrl+S) writes: a PCD and its three PNGs in DATASET/snapshots/.
+  rig::writeFrameFiles((root / dataset::kSnapshotsFolder / "20260101-120000-000.pcd").string(), f);
+  const auto r = dataset::Dataset::verify(root.string());
+  EXPECT_TRUE(r.orphans.empty()) << r.text(root.string());
+  EXPECT_TRUE(r.good());
+  // A class called "snapshots" keeps its views in subfolders: a stray file there is still an orphan.
+  fs::create_directories(root / "snapshots/s1/e45");
+  std::ofstream(root / "snapshots/s1/e45/stray.pcd") << "x";
+  EXPECT_EQ(dataset::Dataset::verify(root.string()).orphans, std::vector<std::string>{"snapshots/s1/e45/stray.pcd"});
+  fs::remove_all(root);
 }
 
 TEST(Dataset, AnAppendCutOffByACrashIsDroppedOnReopen) {

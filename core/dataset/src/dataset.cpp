@@ -27,10 +27,20 @@
 namespace fs = std::filesystem;
 
 namespace keyturn::dataset {
+
+const char* const kSnapshotsFolder = "snapshots";
+
 namespace {
 
 constexpr const char* kManifest = "manifest.csv";
 constexpr int kColumns = 9;
+
+// A file the studio saved beside the views (snapshots/NAME: not in a subfolder, where a class
+// called "snapshots" would keep its views).
+bool isSnapshot(const std::string& rel) {
+  const std::string prefix = std::string(kSnapshotsFolder) + "/";
+  return rel.rfind(prefix, 0) == 0 && rel.find('/', prefix.size()) == std::string::npos;
+}
 
 std::string isoNow() {
   const auto now = std::chrono::system_clock::now();
@@ -377,9 +387,10 @@ VerifyReport Dataset::verify(const std::string& root) {
     std::error_code rel_ec;
     const std::string rel = fs::relative(it->path(), root, rel_ec).string();
     if (rel_ec) continue;
-    // keyturn's own files beside the views: the simulator's state and the feature cache (.keyturn/).
+    // keyturn's own files beside the views: the simulator's state, the feature cache (.keyturn/) and
+    // the studio's snapshots.
     if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
-        rel.rfind(std::string(kKeyturnFolder) + "/", 0) == 0)
+        rel.rfind(std::string(kKeyturnFolder) + "/", 0) == 0 || isSnapshot(rel))
       continue;
     if (referenced.count(rel)) continue;
     if (isInterruptedWriteTemporary(rel)) rep.temporaries.push_back(rel);

@@ -31,6 +31,12 @@ void checkOut(const std::string& out) {
   if (!fs::is_empty(out, ec)) throw Error(out + ": exists and is neither empty nor a keyturn dataset (no manifest.csv)");
 }
 
+// "FILE: what is wrong", the file named once.
+std::string fileProblem(const std::string& file, const Error& e) {
+  const std::string msg = e.what();
+  return msg.rfind(file, 0) == 0 ? msg : file + ": " + msg;
+}
+
 }  // namespace
 
 std::string ImportReport::text(const ImportOptions& o) const {
@@ -58,15 +64,29 @@ ImportReport importDataset(const ImportOptions& o) {
   } else {
     throw Error("import format '" + o.format + "': expected washington, folders or bigbird");
   }
+  if (!depth.intrinsics) {
+    // A depth image cannot be read without them: refused before anything is written. A PNG that is
+    // no depth image (8-bit, colour, corrupt) is that file's problem, as it is with them.
+    std::vector<ImportedView> usable;
+    for (auto& v : plan.views) {
+      if (isPng(v.file)) {
+        try {
+          checkDepthImage(v.file);
+        } catch (const Error& e) {
+          plan.problems.push_back(fileProblem(v.file, e));
+          continue;
+        }
+        throw MissingIntrinsicsError(v.file + ": depth images need the camera's intrinsics");
+      }
+      usable.push_back(std::move(v));
+    }
+    plan.views = std::move(usable);
+  }
   if (plan.views.empty()) {
     std::string why = o.source + ": no views in the " + o.format + " layout";
     if (!plan.problems.empty()) why += " (" + std::to_string(plan.problems.size()) + " files not usable, first: " + plan.problems.front() + ")";
     throw Error(why);
   }
-  if (!depth.intrinsics)
-    for (const auto& v : plan.views)
-      if (isPng(v.file))
-        throw MissingIntrinsicsError(v.file + ": depth images need the camera's intrinsics");
   std::sort(plan.views.begin(), plan.views.end(), [](const ImportedView& a, const ImportedView& b) {
     return std::tie(a.key.cls, a.key.instance, a.key.elevation, a.key.commanded_deg) <
            std::tie(b.key.cls, b.key.instance, b.key.elevation, b.key.commanded_deg);
@@ -93,8 +113,7 @@ ImportReport importDataset(const ImportOptions& o) {
         ds.writeImported(v.key, meta, cloud, fs::absolute(v.file).lexically_normal().string(), importer);
         ++rep.imported;
       } catch (const Error& e) {
-        const std::string msg = e.what();
-        rep.problems.push_back(msg.rfind(v.file, 0) == 0 ? msg : v.file + ": " + msg);
+        rep.problems.push_back(fileProblem(v.file, e));
       }
     }
     if (o.progress) o.progress(i + 1, total);

@@ -12,6 +12,7 @@
 #include "classifier_params_json.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/fnv1a.h"
+#include "keyturn/core/json_error.h"
 #include "keyturn/core/json_integer.h"
 
 namespace keyturn::learning {
@@ -63,7 +64,7 @@ json readJson(const std::string& path) {
   try {
     return json::parse(s.str());
   } catch (const json::exception& e) {
-    throw Error(path + ": not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
+    throw Error(path + ": not valid JSON (" + jsonErrorText(e) + ")");
   }
 }
 
@@ -141,7 +142,7 @@ double readPart(const std::string& path, int shard, int shards, EvaluationRun& r
     }
     return j.at("seconds").get<double>();
   } catch (const json::exception& e) {
-    throw Error(path + ": " + std::string(e.what()).substr(0, 160));
+    throw Error(path + ": " + jsonErrorText(e));
   }
 }
 

@@ -12,6 +12,7 @@
 #include "pose_references_json.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_error.h"
 #include "keyturn/core/json_integer.h"
 
 namespace keyturn::learning {
@@ -49,7 +50,7 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
   try {
     j = json::parse(text);
   } catch (const json::exception& e) {
-    throw Error(source + ": not valid JSON (" + std::string(e.what()).substr(0, 120) + ")");
+    throw Error(source + ": not valid JSON (" + jsonErrorText(e) + ")");
   }
   ModelInfo m;
   const int most = std::numeric_limits<int>::max();
@@ -81,7 +82,7 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
     m.spec = j.at("feature_spec").get<std::map<std::string, std::string>>();
     if (j.contains("class_means")) m.class_means = j.at("class_means").get<std::vector<std::vector<float>>>();
   } catch (const json::exception& e) {
-    throw Error(source + ": " + std::string(e.what()).substr(0, 160));
+    throw Error(source + ": " + jsonErrorText(e));
   }
   if (m.classes.size() < 2) throw Error(source + ": a model needs at least two classes");
   if (m.inputs <= 0 || m.inputs > 1 << 20) throw Error(source + ": bad input count " + std::to_string(m.inputs));

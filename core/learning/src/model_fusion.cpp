@@ -77,8 +77,10 @@ ModelFusion fusePredictions(const Model& m, const FeatureTable& t, const std::ve
     }
     const bool mostly_unknown = open && fusedAnswerIsUnknown(unknowns[i], i + 1);
     s.answer = s.best < 0 ? (unknowns[i] ? Answer::Unknown : Answer::NoObject) : mostly_unknown ? Answer::Unknown : Answer::Class;
-    if (out.stopped_after == 0 && s.answer == Answer::Class && s.belief[static_cast<std::size_t>(s.best)] >= o.stop_belief)
-      out.stopped_after = i + 1;
+    if (out.stopped_after == 0 && s.best >= 0 && s.belief[static_cast<std::size_t>(s.best)] >= o.stop_belief) {
+      if (s.answer == Answer::Class) out.stopped_after = i + 1;
+      else if (out.certain_while_unknown == 0) out.certain_while_unknown = i + 1;
+    }
     out.steps.push_back(std::move(s));
   }
   return out;

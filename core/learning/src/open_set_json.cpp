@@ -5,6 +5,7 @@
 
 #include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_error.h"
 #include "keyturn/core/json_integer.h"
 #include "reference_value_json.h"
 
@@ -79,7 +80,7 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
     for (float v : s.scale)
       if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": scale values must be positive");
   } catch (const json::exception& e) {
-    throw Error(where + ": " + std::string(e.what()).substr(0, 160));
+    throw Error(where + ": " + jsonErrorText(e));
   }
   return s;
 }

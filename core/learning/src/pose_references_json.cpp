@@ -3,6 +3,7 @@
 #include <cmath>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_error.h"
 #include "keyturn/core/json_integer.h"
 #include "reference_value_json.h"
 
@@ -80,7 +81,7 @@ PoseReferences parsePoseReferencesJson(const nlohmann::json& j, int inputs, int 
     for (float v : r.scale)
       if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": scale values must be positive");
   } catch (const nlohmann::json::exception& e) {
-    throw Error(where + ": " + std::string(e.what()).substr(0, 160));
+    throw Error(where + ": " + jsonErrorText(e));
   }
   return r;
 }

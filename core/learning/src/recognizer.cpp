@@ -71,7 +71,7 @@ Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) c
   Recognition r;
   // Prepare (filter, working resolution) here, then describe those points: they are what a
   // viewer shows, and the keypoint indices point into them.
-  if (cloud.validCount() == 0) throw EmptyViewError("no valid points (empty, or all NaN or infinite)");
+  if (cloud.validCount() == 0) throw EmptyViewError("no valid points (empty, or all NaN, infinite or beyond 1e+18 m of the origin)");
   PreparedView prepared = prepareView(cloud, options_);
   r.filtered = std::move(prepared.points);
   r.filter_ms = msSince(t0);

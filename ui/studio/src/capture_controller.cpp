@@ -94,7 +94,7 @@ void CaptureController::snapshot(const FramePtr& frame) {
     return;
   }
   const QString dir = panel_->dataset().empty() ? QDir::home().filePath("keyturn-snapshots")
-                                                : QString::fromStdString(panel_->dataset()) + "/snapshots";
+                                                : QString::fromStdString(panel_->dataset()) + "/" + dataset::kSnapshotsFolder;
   QDir().mkpath(dir);
   const QString path = dir + "/" + QDateTime::currentDateTimeUtc().toString("yyyyMMdd-HHmmss-zzz") + ".pcd";
   try {

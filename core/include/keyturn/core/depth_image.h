@@ -63,9 +63,13 @@ class MissingIntrinsicsError : public Error {
 bool isDepthImagePath(const std::string& path);
 
 // Reads a 16-bit single-channel PNG (and its mask and crop offset) as an organized cloud. Every
-// failure (no intrinsics: MissingIntrinsicsError; 8-bit or colour image, empty or corrupt file,
-// mask of another size) throws keyturn::Error naming the file.
+// failure (8-bit or colour image, empty or corrupt file, mask of another size; a depth image
+// without intrinsics: MissingIntrinsicsError) throws keyturn::Error naming the file.
 Cloud loadDepthImage(const std::string& png, const DepthImageOptions& options);
+
+// Throws keyturn::Error naming the file unless it is a PNG loadDepthImage reads (16-bit, one
+// channel, whole): what a PNG among views is, before the intrinsics to read it are known.
+void checkDepthImage(const std::string& png);
 
 // A 16-bit single-channel PNG of exactly width × height, row-major (a frame's raw distance,
 // amplitude and confidence images); read with the same checks as depth images, throws

@@ -72,7 +72,8 @@ struct FilterStep {
 struct FilterReport {
   InputKind kind = InputKind::SegmentedCloud;
   std::vector<FilterStep> steps;  // in the order they ran
-  std::size_t input_valid = 0;
+  std::size_t input_valid = 0;  // after points beyond kMaxCoordinate were made invalid (before any step)
+  std::size_t too_far = 0;      // those points: no measurement (radius_search.h)
   std::size_t after_crop = 0;
   std::size_t after_jump_edge = 0;
   std::size_t after_plane = 0;

@@ -4,6 +4,7 @@
 //   DATASET/dataset.json                      format, version, creator
 //   DATASET/manifest.csv                      one row per view, appended and synced last
 //   DATASET/CLASS/INSTANCE/eLABEL/aANGLE.pcd  + _distance.png _amplitude.png _confidence.png .json
+//   DATASET/snapshots/                        the studio's snapshots of live frames (no views)
 //
 // A view exists once its manifest row does; files without a row are orphans
 // of an interrupted capture and are replaced when that view is taken again.
@@ -18,6 +19,10 @@
 #include "keyturn/core/cloud.h"
 
 namespace keyturn::dataset {
+
+// "snapshots": the folder, relative to the dataset root, where the studio saves live frames. Its
+// files are the dataset's own but no view's, so verify does not call them orphans.
+extern const char* const kSnapshotsFolder;
 
 struct ViewKey {
   std::string cls, instance, elevation;  // elevation label, e.g. "30"

@@ -32,6 +32,10 @@ struct ModelFusion {
   std::string method;
   std::vector<FusedStep> steps;  // one per view given
   std::size_t stopped_after = 0; // the first step whose answer is a class believed >= stop_belief (0: none)
+  // Before it stopped (or in a sequence that never did): the first step whose highest belief reached
+  // stop_belief with the fused answer unknown (0: none). The belief is over the model's classes; the
+  // open-set rule said the object is none of them, so such a step does not stop the sequence.
+  std::size_t certain_while_unknown = 0;
 };
 
 // predictions: predictRows' answers for the sequence's views, in turntable order; azimuth_deg one
