@@ -7,6 +7,7 @@
 #include <iostream>
 
 #include "commands.h"
+#include "cross_sensor_evaluate.h"
 #include "dataset_features.h"
 #include "descriptor_options.h"
 #include "fusion_options.h"
@@ -37,6 +38,7 @@ struct EvaluateArgs {
   std::uint64_t split_seed = 7;
   std::string label;  // "": each protocol's own
   std::vector<std::string> train_extra;
+  std::string other_camera;  // --protocol cross-sensor: the same views through another camera
   DescriptorFlags flags;
   learning::ClassifierParams params;
   learning::OpenSetOptions open_set{learning::openSetMethods()};
@@ -56,8 +58,27 @@ int runSequences(const EvaluateArgs& a, const std::string& protocol) {
   return protocol == "nbv" ? runNbvEvaluate(f) : runFusionEvaluate(f);
 }
 
+// --protocol cross-sensor is a run of its own too: two datasets, folds over both (app/cross_sensor_evaluate.cpp).
+int runCrossSensor(const EvaluateArgs& a) {
+  if (!a.shard.empty() || a.merge || !a.train_extra.empty())
+    throw Error("--protocol cross-sensor takes none of --shard, --merge, --train-extra (--other-camera names its twin)");
+  CrossSensorEvaluateArgs c{a.dataset, a.other_camera, a.features, a.classifiers, a.out, a.params,
+                            a.label.empty() ? learning::LabelKind::Instance : learning::parseLabelKind(a.label),
+                            a.flags.options, a.jobs, a.json, a.quiet};
+  if (!a.bins.empty()) {
+    if (splitList(a.bins).size() != 1) throw Error("--protocol cross-sensor measures one bin count, not '" + a.bins + "'");
+    descriptorParameter("--bins").set(c.options, a.bins);
+  }
+  return runCrossSensorEvaluate(c);
+}
+
 int runEvaluate(const EvaluateArgs& a) {
   const auto protocols = splitList(a.protocols);
+  if (std::find(protocols.begin(), protocols.end(), "cross-sensor") != protocols.end()) {
+    if (protocols.size() != 1) throw Error("--protocol cross-sensor is a run of its own: give it alone, not '" + a.protocols + "'");
+    return runCrossSensor(a);
+  }
+  if (!a.other_camera.empty()) throw Error("--other-camera belongs to --protocol cross-sensor");
   for (const std::string sequences : {"fusion", "nbv"})
     if (std::find(protocols.begin(), protocols.end(), sequences) != protocols.end()) {
       if (protocols.size() != 1)
@@ -146,7 +167,8 @@ Command addEvaluateCommand(CLI::App& app) {
                   "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
                   "default 5), fixed:FILE; or fusion alone (accuracy against the number of views of one object, "
                   "one feature set and classifier, under leave-instance and leave-elevation), or nbv alone (next "
-                  "best view against fixed steps, the same way)")
+                  "best view against fixed steps, the same way), or cross-sensor alone (with --other-camera: trained on "
+                  "either camera's views or both, tested on each, one elevation left out at a time)")
       ->capture_default_str();
   cmd->add_option("--split-seed", a->split_seed, "Seed of the k-fold shuffle")->capture_default_str();
   cmd->add_option("--inner-folds", a->inner_folds,
@@ -160,6 +182,10 @@ Command addEvaluateCommand(CLI::App& app) {
                   "Dataset of the same views rendered again (keyturn simulate --jitter): a view's twin is trained on "
                   "only where the view is; repeatable")
       ->allow_extra_args(false)  // one folder per --train-extra: the dataset positional stays free
+      ->check(CLI::ExistingDirectory);
+  cmd->add_option("--other-camera", a->other_camera,
+                  "Protocol cross-sensor: the dataset's views through another camera (keyturn simulate --camera "
+                  "openni2 with the same objects, elevations and step)")
       ->check(CLI::ExistingDirectory);
   cmd->add_option("--out,-o", a->out, "Report folder")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views / folds (default: all cores)");

@@ -19,7 +19,7 @@ std::atomic<bool> g_stop{false};
 void onSignal(int) { g_stop = true; }
 
 struct SimulateArgs {
-  std::string objects, out, elevations = "30,45,60";
+  std::string objects, out, elevations = "30,45,60", camera = "sr4000";
   double step = 5;
   unsigned long long seed = 1;
   bool quiet = false;
@@ -47,13 +47,14 @@ void parseIntegrationRange(const std::string& text, rig::ViewJitter& j) {
 int runSimulate(const SimulateArgs& a) {
   rig::DatasetSimulation sim;
   sim.out = a.out;
+  sim.camera = rig::parseSimulatedCamera(a.camera);
   sim.objects = dataset::readObjectList(a.objects);
   sim.elevations = parseNumberList(a.elevations, "--elevations");
   sim.step_deg = a.step;
   sim.seed = a.seed;
   sim.jitter = a.jitter;
   parseIntegrationRange(a.integration, sim.jitter);
-  sim.jitter.check();
+  sim.jitter.check(sim.camera);
   sim.stop = &g_stop;
   sim.checkMeshes(a.objects);
   std::signal(SIGINT, onSignal);
@@ -79,6 +80,10 @@ Command addSimulateCommand(CLI::App& app) {
   auto* cmd = app.add_subcommand("simulate", "Generate an SR4K-D style dataset on the simulated rig");
   cmd->add_option("--objects", a->objects, "CSV with class,instance,mesh columns (mesh paths relative to it)")
       ->required();
+  cmd->add_option("--camera", a->camera,
+                  "sr4000 (libmesasr-sim, 176 × 144 time of flight) or openni2 (the simulated Kinect-class camera "
+                  "through OpenNI2, 640 × 480 structured light): the same view ids either way, one dataset per camera")
+      ->capture_default_str();
   cmd->add_option("--elevations", a->elevations, "Camera elevations (°), comma-separated")->capture_default_str();
   cmd->add_option("--step", a->step, "Turntable step (°)")->capture_default_str();
   cmd->add_option("--seed", a->seed, "Sensor noise seed")->capture_default_str();

@@ -25,7 +25,8 @@ namespace {
 
 struct TrainArgs {
   // The set that did best across protocols on real and simulated views (docs/results.md, "Sim-to-real")
-  std::string dataset, features = "kpa3+s_kpd2", classifier = "xgboost", label = "instance", out;
+  std::vector<std::string> datasets;  // trained on together (e.g. one per camera, keyturn simulate --camera)
+  std::string features = "kpa3+s_kpd2", classifier = "xgboost", label = "instance", out;
   int jobs = 0;
   bool quiet = false;
   DescriptorFlags flags;
@@ -34,27 +35,41 @@ struct TrainArgs {
   std::string open_set_method = "none";  // closed-set unless asked (docs/results.md, "Open-set answers")
 };
 
-int runTrain(const TrainArgs& a) {
-  const learning::LabelKind kind = learning::parseLabelKind(a.label);
-  learning::OpenSetOptions open_set = a.open_set;
-  setOpenSetFlag(open_set, a.open_set_method);  // before describing: a wrong name fails at once
-  const learning::FeatureTable t = datasetFeatures(a.dataset, a.flags.options, a.jobs, a.quiet);
-  learning::ClassifierParams params = a.params;
-  params.kind = a.classifier;
-  double s = 0;
-  learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
-  // Pose fusion's references (classify --fuse), when every view has its turntable angle.
-  const auto poses = dataset::datasetAzimuths(a.dataset);
+// Each row's turntable angle from its dataset's manifest (NaN where it has none).
+std::vector<double> datasetRowAzimuths(const std::string& dataset, const learning::FeatureTable& t) {
+  const auto poses = dataset::datasetAzimuths(dataset);
   std::vector<double> azimuths;
   for (const auto& row : t.rows) {
     const auto it = poses.find(row.id);
     azimuths.push_back(it == poses.end() ? std::nan("") : it->second);
   }
+  return azimuths;
+}
+
+int runTrain(const TrainArgs& a) {
+  const learning::LabelKind kind = learning::parseLabelKind(a.label);
+  learning::OpenSetOptions open_set = a.open_set;
+  setOpenSetFlag(open_set, a.open_set_method);  // before describing: a wrong name fails at once
+  learning::FeatureTable t = datasetFeatures(a.datasets.front(), a.flags.options, a.jobs, a.quiet);
+  std::vector<double> azimuths = datasetRowAzimuths(a.datasets.front(), t);
+  for (std::size_t d = 1; d < a.datasets.size(); ++d) {
+    const learning::FeatureTable more = datasetFeatures(a.datasets[d], a.flags.options, a.jobs, a.quiet);
+    learning::appendRows(t, more, a.datasets[d]);
+    const std::vector<double> more_azimuths = datasetRowAzimuths(a.datasets[d], more);
+    azimuths.insert(azimuths.end(), more_azimuths.begin(), more_azimuths.end());
+  }
+  learning::ClassifierParams params = a.params;
+  params.kind = a.classifier;
+  double s = 0;
+  learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
+  // Pose fusion's references (classify --fuse), when every view has its turntable angle.
   const bool posed = std::all_of(azimuths.begin(), azimuths.end(), [](double v) { return std::isfinite(v); });
   if (posed) learning::addPoseReferences(m, t, azimuths, kind, learning::FusionOptions().bin_deg);
   learning::saveModel(a.out, m);
   if (!a.quiet) {
-    std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views, "
+    std::cerr << "keyturn train: " << a.classifier << " on " << a.features << ", " << t.rows.size() << " views";
+    if (a.datasets.size() > 1) std::cerr << " of " << a.datasets.size() << " datasets";
+    std::cerr << ", "
               << m.info.classes.size() << " classes, " << std::fixed << std::setprecision(1) << s << " s";
     const learning::OpenSet& os = m.info.open_set;
     if (os.enabled())
@@ -152,7 +167,10 @@ int runClassify(const ClassifyArgs& a) {
 Command addTrainCommand(CLI::App& app) {
   auto a = std::make_shared<TrainArgs>();
   auto* cmd = app.add_subcommand("train", "Train a classifier on a whole dataset and save it with its feature spec");
-  cmd->add_option("dataset", a->dataset, "Dataset folder")->required();
+  cmd->add_option("datasets", a->datasets,
+                  "Dataset folders, trained on together: e.g. the same objects through each camera (keyturn simulate "
+                  "--camera sr4000 and openni2)")
+      ->required();
   cmd->add_option("--features", a->features, "Feature set ('+' concatenates blocks)")->capture_default_str();
   cmd->add_option("--classifier", a->classifier, "xgboost or mlp")->capture_default_str();
   cmd->add_option("--label", a->label, "instance or category")->capture_default_str();

@@ -55,6 +55,7 @@ void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, co
       so.camera.elevation_deg = el;
       so.camera.seed = s.seed;
       so.fast = true;
+      so.openni2 = s.camera == SimulatedCamera::OpenNi2;
       SimulatedRig simrig = openSimulatedRig(so);
       CaptureOptions o = viewOptions(base, obj, el, elevationLabel(el));
       o.camera_from_turntable_zero = simrig.camera_from_turntable;
@@ -81,6 +82,7 @@ CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& 
   so.camera.roll_deg = draw.roll_deg;
   so.camera.seed = viewHash(s.seed, key);  // each view its own noise
   so.fast = true;
+  so.openni2 = s.camera == SimulatedCamera::OpenNi2;
   SimulatedRig simrig = openSimulatedRig(so);
   if (draw.integration > 0) {
     drivers::TofSettings settings = simrig.camera->settings();
@@ -128,6 +130,23 @@ void ViewJitter::check() const {
     throw Error("jitter: the integration codes must satisfy 1 <= MIN <= MAX <= 255");
 }
 
+void ViewJitter::check(SimulatedCamera camera) const {
+  check();
+  if (camera != SimulatedCamera::Sr4000 && integration_max > 0)
+    throw Error(std::string("jitter: integration time is the SR4000's; the ") + simulatedCameraName(camera) +
+                " camera has none");
+}
+
+SimulatedCamera parseSimulatedCamera(const std::string& name) {
+  if (name == "sr4000") return SimulatedCamera::Sr4000;
+  if (name == "openni2") return SimulatedCamera::OpenNi2;
+  throw Error("simulated camera '" + name + "': expected sr4000 (time of flight) or openni2 (Kinect-class structured light)");
+}
+
+const char* simulatedCameraName(SimulatedCamera camera) {
+  return camera == SimulatedCamera::OpenNi2 ? "openni2" : "sr4000";
+}
+
 JitteredView drawJitter(const ViewJitter& j, std::uint64_t seed, const dataset::ViewKey& view, double elevation_deg) {
   std::mt19937_64 rng(viewHash(seed, view));
   std::uniform_real_distribution<double> u(-1.0, 1.0);
@@ -151,7 +170,7 @@ std::size_t DatasetSimulation::views() const {
 }
 
 CaptureReport simulateDataset(const DatasetSimulation& s, const std::function<void()>& view_done) {
-  s.jitter.check();
+  s.jitter.check(s.camera);
   dataset::Dataset dataset(s.out);
   const CaptureOptions base = baseOptions(s);
   CaptureReport total;

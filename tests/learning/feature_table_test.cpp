@@ -87,6 +87,24 @@ TEST(FeatureTable, ShardsMergeAndMismatchedShardsAreRefused) {
             std::string::npos);
 }
 
+// keyturn train DATASET DATASET…: one camera's views after another's, their ids repeated (the same view
+// through each camera), refused where they were described another way.
+TEST(FeatureTable, DatasetsTrainedOnTogetherKeepEveryRowAndRefuseOtherFeatures) {
+  FeatureTable t = sample(0, 3);
+  appendRows(t, sample(0, 2), "openni2");
+  ASSERT_EQ(t.rows.size(), 5u);
+  EXPECT_EQ(t.rows[3].id, t.rows[0].id) << "the same view through another camera keeps its id";
+  FeatureTable other = sample(0, 1);
+  other.spec["bins"] = "64";
+  EXPECT_EQ(keyturn::test::errorOf([&] { appendRows(t, other, "openni2"); }),
+            "openni2: described with other parameters (bins 64, the dataset's 3)");
+  other = sample(0, 1);
+  other.blocks = {"kpd2", "vfh"};
+  EXPECT_EQ(keyturn::test::errorOf([&] { appendRows(t, other, "openni2"); }),
+            "openni2: its features have other blocks than the dataset's");
+  EXPECT_EQ(t.rows.size(), 5u) << "a refused dataset adds no row";
+}
+
 TEST(FeatureTable, DamagedCachesNameTheLine) {
   saveFeatureTable(path("ok.csv"), sample(0, 2));
   std::ifstream in(path("ok.csv"));

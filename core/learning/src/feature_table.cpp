@@ -174,6 +174,22 @@ FeatureTable loadFeatureTable(const std::string& path) {
   return t;
 }
 
+void checkSameFeatures(const FeatureTable& table, const FeatureTable& other, const std::string& other_name) {
+  if (other.blocks != table.blocks || other.sizes != table.sizes)
+    throw Error(other_name + ": its features have other blocks than the dataset's");
+  for (const auto& [key, value] : table.spec) {
+    const auto it = other.spec.find(key);
+    if (it == other.spec.end() || it->second != value)
+      throw Error(other_name + ": described with other parameters (" + key + " " +
+                  (it == other.spec.end() ? std::string("missing") : it->second) + ", the dataset's " + value + ")");
+  }
+}
+
+void appendRows(FeatureTable& table, const FeatureTable& other, const std::string& other_name) {
+  checkSameFeatures(table, other, other_name);
+  table.rows.insert(table.rows.end(), other.rows.begin(), other.rows.end());
+}
+
 FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const std::vector<std::string>& names) {
   if (shards.empty()) throw Error("no feature cache shards to merge");
   FeatureTable out = shards.front();

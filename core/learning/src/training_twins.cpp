@@ -8,14 +8,7 @@
 namespace keyturn::learning {
 
 TwinRows appendTwins(FeatureTable& table, const FeatureTable& extra, const std::string& extra_name) {
-  if (extra.blocks != table.blocks || extra.sizes != table.sizes)
-    throw Error(extra_name + ": its features have other blocks than the dataset's");
-  for (const auto& [key, value] : table.spec) {
-    const auto it = extra.spec.find(key);
-    if (it == extra.spec.end() || it->second != value)
-      throw Error(extra_name + ": described with other parameters (" + key + " " +
-                  (it == extra.spec.end() ? std::string("missing") : it->second) + ", the dataset's " + value + ")");
-  }
+  checkSameFeatures(table, extra, extra_name);
   std::unordered_map<std::string, std::size_t> row_of;
   for (std::size_t r = 0; r < table.rows.size(); ++r) row_of.emplace(table.rows[r].id, r);
   TwinRows twins(table.rows.size());

@@ -14,6 +14,15 @@
 
 namespace keyturn::rig {
 
+// The simulated camera that renders a dataset's views: the SR4000 (libmesasr-sim through libMesaSR's
+// interface, 176 × 144 time of flight) or the Kinect-class camera (the simulated OpenNI2 driver through
+// Debian's libOpenNI2, 640 × 480 structured light). The same view ids either way, so a dataset of one
+// is the other's twin (evaluate --train-extra, --protocol cross-sensor; train --train-extra).
+enum class SimulatedCamera { Sr4000, OpenNi2 };
+// "sr4000" or "openni2"; throws keyturn::Error naming the choices for another name.
+SimulatedCamera parseSimulatedCamera(const std::string& name);
+const char* simulatedCameraName(SimulatedCamera camera);
+
 // Per-view jitter, for a training-side twin of a dataset (evaluate --train-extra): every view
 // rendered with its own framing distance, elevation, camera roll and integration time, drawn
 // from (seed, class, instance, elevation, angle) alone, so a resumed or repeated run draws the same.
@@ -26,6 +35,8 @@ struct ViewJitter {
   bool any() const { return distance > 0 || elevation_deg > 0 || tilt_deg > 0 || scale > 0 || integration_max > 0; }
   // Throws keyturn::Error for a magnitude out of its range (fractions < 0.5, angles ≤ 20°, codes 1–255).
   void check() const;
+  // … and for a jitter the camera cannot take (integration time is the SR4000's alone).
+  void check(SimulatedCamera camera) const;
 };
 
 // One view's draw: what the simulated camera is given for it.
@@ -37,6 +48,7 @@ JitteredView drawJitter(const ViewJitter& jitter, std::uint64_t seed, const data
 
 struct DatasetSimulation {
   std::string out;                  // the dataset folder (its rig's files in OUT/.sim)
+  SimulatedCamera camera = SimulatedCamera::Sr4000;
   std::vector<dataset::ObjectRow> objects;
   std::vector<double> elevations;   // degrees; labelled by their whole degrees
   double step_deg = 5;

@@ -45,6 +45,11 @@ std::vector<std::string> featureSetChoices(const std::string& set);
 void saveFeatureTable(const std::string& path, const FeatureTable& table);
 // Throws keyturn::Error "<path>: line N: …" on any malformed content.
 FeatureTable loadFeatureTable(const std::string& path);
+// Throws keyturn::Error naming other_name when other's blocks or descriptor parameters differ from table's.
+void checkSameFeatures(const FeatureTable& table, const FeatureTable& other, const std::string& other_name);
+// other's rows after table's (checked by checkSameFeatures): several datasets' views trained on together.
+// Ids may repeat: the same view through another camera keeps its id.
+void appendRows(FeatureTable& table, const FeatureTable& other, const std::string& other_name);
 // Rows of shards with identical blocks and spec, in order; duplicate ids are an error.
 FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const std::vector<std::string>& names);
 
