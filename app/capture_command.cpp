@@ -30,18 +30,21 @@ struct CaptureArgs {
 };
 
 // The calibration file, the pose source (and its profile) and the camera are opened before the
-// dataset is created, so a bad one is named before anything is written.
+// dataset's files are written (only its lock is taken first), so a bad one is named before anything
+// else is written.
 int captureSequence(CaptureArgs a) {
   rig::CaptureOptions& o = a.o;
   if (!a.calibration.empty()) (void)dataset::readAxisCalibration(a.calibration);  // a bad file is named before any device opens
   a.devices.camera = cameraSpec(a.camera, "", "");
   a.devices.pose = poseSpec(a.pose, a.profile);
   rig::refusePlaybackInto(a.devices, a.out);
+  // One writer at a time, the lock taken before the simulated rig writes its state into DATASET/.sim.
+  dataset::DatasetLock lock(a.out);
   a.devices.sim.dir = a.out + "/.sim";
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
   rig::CaptureRig capture_rig(a.devices);
   o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
-  dataset::Dataset dataset(a.out);
+  dataset::Dataset dataset(a.out, std::move(lock));
   if (const std::size_t n = dataset.temporariesRemoved())
     std::cerr << "keyturn capture: removed " << n << " leftover temporary file" << (n == 1 ? "" : "s")
               << " of an interrupted write\n";

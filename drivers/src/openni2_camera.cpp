@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <mutex>
+#include <set>
 
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/retry.h"
@@ -46,11 +47,25 @@ void startOpenNi2() {
   started = true;
 }
 
-// Where libOpenNI2 looks for its drivers: OpenNI2/Drivers beside the library it was loaded from.
-std::string driversFolder() {
+// Where libOpenNI2 looks for its drivers: OpenNI2/Drivers beside the library it was loaded from,
+// and the folders its links there lead to (keyturn's folder links the system's drivers).
+std::string driverFolders() {
+  namespace fs = std::filesystem;
   Dl_info info{};
   if (::dladdr(reinterpret_cast<void*>(&oniInitialize), &info) == 0 || !info.dli_fname) return "OpenNI2/Drivers";
-  return (std::filesystem::path(info.dli_fname).parent_path() / "OpenNI2" / "Drivers").string();
+  const fs::path folder = fs::path(info.dli_fname).parent_path() / "OpenNI2" / "Drivers";
+  std::set<std::string> linked;
+  std::error_code ec;
+  for (fs::directory_iterator it(folder, ec), end; !ec && it != end; it.increment(ec)) {
+    std::error_code link_ec;
+    if (!it->is_symlink(link_ec)) continue;
+    const fs::path target = fs::read_symlink(it->path(), link_ec);
+    if (!link_ec) linked.insert((folder / target).parent_path().lexically_normal().string());
+  }
+  linked.erase(folder.lexically_normal().string());
+  std::string out = folder.string();
+  for (const auto& f : linked) out += (f == *linked.begin() ? " (links into " : ", ") + f;
+  return linked.empty() ? out : out + ")";
 }
 
 std::string pixelFormatName(openni::PixelFormat f) {
@@ -105,6 +120,9 @@ bool chooseColourMode(openni::VideoStream& colour, int width, int height) {
   return false;
 }
 
+// keyturn's simulated camera (simulators/openni2_sim/), listed after the real devices.
+bool isSimulatedUri(const std::string& uri) { return uri.rfind("keyturn-sim://", 0) == 0; }
+
 std::vector<std::string> presentUris() {
   openni::Array<openni::DeviceInfo> list;
   openni::OpenNI::enumerateDevices(&list);
@@ -148,6 +166,12 @@ TofFrame depthCameraFrame(const std::uint16_t* depth, std::uint32_t width, std::
   return f;
 }
 
+std::string firstOpenNi2Device(const std::vector<std::string>& uris) {
+  for (const auto& uri : uris)
+    if (!isSimulatedUri(uri)) return uri;
+  return uris.empty() ? "" : uris.front();
+}
+
 std::vector<OpenNi2DeviceInfo> listOpenNi2Devices() {
   startOpenNi2();
   openni::Array<openni::DeviceInfo> list;
@@ -176,6 +200,7 @@ std::vector<OpenNi2DeviceInfo> listOpenNi2Devices() {
     }
     out.push_back(info);
   }
+  std::stable_partition(out.begin(), out.end(), [](const OpenNi2DeviceInfo& d) { return !isSimulatedUri(d.uri); });
   return out;
 }
 
@@ -221,20 +246,18 @@ const OpenNi2DeviceInfo& OpenNi2Camera::info() const {
 void OpenNi2Camera::open() {
   startOpenNi2();
   auto s = std::make_unique<Streams>();
-  const char* uri = openni::ANY_DEVICE;
   if (!options_.oni_file.empty()) {
     if (!std::ifstream(options_.oni_file).good()) throw Error(options_.oni_file + ": no such .oni recording");
-    uri = options_.oni_file.c_str();
-    if (s->device.open(uri) != openni::STATUS_OK)
+    if (s->device.open(options_.oni_file.c_str()) != openni::STATUS_OK)
       throw Error(options_.oni_file + ": not a readable .oni recording (OpenNI2: " +
                   openNiError() + ")");
   } else {
     const std::vector<std::string> present = presentUris();
     if (present.empty())
       throw Error("no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: " +
-                  driversFolder() + ")");
-    if (!options_.uri.empty()) uri = options_.uri.c_str();
-    if (s->device.open(uri) != openni::STATUS_OK) {
+                  driverFolders() + ")");
+    const std::string uri = options_.uri.empty() ? firstOpenNi2Device(present) : options_.uri;
+    if (s->device.open(uri.c_str()) != openni::STATUS_OK) {
       // A URI no driver listed may still be one a driver answers when asked (OpenNI2 asks each one
       // first); refused by all, it is not there.
       if (!options_.uri.empty() && std::find(present.begin(), present.end(), options_.uri) == present.end()) {

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # keyturn capture as a user runs it on the simulated rig: killed with SIGKILL
 # twice mid-sequence, stopped with Ctrl-C once, resumed each time; at the end
-# the dataset verifies and holds every view exactly once.
+# the dataset verifies and holds every view exactly once. A second writer into a
+# dataset being written is refused.
 set -u
 source "$(dirname "$0")/lib.sh"
 ds="$work/ds"
@@ -15,6 +16,8 @@ for round in 1 2; do
   for _ in $(seq 1500); do [ "$(rows)" -ge "$target" ] && break; sleep 0.02; done
   kill -9 "$pid"; wait "$pid" 2>/dev/null
   check "round $round: killed mid-capture" test "$(rows)" -lt 36
+  # Its lock file stays behind, but not its lock (the kernel drops that): the next capture proceeds.
+  check "round $round: the killed capture's lock file is left" test -s "$ds/.keyturn-lock"
 done
 "${cmd[@]}" 2> "$work/int.err" &
 pid=$!
@@ -36,6 +39,29 @@ mkdir -p "$ds/snapshots"
 cp "$ds/mug/builtin/e30/a0.0_distance.png" "$ds/snapshots/20260101-120000-000_distance.png"
 "$KT" verify "$ds" > "$work/verify-snap.txt"
 check "a studio snapshot leaves the dataset verified" grep -q "36 views, 0 missing, 0 corrupt, 0 orphan, 0 duplicate files — OK" "$work/verify-snap.txt"
+
+# One writer per dataset: a second capture (or simulate) into a dataset a capture is writing is
+# refused at once, in one line naming the dataset and the holder; the first runs to its end.
+two="$work/two"
+two_cmd=("$KT" capture --class mug --instance builtin --step 5 --range 180 --settle 0.02 -q --out "$two")
+"${two_cmd[@]}" 2> "$work/first.err" &
+first=$!
+for _ in $(seq 1500); do [ "$(ds=$two rows)" -ge 1 ] && break; sleep 0.02; done
+"${two_cmd[@]}" 2> "$work/second.err"
+check "a second capture into the same dataset exits non-zero" test $? -ne 0
+check "it names the dataset and the holder in one line" \
+  grep -qx "keyturn: $two: already being written by pid $first (.*keyturn capture .*--out $two) on .* since 20.*; one writer at a time" \
+  "$work/second.err"
+check "it says nothing else" test "$(wc -l < "$work/second.err")" -eq 1
+"$KT" simulate --objects "$(dirname "$0")/../../data/objects/objects.csv" --elevations 30 --step 90 --out "$two" -q \
+  2> "$work/second-sim.err"
+check "simulate into it is refused the same way" grep -q "^keyturn: $two: already being written by pid $first " "$work/second-sim.err"
+wait "$first"
+check "the first capture runs to its end" test $? -eq 0
+check "the first capture wrote its 36 views" grep -q "36 views written, 0 already there" "$work/first.err"
+"$KT" verify "$two" > "$work/verify-two.txt"
+check "its dataset verifies, the lock file no orphan" \
+  grep -q "36 views, 0 missing, 0 corrupt, 0 orphan, 0 duplicate files — OK" "$work/verify-two.txt"
 
 # Measured angles match the commanded ones (the table settled before each view).
 bad=$(tail -n +2 "$ds/manifest.csv" | awk -F, '{d=$5-$6; if (d<0) d=-d; if (d>0.11 && d<359.89) print}' | wc -l)

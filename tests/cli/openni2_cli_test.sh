@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # OpenNI2 cameras as a user runs keyturn with them, against the simulated OpenNI2 driver that
-# Debian's real libOpenNI2 loads from its folder (argument 2, put first on the library path as a
-# user would for any OpenNI2 program): grab writes frames, devices lists the device, a capture with
+# Debian's real libOpenNI2 loads from its folder (argument 2: found through keyturn's RUNPATH with
+# no environment, and put first on the library path as for any other OpenNI2 program): the folder
+# links the system's drivers, grab writes frames, devices lists the device, a capture with
 # the simulated turntable writes a dataset verify passes; without a device, with a URI not present
 # and with an .oni file missing, one line says so.
 set -u
@@ -18,8 +19,8 @@ ln -s "$(readlink -f "$simdir/OpenNI2/Drivers/libOniFile.so.0")" "$nodev/OpenNI2
 ln -s "$(readlink -f "$simdir/libOpenNI2.so.0")" "$work/no-drivers/libOpenNI2.so.0"
 LD_LIBRARY_PATH="$nodev" "$KT" grab --camera openni2 --out "$work/none.pcd" 2> "$work/none.err"
 check "no device: grab exits non-zero" test $? -ne 0
-check "no device: one line naming the drivers folder" \
-  grep -qx "keyturn: no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: $nodev/OpenNI2/Drivers)" "$work/none.err"
+check "no device: one line naming the drivers folder and the folder its links lead into" \
+  grep -qx "keyturn: no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: $nodev/OpenNI2/Drivers (links into $(dirname "$(readlink -f "$simdir/OpenNI2/Drivers/libOniFile.so.0")")))" "$work/none.err"
 check "no device: nothing else said" test "$(wc -l < "$work/none.err")" -eq 1
 LD_LIBRARY_PATH="$nodev" "$KT" devices > "$work/none-devices.txt"
 check "no device: devices says so" grep -qx "No OpenNI2 depth camera." "$work/none-devices.txt"
@@ -29,6 +30,25 @@ check "no drivers: one line saying OpenNI2 could not start" \
 LD_LIBRARY_PATH="$work/no-drivers" "$KT" devices --json > "$work/nodrivers.json"
 check "no drivers: devices still lists the SwissRangers and says why OpenNI2 is absent" \
   python3 -c "import json,sys; j = json.load(open(sys.argv[1])); assert j['cameras'] == [] and j['openni2'] == [] and 'could not start' in j['openni2_error']" "$work/nodrivers.json"
+
+# Without any environment (issue 52): keyturn's RUNPATH finds its own folder, whose libOpenNI2 loads
+# the simulated camera's driver and links to every driver of the system's folder (real cameras).
+system_drivers=$(dirname "$(readlink -f "$simdir/libOpenNI2.so.0")")/OpenNI2/Drivers
+linked=0
+for driver in "$system_drivers"/lib*.so.0; do
+  [ "$(basename "$driver")" = libKeyturnSimOpenNI2.so.0 ] && continue
+  [ "$(readlink "$simdir/OpenNI2/Drivers/$(basename "$driver")")" = "$driver" ] && linked=$((linked + 1))
+done
+check "the folder links every driver of $system_drivers ($linked)" \
+  test "$linked" -eq "$(ls "$system_drivers"/lib*.so.0 | grep -vc libKeyturnSimOpenNI2)" -a "$linked" -ge 1
+env -u LD_LIBRARY_PATH "$KT" grab --camera openni2 --out "$work/noenv.pcd" 2> "$work/noenv.err"
+check "no environment: grab --camera openni2 takes the simulated camera" \
+  grep -q "^keyturn grab: keyturn Simulated structured-light camera (keyturn-sim://default)" "$work/noenv.err"
+env -u LD_LIBRARY_PATH "$KT" devices > "$work/noenv-devices.txt"
+check "no environment: devices lists the simulated camera" grep -q "openni2:keyturn-sim://default" "$work/noenv-devices.txt"
+env -u LD_LIBRARY_PATH "$KT" capture --camera openni2 --pose sim --class mug --instance builtin --step 180 --settle 0.01 -q \
+  --out "$work/noenv-ds" 2> "$work/noenv-capture.err"
+check "no environment: capture --camera openni2 --pose sim writes its views" grep -q "2 views written" "$work/noenv-capture.err"
 
 # grab: three frames of the simulated Kinect-class camera, their per-pixel median written.
 sim "$KT" grab --camera openni2 --frames 3 --out "$work/grab/frame.pcd" > "$work/grab.out" 2> "$work/grab.err"
@@ -86,11 +106,12 @@ sim "$KT" capture --camera openni2:keyturn-sim://default --pose sim --class mug 
   2> "$work/world.err"
 check "pose sim with another OpenNI2 device is refused in one line" \
   grep -q "pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera)" "$work/world.err"
-# The studio with the OpenNI2 camera live (headless under Xvfb): frames arrive, recognition runs.
+# The studio with the OpenNI2 camera live (headless under Xvfb), no environment needed: frames arrive,
+# recognition runs.
 studio="$(dirname "$KT")/keyturn-studio"
 if [ -x "$studio" ] && command -v xvfb-run > /dev/null; then
   data="$(cd "$(dirname "$0")/../../data" && pwd)"
-  sim xvfb-run -a -s "-screen 0 1600x1000x24" "$studio" --camera openni2 --model "$data/models/sim-objects" \
+  env -u LD_LIBRARY_PATH xvfb-run -a -s "-screen 0 1600x1000x24" "$studio" --camera openni2 --model "$data/models/sim-objects" \
     --settings "$work/studio.ini" --measure 3 --screenshot "$work/studio.png" > "$work/studio.json" 2> "$work/studio.err"
   check "studio --camera openni2 exits 0" test $? -eq 0
   fps=$(python3 -c "import json,sys; print(int(json.load(open(sys.argv[1]))['camera_fps']))" "$work/studio.json" 2>/dev/null)

@@ -7,6 +7,8 @@
 #include <unistd.h>
 
 #include <cmath>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -85,6 +87,29 @@ TEST(OpenNi2Camera, AUriNotPresentIsNamedWithThoseThatAre) {
   o.uri = "1d27/0601@9/9";
   EXPECT_EQ(errorOf([&] { drivers::OpenNi2Camera camera(o); }),
             "OpenNI2 device '1d27/0601@9/9' not found; present: keyturn-sim://default");
+}
+
+// The folder links Debian's drivers beside the simulated one (issue 52): its DummyDevice answers the
+// URI "Dummy" and is listed from then on, a device that is not keyturn's simulated camera. With both
+// listed, the real one is the first device (`--camera openni2` without a URI opens it). Opened with
+// OpenNI2's own API, without streams (Debian's DummyDevice crashes in its stream thread after a
+// refused open), in a child process so that Dummy stays out of the other tests' device lists.
+TEST(OpenNi2CameraDeathTest, TheSystemsDriversAreThereAndTheirDeviceComesFirst) {
+  GTEST_FLAG_SET(death_test_style, "threadsafe");
+  const auto firstIsTheRealDevice = [] {
+    (void)drivers::listOpenNi2Devices();  // starts OpenNI2 as keyturn does
+    openni::Device dummy;
+    const bool opened = dummy.open("Dummy") == openni::STATUS_OK;
+    openni::Array<openni::DeviceInfo> list;
+    openni::OpenNI::enumerateDevices(&list);
+    std::vector<std::string> uris;
+    for (int i = 0; i < list.getSize(); ++i) uris.emplace_back(list[i].getUri());
+    const std::string first = drivers::firstOpenNi2Device(uris);
+    std::fprintf(stderr, "Dummy %s; %zu listed, the first: %s\n", opened ? "opened" : "not opened", uris.size(), first.c_str());
+    const bool ok = opened && uris.size() == 2 && first == "Dummy";
+    std::_Exit(ok ? 0 : 1);  // no static destructors: OpenNI2's driver threads are still running
+  };
+  EXPECT_EXIT(firstIsTheRealDevice(), ::testing::ExitedWithCode(0), "");
 }
 
 TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {

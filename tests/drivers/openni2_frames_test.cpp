@@ -16,6 +16,13 @@ namespace {
 
 using test::errorOf;
 
+// `--camera openni2` (no URI) with keyturn's simulated camera and a real one both listed: the real one.
+TEST(OpenNi2Devices, TheFirstIsARealDeviceBeforeTheSimulatedCamera) {
+  EXPECT_EQ(drivers::firstOpenNi2Device({"keyturn-sim://default", "1d27/0601@2/7", "2bc5/0401@1/3"}), "1d27/0601@2/7");
+  EXPECT_EQ(drivers::firstOpenNi2Device({"keyturn-sim://default"}), "keyturn-sim://default");
+  EXPECT_EQ(drivers::firstOpenNi2Device({}), "");
+}
+
 TEST(OpenNi2Intrinsics, FromTheFieldOfViewCentredOnTheImage) {
   // A Kinect v1 / Xtion depth camera: 640 × 480 at fx = fy = 580 px is 57.8° × 45.0°.
   const double hfov = 2 * std::atan(320.0 / 580), vfov = 2 * std::atan(240.0 / 580);

@@ -3,7 +3,8 @@
 # names the source or the build tree, and from an empty environment the installed programs find
 # their data, plugins and simulated camera relative to themselves (core/install_layout.h):
 # `keyturn demo`, a describe whose plugin loads from the prefix, the simulated SR4000 from the
-# prefix, the studio under Xvfb, and the Python module from the prefix.
+# prefix, the simulated OpenNI2 camera beside the system's drivers, the studio under Xvfb, and the
+# Python module from the prefix.
 # usage: install_test.sh BUILD_DIR SOURCE_DIR WORK [XVFB_RUN]
 set -u
 build=$(cd "${1:?build folder}" && pwd)
@@ -48,6 +49,19 @@ if [ -x "$sample" ]; then
   (sleep 2; echo q) | clean LD_DEBUG=files LD_LIBRARY_PATH="$openni2" "$sample" > "$work/openni2.out" 2> "$work/openni2.ld"
   check "an OpenNI2 program reads the simulated camera from the prefix" bash -c \
     "grep -q 'file=$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0' '$work/openni2.ld' && grep -qE '^\[[0-9]+\] +[0-9]+\$' '$work/openni2.out'"
+fi
+# keyturn itself needs no environment for OpenNI2 (issue 52): its RUNPATH finds the prefix's folder,
+# which holds the simulated camera and links to the system's drivers (real cameras).
+if [ -d "$openni2" ]; then
+  system_drivers=$(dirname "$(readlink -f "$openni2/libOpenNI2.so.0")")/OpenNI2/Drivers
+  unlinked=$(for d in "$system_drivers"/lib*.so.0; do
+    [ "$(readlink "$openni2/OpenNI2/Drivers/$(basename "$d")")" = "$d" ] || basename "$d"; done | grep -v libKeyturnSimOpenNI2)
+  check "the prefix's OpenNI2 folder links every driver of $system_drivers${unlinked:+ (not: $unlinked)}" test -z "$unlinked"
+  clean "$kt" devices > "$work/devices.txt" 2>&1
+  check "keyturn devices from the prefix lists the simulated OpenNI2 camera" grep -q "openni2:keyturn-sim://default" "$work/devices.txt"
+  clean LD_DEBUG=files "$kt" grab --camera openni2 --out "$work/oni.pcd" > /dev/null 2> "$work/oni.ld"
+  check "grab --camera openni2 from the prefix, its libOpenNI2 the prefix's" bash -c \
+    "test -s '$work/oni.pcd' && grep -qF 'needed by $prefix/bin/../lib/keyturn/openni2/libOpenNI2.so.0' '$work/oni.ld'"
 fi
 # Without its data the program says where it looked, in one line.
 mv "$prefix/share/keyturn" "$prefix/share/keyturn.away"

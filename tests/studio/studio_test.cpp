@@ -405,6 +405,14 @@ class StudioTest : public QObject {
     QVERIFY2(w.bannerText().startsWith("Could not open the camera: SR4000 at 192.0.2.7: "), qPrintable(w.bannerText()));
     QVERIFY2(w.bannerText().contains("libMesaSR"), qPrintable(w.bannerText()));
     QCOMPARE(w.findChild<QPushButton*>("cameraConnect")->text(), QString("Connect"));
+    // The Devices panel's status shows the whole message, a long path wrapped, none of it cut off
+    // (issue 52: an OpenNI2 error was cut after "/lib/x86_64-linux-gnu/"), and holds it as its tooltip.
+    auto* status = w.findChild<QLabel*>("cameraStatus");
+    const QString message = w.bannerText().mid(QString("Could not open the camera: ").size());
+    QCOMPARE(status->toolTip(), message);
+    QCoreApplication::processEvents();
+    QVERIFY2(status->height() >= status->heightForWidth(status->width()),
+             qPrintable(QString("%1 px tall, its text needs %2").arg(status->height()).arg(status->heightForWidth(status->width()))));
   }
 
   void theUsbListFollowsCamerasPluggedInAndOut() {

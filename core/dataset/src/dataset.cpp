@@ -19,6 +19,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/dataset/feature_cache_files.h"
+#include "utc_time.h"
 
 #ifndef KEYTURN_VERSION
 #define KEYTURN_VERSION "unknown"
@@ -29,6 +30,18 @@ namespace fs = std::filesystem;
 namespace keyturn::dataset {
 
 const char* const kSnapshotsFolder = "snapshots";
+
+std::string isoNow() {
+  const auto now = std::chrono::system_clock::now();
+  const std::time_t t = std::chrono::system_clock::to_time_t(now);
+  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
+  char buf[40];
+  std::tm tm{};
+  gmtime_r(&t, &tm);
+  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
+                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ms));
+  return buf;
+}
 
 namespace {
 
@@ -42,16 +55,11 @@ bool isSnapshot(const std::string& rel) {
   return rel.rfind(prefix, 0) == 0 && rel.find('/', prefix.size()) == std::string::npos;
 }
 
-std::string isoNow() {
-  const auto now = std::chrono::system_clock::now();
-  const std::time_t t = std::chrono::system_clock::to_time_t(now);
-  const auto ms = std::chrono::duration_cast<std::chrono::milliseconds>(now.time_since_epoch()).count() % 1000;
-  char buf[40];
-  std::tm tm{};
-  gmtime_r(&t, &tm);
-  std::snprintf(buf, sizeof buf, "%04d-%02d-%02dT%02d:%02d:%02d.%03dZ", tm.tm_year + 1900, tm.tm_mon + 1, tm.tm_mday,
-                tm.tm_hour, tm.tm_min, tm.tm_sec, static_cast<int>(ms));
-  return buf;
+// What a writer keeps beside the views before the first one: the dataset's description and
+// manifest, the axis calibration, the simulator's state and the writers' lock.
+bool isWritersOwnFile(const std::string& rel) {
+  return rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel == kLockFile ||
+         rel.rfind(".sim/", 0) == 0;
 }
 
 std::string fmt(double v, int decimals) {
@@ -181,17 +189,17 @@ std::string manifestHeader() {
   return "class,instance,elevation,elevation_deg,commanded_deg,measured_deg,captured_at,files,sha256";
 }
 
-Dataset::Dataset(std::string root) : root_(std::move(root)) {
-  std::error_code ec;
-  fs::create_directories(root_, ec);
-  if (ec) throw Error(root_ + ": cannot create dataset folder: " + ec.message());
+Dataset::Dataset(std::string root) : Dataset(root, DatasetLock(root)) {}
+
+Dataset::Dataset(std::string root, DatasetLock lock) : root_(std::move(root)), lock_(std::move(lock)) {
   const std::string info = root_ + "/dataset.json";
   if (!fs::exists(info)) {
     const nlohmann::json j = {{"format", "keyturn-dataset"}, {"version", 1}, {"created", isoNow()},
                               {"keyturn_version", KEYTURN_VERSION}};
     writeFileDurably(info, j.dump(2) + "\n");
   }
-  // The feature cache (.keyturn/) may be filling in another process; the simulator keeps its own state.
+  // The lock keeps other writers out; the feature cache (.keyturn/) may be filling in another process,
+  // and the simulator keeps its own state.
   temporaries_removed_ = removeInterruptedWriteTemporaries(root_, {".keyturn", ".sim"});
   const std::string manifest = root_ + "/" + kManifest;
   if (!fs::exists(manifest)) writeFileDurably(manifest, manifestHeader() + "\n");
@@ -387,11 +395,9 @@ VerifyReport Dataset::verify(const std::string& root) {
     std::error_code rel_ec;
     const std::string rel = fs::relative(it->path(), root, rel_ec).string();
     if (rel_ec) continue;
-    // keyturn's own files beside the views: the simulator's state, the feature cache (.keyturn/) and
-    // the studio's snapshots.
-    if (rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel.rfind(".sim/", 0) == 0 ||
-        rel.rfind(std::string(kKeyturnFolder) + "/", 0) == 0 || isSnapshot(rel))
-      continue;
+    // keyturn's own files beside the views: the writers' (the simulator's state, the lock), the
+    // feature cache (.keyturn/) and the studio's snapshots.
+    if (isWritersOwnFile(rel) || rel.rfind(std::string(kKeyturnFolder) + "/", 0) == 0 || isSnapshot(rel)) continue;
     if (referenced.count(rel)) continue;
     if (isInterruptedWriteTemporary(rel)) rep.temporaries.push_back(rel);
     else rep.orphans.push_back(rel);
@@ -401,14 +407,20 @@ VerifyReport Dataset::verify(const std::string& root) {
 
 void removeDatasetWithoutViews(const std::string& root) {
   // Only what a capture writes before its first view: a folder with anything else in it (a
-  // manifest that is not keyturn's, a user's own files) is left as it is.
+  // manifest that is not keyturn's, a user's own files) is left as it is, and so is one that
+  // another writer holds (it may be about to write its first view).
   std::error_code ec;
+  if (!fs::is_directory(root, ec)) return;
+  std::optional<DatasetLock> lock;
+  try {
+    lock.emplace(root);
+  } catch (const Error&) {
+    return;
+  }
   for (auto it = fs::recursive_directory_iterator(root, ec); it != fs::recursive_directory_iterator(); it.increment(ec)) {
     if (!it->is_regular_file(ec)) continue;
     const std::string rel = fs::relative(it->path(), root).string();
-    if (rel != "dataset.json" && rel != kManifest && rel != "calibration.json" && rel.rfind(".sim/", 0) != 0 &&
-        !isInterruptedWriteTemporary(rel))
-      return;
+    if (!isWritersOwnFile(rel) && !isInterruptedWriteTemporary(rel)) return;
   }
   if (ec) return;
   if (fs::exists(fs::path(root) / kManifest)) {

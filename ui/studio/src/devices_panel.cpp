@@ -10,16 +10,52 @@
 #include <QLabel>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QResizeEvent>
 #include <QSettings>
 #include <QSpinBox>
 #include <QStackedWidget>
 #include <QTimer>
 #include <QVBoxLayout>
+#include <algorithm>
 #include <cmath>
 
 #include "keyturn/drivers/mesasr_api.h"
 
 namespace keyturn::studio {
+namespace {
+
+// A device's status: wrapped, a long path (OpenNI2's drivers folders) breaking after its '/'s rather
+// than running past the panel's edge, and as tall as its text at its width, so the panel grows by the
+// lines a message takes instead of cutting them off (the scroll area around the panel asks it for one
+// size, not for a height at its width: asked, QFormLayout answered for another width and cut the text
+// off). A problem's whole message is the tooltip too.
+class StatusLabel final : public QLabel {
+ public:
+  StatusLabel(const QString& text, int min_lines) : QLabel(text), min_lines_(min_lines) { setWordWrap(true); }
+  QSize minimumSizeHint() const override { return {QLabel::minimumSizeHint().width(), textHeight()}; }
+  QSize sizeHint() const override { return {QLabel::sizeHint().width(), textHeight()}; }
+  // The layouts take the hints above, made at the label's width, not a height for a width they guess.
+  bool hasHeightForWidth() const override { return false; }
+
+ protected:
+  void resizeEvent(QResizeEvent* e) override {
+    QLabel::resizeEvent(e);
+    if (e->size().width() != e->oldSize().width()) updateGeometry();
+  }
+
+ private:
+  int textHeight() const { return std::max(min_lines_ * fontMetrics().lineSpacing() + 4, heightForWidth(width())); }
+  int min_lines_;
+};
+
+// A problem as the status shows it, in red: escaped, a line break allowed after every '/'.
+QString problemText(const QString& message) {
+  QString html = message.toHtmlEscaped();
+  html.replace('/', QStringLiteral("/\u200b"));
+  return QString("<span style='color:#c0392b'>%1</span>").arg(html);
+}
+
+}  // namespace
 
 DevicesPanel::DevicesPanel(RigFactory& factory, QWidget* parent) : QWidget(parent), factory_(factory) {
   auto* layout = new QVBoxLayout(this);
@@ -134,10 +170,8 @@ QWidget* DevicesPanel::cameraGroup() {
   row->addWidget(camera_button_);
   row->addWidget(unplug_);
   form->addRow(row);
-  camera_status_ = new QLabel(tr("disconnected"));
-  camera_status_->setWordWrap(true);
+  camera_status_ = new StatusLabel(tr("disconnected"), 3);  // device, maker, settings
   camera_status_->setObjectName("cameraStatus");
-  camera_status_->setMinimumHeight(3 * camera_status_->fontMetrics().lineSpacing() + 4);  // device, maker, settings
   camera_fps_ = new QLabel("–");
   form->addRow(tr("Status"), camera_status_);
   form->addRow(tr("Frame rate"), camera_fps_);
@@ -184,8 +218,8 @@ QWidget* DevicesPanel::poseGroup() {
   pose_button_->setShortcut(QKeySequence(Qt::SHIFT | Qt::Key_F5));
   pose_button_->setToolTip(tr("Connect or disconnect the pose source (Shift+F5)"));
   form->addRow(pose_button_);
-  pose_status_ = new QLabel(tr("disconnected"));
-  pose_status_->setWordWrap(true);
+  pose_status_ = new StatusLabel(tr("disconnected"), 1);
+  pose_status_->setObjectName("poseStatus");
   form->addRow(tr("Status"), pose_status_);
 
   angle_ = new QLabel("–");
@@ -447,13 +481,15 @@ void DevicesPanel::cameraDisconnected() {
   camera_kind_->setEnabled(true);
   camera_where_->setEnabled(true);
   camera_status_->setText(tr("disconnected"));
+  camera_status_->setToolTip(QString());
   camera_fps_->setText("–");
 }
 
 void DevicesPanel::cameraRate(double fps) { camera_fps_->setText(QString("%1 frames/s").arg(fps, 0, 'f', 1)); }
 
 void DevicesPanel::cameraFailing(const QString& message) {
-  camera_status_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(message.toHtmlEscaped()));
+  camera_status_->setText(problemText(message));
+  camera_status_->setToolTip(message);
   camera_fps_->setText("–");
 }
 
@@ -467,6 +503,7 @@ void DevicesPanel::poseConnected(const QString& device, bool can_move) {
   pose_button_->setText(tr("Disconnect"));
   pose_kind_->setEnabled(false);
   pose_status_->setText(device);
+  pose_status_->setToolTip(device);
   motion_box_->setEnabled(can_move);
 }
 
@@ -475,13 +512,15 @@ void DevicesPanel::poseDisconnected() {
   pose_button_->setText(tr("Connect"));
   pose_kind_->setEnabled(true);
   pose_status_->setText(tr("disconnected"));
+  pose_status_->setToolTip(QString());
   angle_->setText("–");
   motion_->clear();
   motion_box_->setEnabled(false);
 }
 
 void DevicesPanel::poseFailing(const QString& message) {
-  pose_status_->setText(QString("<span style='color:#c0392b'>%1</span>").arg(message.toHtmlEscaped()));
+  pose_status_->setText(problemText(message));
+  pose_status_->setToolTip(message);
 }
 
 void DevicesPanel::showPose(double deg, double x, double y, double z, bool moving, bool in_position) {

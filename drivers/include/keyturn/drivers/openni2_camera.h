@@ -48,11 +48,16 @@ struct OpenNi2DeviceInfo {
 };
 
 // The OpenNI2 devices present (OpenNI2's drivers folder decides which kinds), each opened briefly
-// for its depth modes and fields of view. Throws keyturn::Error when OpenNI2 cannot start.
+// for its depth modes and fields of view, the one a camera without a URI opens first. Throws
+// keyturn::Error when OpenNI2 cannot start.
 std::vector<OpenNi2DeviceInfo> listOpenNi2Devices();
 
+// The device a camera without a URI opens, of the URIs OpenNI2 lists: the first real device, and
+// keyturn's simulated camera (keyturn-sim://…) only when no real one is there. "" for none.
+std::string firstOpenNi2Device(const std::vector<std::string>& uris);
+
 struct OpenNi2Options {
-  std::string uri;            // the device's URI; empty: the first device found
+  std::string uri;            // the device's URI; empty: the first device found (firstOpenNi2Device)
   std::string oni_file;       // instead of a device: an .oni recording (libOniFile)
   double playback_fps = 0;    // .oni: 0 plays at the recorded rate
   bool loop = true;           // .oni: false ends with EndOfRecording after the last frame

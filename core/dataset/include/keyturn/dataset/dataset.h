@@ -5,6 +5,7 @@
 //   DATASET/manifest.csv                      one row per view, appended and synced last
 //   DATASET/CLASS/INSTANCE/eLABEL/aANGLE.pcd  + _distance.png _amplitude.png _confidence.png .json
 //   DATASET/snapshots/                        the studio's snapshots of live frames (no views)
+//   DATASET/.keyturn-lock                     the writer's lock and who holds it (dataset_lock.h)
 //
 // A view exists once its manifest row does; files without a row are orphans
 // of an interrupted capture and are replaced when that view is taken again.
@@ -17,6 +18,7 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/dataset/dataset_lock.h"
 
 namespace keyturn::dataset {
 
@@ -77,9 +79,12 @@ struct VerifyReport {
 
 class Dataset {
  public:
-  // Opens or creates the dataset folder; removes the temporaries an interrupted write left in its
-  // view folders; reads an existing manifest.
+  // Opens or creates the dataset folder for writing, holding its lock (dataset_lock.h: throws
+  // DatasetBusyError while another writer has it) until destroyed; removes the temporaries an
+  // interrupted write left in its view folders; reads an existing manifest.
   explicit Dataset(std::string root);
+  // The same with the lock already taken (a capture takes it before its devices write into .sim/).
+  Dataset(std::string root, DatasetLock lock);
   const std::string& root() const { return root_; }
   std::size_t temporariesRemoved() const { return temporaries_removed_; }  // by the constructor
   const std::vector<ViewRecord>& views() const { return views_; }
@@ -108,6 +113,7 @@ class Dataset {
   void removeFilesWithoutRow(const std::string& abs_stem) const;
   ViewRecord commitView(ViewRecord r, const std::string& abs_stem, const std::string& sidecar_json);
   std::string root_;
+  DatasetLock lock_;
   std::vector<ViewRecord> views_;
   std::size_t temporaries_removed_ = 0;
 };
