@@ -219,7 +219,8 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   o.methods = {"knn"};
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
   ASSERT_TRUE(m.info.open_set.enabled());
-  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_model";
+  const keyturn::test::ScratchFolder scratch("open_set_model");
+  const fs::path& dir = scratch.path;
   saveModel(dir.string(), m);
   const Model back = loadModel(dir.string());
   EXPECT_EQ(back.info.open_set.method, "knn");
@@ -248,7 +249,6 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   EXPECT_LT(after[1].score, back.info.open_set.threshold);
   EXPECT_EQ(after[2].answer, Answer::NoObject);
   EXPECT_EQ(answerLabel(back.info, after[2]), "no object");
-  fs::remove_all(dir);
 }
 
 TEST(OpenSetModel, KnnRelativeClassScalesSurviveTheModelFile) {
@@ -305,14 +305,14 @@ TEST(OpenSetModel, ABadOpenSetInASidecarIsNamed) {
   OpenSetOptions o;
   o.methods = {"max-probability"};
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
-  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_bad";
+  const keyturn::test::ScratchFolder scratch("open_set_bad");
+  const fs::path& dir = scratch.path;
   saveModel(dir.string(), m);
   nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
   ASSERT_EQ(sidecar.at("open_set").at("method"), "max-probability");
   sidecar["open_set"]["method"] = "entropy";
   EXPECT_EQ(errorOf([&] { parseModelSidecar(sidecar.dump(), "m/model.json"); }),
             "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn, knn-relative");
-  fs::remove_all(dir);
 }
 
 TEST(OpenSetModel, DegenerateFeaturesGetAClearAnswer) {
