@@ -1,6 +1,7 @@
 // The command line's descriptor options: every flag's default is the library's.
 #include <gtest/gtest.h>
 
+#include <map>
 #include <set>
 
 #include "descriptor_options.h"
@@ -19,6 +20,15 @@ DescriptorOptions parse(std::vector<std::string> args, bool with_features = true
   return flags.options;
 }
 
+// Each row's default as docs/descriptors.md's table of defaults gives it.
+const std::map<std::string, std::string> kDocumentedDefaults = {
+    {"bins", "32"},           {"range", "fixed"},       {"binning", "linear"},          {"pdf_smoothing", "1.5"},
+    {"extent_m", "0.35"},     {"filter", "on"},         {"plane_removal", "on"},        {"max_range_m", "3"},
+    {"jump_edge_deg", "10"},  {"iss_frame", "6"},       {"iss_nms", "3"},               {"iss_density", "2"},
+    {"graph_radius", "3.5"},  {"gkpd1_sources", "1"},   {"curvature_floor", "0.0001"},  {"working_samples_across", "40"},
+    {"working_grid", "object"}, {"working_points", "means"}, {"max_keypoints", "64"},   {"budget_taper", "0"},
+    {"refine_keypoints", "0"}, {"osada_samples", "20000"}, {"seed", "7"},               {"low_keypoints", "10"}};
+
 }  // namespace
 
 TEST(DescriptorFlags, EveryDefaultIsTheLibrarysDefault) {
@@ -26,15 +36,21 @@ TEST(DescriptorFlags, EveryDefaultIsTheLibrarysDefault) {
   app::DescriptorFlags flags;
   flags.add(cli);
   const DescriptorOptions library;
+  std::set<std::string> rows;
   for (const auto& p : descriptorParameters()) {
+    rows.insert(p.name);
     const std::string flag = app::descriptorFlag(p);
     const CLI::Option* o = cli.get_option(flag);
     ASSERT_NE(o, nullptr) << flag;
+    const auto documented = kDocumentedDefaults.find(p.name);
+    ASSERT_NE(documented, kDocumentedDefaults.end()) << p.name << " is not in docs/descriptors.md's table of defaults";
+    EXPECT_EQ(p.get(library), documented->second) << p.name << ": the library's default is not the documented one";
     if (p.kind != DescriptorParameter::Kind::Switch)
-      EXPECT_EQ(o->get_default_str(), p.get(library)) << flag << " shows another default";
+      EXPECT_EQ(o->get_default_str(), documented->second) << flag << " shows another default";
     else
-      EXPECT_EQ(p.get(library), "on") << flag << " turns off a setting that is on by default";
+      EXPECT_EQ(documented->second, "on") << flag << " turns off a setting that is on by default";
   }
+  for (const auto& [name, value] : kDocumentedDefaults) EXPECT_EQ(rows.count(name), 1u) << name << " is no row";
   EXPECT_EQ(cli.get_option("--features")->get_default_str(), "kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2");
   // Parsing nothing leaves the library's options, field for field.
   const DescriptorOptions none = parse({});

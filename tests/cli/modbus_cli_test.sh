@@ -3,7 +3,8 @@
 # TCP on loopback and RTU on a pseudo-terminal, and keyturn turntable against it.
 set -u
 source "$(dirname "$0")/lib.sh"
-if ! command -v mbpoll > /dev/null; then echo "SKIPPED: mbpoll not installed"; echo "0 passed, 0 failed"; exit 0; fi
+# mbpoll is Debian's (scripts/install-deps.sh installs it): CI has it, so there a skip fails.
+if ! command -v mbpoll > /dev/null; then skip yes "the whole test: mbpoll not installed"; finish; exit; fi
 
 # Each simulator lives at most 2 minutes (killed on exit anyway): a loaded CI machine takes its time.
 start_sim() {  # start_sim OUTFILE ARGS… → prints the endpoint

@@ -27,8 +27,10 @@ check "classify exits 0: no object is an answer, not an error" test $? -eq 0
 check "three answers" test "$(jq length "$work/classify.json")" -eq 3
 check "each view's answer follows its score and the threshold" \
   test "$(jq '[.[] | select(.answer != "no object") | ((.score >= .threshold) == (.answer == "class"))] | all' "$work/classify.json")" = true
-check "an unknown view is labelled unknown and keeps its best class" \
-  test "$(jq '[.[] | select(.answer == "unknown") | (.class == "unknown" and (.best | type) == "string")] | all' "$work/classify.json")" = true
+# The drill is of a category the model never saw (it scores about 0.10 against a threshold of 0.75).
+check "the drill is unknown, labelled unknown, and keeps its best class" \
+  test "$(jq -r '.[1] | "\(.answer) \(.class) \(.best | type)"' "$work/classify.json")" = "unknown unknown string"
+check "  the only unknown of the three" test "$(jq '[.[] | select(.answer == "unknown")] | length' "$work/classify.json")" -eq 1
 check "the trained object's view is answered with its class" \
   test "$(jq -r '.[0] | "\(.answer) \(.class)"' "$work/classify.json")" = "class ycb_005_tomato_soup_can"
 check "a two-point view is no object, with why" \

@@ -93,6 +93,12 @@ def check_option_defaults(c):
         m = c.find(rel, pattern)
         if m:
             c.expect_default(rel, m.group(1), command, option)
+    # The descriptor's table of defaults, row by row (the tests hold the library to it; switches have none).
+    rows = re.findall(r"^\| `\w+` \| `(--[\w-]+)` \| (\S+) \|$", c.doc("docs/descriptors.md"), re.M)
+    c.expect(len(rows) >= 20, f"docs/descriptors.md: the table of defaults has {len(rows)} rows")
+    for option, quoted in rows:
+        if not option.startswith("--no-"):
+            c.expect_default("docs/descriptors.md", quoted, "describe", option)
     m = c.find("docs/results.md", r"#\s+--protocol [\w,-]+, (\d+) bins")
     if m:
         c.expect_default("docs/results.md", m.group(1), "evaluate", "--bins")

@@ -153,6 +153,12 @@ TEST_P(OpenSetCalibration, UnseenCategoriesAreAcceptedAtAboutTheStatedRate) {
       EXPECT_LE(acceptedFraction(s, us), stated + tolerance) << "stated " << stated;
       if (GetParam() == "knn-relative") EXPECT_GT(acceptedFraction(s, us), stated / 3) << "stated " << stated;
     }
+    // And the known views are accepted: a method that rejects everything meets the bars above.
+    // Measured over 20 seeds of the three sets (seed, seed + 10, seed + 20; this test's is 1),
+    // 2026-12-05, known views accepted at 5 % / 20 %: max-probability 0.931-0.994 (mean 0.967, sd
+    // 0.017) at both, knn 0.975-1 / 0.994-1, knn-relative 0.950-1 / 0.994-1; seed 1: 0.956, 0.994 /
+    // 1, 0.988 / 0.994.
+    EXPECT_GT(acceptedFraction(s, ks), 0.9) << "stated " << stated;
     double closed = 0, open = 0;
     for (std::size_t i = 0; i < best.size(); ++i) {
       closed += best[i] == known.y[i];
@@ -164,6 +170,9 @@ TEST_P(OpenSetCalibration, UnseenCategoriesAreAcceptedAtAboutTheStatedRate) {
     if (GetParam() != "max-probability") {  // the target: within 2 points of closed-set
       EXPECT_GT(open, closed - 0.02) << "stated " << stated;
       EXPECT_GT(auroc(ks, us), 0.97);
+    } else {  // its probabilities separate less: AUROC 0.964-0.996 over the 20 seeds (mean 0.982, sd
+              // 0.008; seed 1: 0.980), against 0.988-1 for the other two
+      EXPECT_GT(auroc(ks, us), 0.95);
     }
   }
 }
@@ -219,7 +228,8 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   o.methods = {"knn"};
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
   ASSERT_TRUE(m.info.open_set.enabled());
-  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_model";
+  const keyturn::test::ScratchFolder scratch("open_set_model");
+  const fs::path& dir = scratch.path;
   saveModel(dir.string(), m);
   const Model back = loadModel(dir.string());
   EXPECT_EQ(back.info.open_set.method, "knn");
@@ -248,7 +258,6 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   EXPECT_LT(after[1].score, back.info.open_set.threshold);
   EXPECT_EQ(after[2].answer, Answer::NoObject);
   EXPECT_EQ(answerLabel(back.info, after[2]), "no object");
-  fs::remove_all(dir);
 }
 
 TEST(OpenSetModel, KnnRelativeClassScalesSurviveTheModelFile) {
@@ -305,14 +314,14 @@ TEST(OpenSetModel, ABadOpenSetInASidecarIsNamed) {
   OpenSetOptions o;
   o.methods = {"max-probability"};
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
-  const fs::path dir = fs::temp_directory_path() / "keyturn_open_set_bad";
+  const keyturn::test::ScratchFolder scratch("open_set_bad");
+  const fs::path& dir = scratch.path;
   saveModel(dir.string(), m);
   nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
   ASSERT_EQ(sidecar.at("open_set").at("method"), "max-probability");
   sidecar["open_set"]["method"] = "entropy";
   EXPECT_EQ(errorOf([&] { parseModelSidecar(sidecar.dump(), "m/model.json"); }),
             "m/model.json: open_set: open-set method 'entropy' is not one of max-probability, knn, knn-relative");
-  fs::remove_all(dir);
 }
 
 TEST(OpenSetModel, DegenerateFeaturesGetAClearAnswer) {

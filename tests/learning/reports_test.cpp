@@ -174,8 +174,8 @@ TEST(EvaluationParts, ShardsMergeIntoTheSingleRunsReport) {
   evaluateRows(single);
   const EvaluationReport whole = evaluationReport(single);
 
-  const fs::path out = fs::temp_directory_path() / "keyturn_evaluation_parts_test";
-  fs::remove_all(out);
+  const keyturn::test::ScratchFolder scratch("evaluation_parts_test");
+  const fs::path& out = scratch.path;
   std::size_t trainings = 0;
   for (int s = 0; s < 3; ++s) {
     EvaluationRun part = prepare();

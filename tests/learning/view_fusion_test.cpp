@@ -220,8 +220,8 @@ TEST(Fusion, PoseReferencesSurviveTheModelSidecar) {
   Matrix x(4, 2);
   x << 1, 0, 0, 1, 1, 0.1f, 0, 0.9f;
   m.classifier->fit(x, {0, 1, 0, 1}, 2);
-  const auto dir = std::filesystem::temp_directory_path() / "keyturn_fusion_model_test";
-  std::filesystem::remove_all(dir);
+  const keyturn::test::ScratchFolder scratch("fusion_model_test");
+  const auto& dir = scratch.path;
   saveModel(dir.string(), m);
   const Model back = loadModel(dir.string());
   ASSERT_FALSE(back.info.pose_references.empty());
@@ -232,7 +232,6 @@ TEST(Fusion, PoseReferencesSurviveTheModelSidecar) {
   std::mt19937_64 rng(1);
   const Eigen::RowVectorXf v = look(0, 40, rng);
   EXPECT_LT((poseEvidence(refs, v) - poseEvidence(back.info.pose_references, v)).cwiseAbs().maxCoeff(), 0.05f);
-  std::filesystem::remove_all(dir);
 }
 
 // A model trained with open-set knn and pose references (as `train --open-set knn` makes them) keeps

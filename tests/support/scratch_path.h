@@ -14,6 +14,19 @@ inline std::filesystem::path scratchPath(const std::string& name) {
   return std::filesystem::temp_directory_path() / ("keyturn_" + name + "_" + std::to_string(::getpid()));
 }
 
+// scratchPath(NAME), empty at the start and removed with what is in it when the test leaves its
+// scope, whether it passed or an ASSERT ended it.
+struct ScratchFolder {
+  explicit ScratchFolder(const std::string& name) : path(scratchPath(name)) { std::filesystem::remove_all(path); }
+  ~ScratchFolder() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path, ignored);
+  }
+  ScratchFolder(const ScratchFolder&) = delete;
+  ScratchFolder& operator=(const ScratchFolder&) = delete;
+  const std::filesystem::path path;
+};
+
 // TEXT written to PATH (its folders made); returns the path.
 inline std::string writeText(const std::filesystem::path& path, const std::string& text) {
   std::filesystem::create_directories(path.parent_path());
