@@ -15,8 +15,6 @@ model=${1:-$root/data/models/sim-objects}
 out=${2:-out/beyond-training}
 elevations=${3:-30,40,45,60}
 mkdir -p "$out"
-# The simulated OpenNI2 camera is found through its drivers folder (docs/camera.md).
-export LD_LIBRARY_PATH=$root/build/lib/keyturn/openni2${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}
 for camera in sr4000 openni2; do
   "$KT" simulate --camera $camera --objects "$root/data/objects/objects-27.csv" --elevations "$elevations" --step 45 \
     --seed 2 -q --out "$out/views-$camera"

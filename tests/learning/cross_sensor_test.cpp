@@ -77,7 +77,9 @@ TEST(CrossSensor, ASingleCameraModelFailsTheOtherCameraAndOneTrainedOnBothDoesNo
   EXPECT_NE(rep.markdown.find("| kpd2 | xgboost | both | 100.0 | 100.0 | 0.0 |"), std::string::npos) << rep.markdown;
   EXPECT_NE(rep.csv.find("kpd2,xgboost,tof,kinect,144,0,0.0\n"), std::string::npos) << rep.csv;
   ASSERT_EQ(rep.plots.curves.size(), 1u);
-  EXPECT_EQ(rep.plots.curves[0].x_categories.size(), 6u);
+  EXPECT_EQ(rep.plots.curves[0].x_categories,
+            (std::vector<std::string>{"1 → 1", "1 → 2", "2 → 1", "2 → 2", "both → 1", "both → 2"}));
+  EXPECT_EQ(rep.plots.curves[0].x_label, "trained on → tested on (1: tof, 2: kinect)");
   EXPECT_EQ(rep.plots.curves[0].series[0].y, (std::vector<double>{100, 0, cell(r, CrossSensorTraining::Second, 0).accuracy() * 100, 100, 100, 100}));
 }
 

@@ -6,6 +6,9 @@
 #include <QComboBox>
 #include <QDir>
 #include <QDoubleSpinBox>
+#include <QFile>
+#include <QJsonDocument>
+#include <QJsonObject>
 #include <QLabel>
 #include <QListWidget>
 #include <QLineEdit>
@@ -15,6 +18,7 @@
 #include <QtTest>
 
 #include <algorithm>
+#include <cmath>
 #include <atomic>
 #include <utility>
 
@@ -122,6 +126,13 @@ class StudioTest : public QObject {
     return o;
   }
 
+  // The built-in model's open-set settings as its file states them (model.json's "open_set").
+  static QJsonObject builtInOpenSet() {
+    QFile model(QString(KEYTURN_DATA_DIR) + "/models/sim-objects/model.json");
+    if (!model.open(QIODevice::ReadOnly)) return {};
+    return QJsonDocument::fromJson(model.readAll()).object()["open_set"].toObject();
+  }
+
   StudioOptions simulated(const std::string& object) {
     StudioOptions o;
     o.simulated = true;
@@ -187,7 +198,10 @@ class StudioTest : public QObject {
     QTRY_COMPARE_WITH_TIMEOUT(w.fusedClass(), QString("unknown"), waitMs(10000));
     auto* verdict = w.findChild<QLabel*>("verdict");
     QVERIFY(verdict);
-    QVERIFY2(verdict->text().contains(" &lt; 0.43"), qPrintable(verdict->text()));  // its score under the threshold
+    // Its score under the threshold the built-in model's file states (0.40 since issue 47's model).
+    const double threshold = builtInOpenSet()["threshold"].toDouble();
+    QVERIFY2(threshold > 0.3 && threshold < 0.5, qPrintable(QString::number(threshold)));
+    QVERIFY2(verdict->text().contains(" &lt; " + QString::number(threshold, 'f', 2)), qPrintable(verdict->text()));
     QVERIFY(verdict->toolTip().contains("last 20 frames"));  // which part is the verdict, which this frame's test
   }
 
@@ -209,8 +223,12 @@ class StudioTest : public QObject {
     QVERIFY2(fused->text().contains("· 1 view, 0°"), qPrintable(fused->text()));
     // The built-in model holds pose references and open-set answers, and says so.
     const auto info = w.findChildren<QLabel*>();
-    QVERIFY(std::any_of(info.begin(), info.end(), [](QLabel* l) {
-      return l->text().contains("open-set: knn-relative at 5 %") && l->text().contains("fuses by pose");
+    const QString stated = QString("open-set: %1 at %2 %")  // the method and rate its file states (knn-relative, 8 %)
+                               .arg(builtInOpenSet()["method"].toString())
+                               .arg(std::lround(100 * builtInOpenSet()["false_accept"].toDouble()));
+    QVERIFY2(stated == "open-set: knn-relative at 8 %", qPrintable(stated));
+    QVERIFY(std::any_of(info.begin(), info.end(), [&](QLabel* l) {
+      return l->text().contains(stated) && l->text().contains("fuses by pose");
     }));
     w.findChild<QDoubleSpinBox*>("poseTarget")->setValue(90);
     QTest::mouseClick(w.findChild<QPushButton*>("poseMoveTo"), Qt::LeftButton);
@@ -410,9 +428,12 @@ class StudioTest : public QObject {
     auto* status = w.findChild<QLabel*>("cameraStatus");
     const QString message = w.bannerText().mid(QString("Could not open the camera: ").size());
     QCOMPARE(status->toolTip(), message);
-    QCoreApplication::processEvents();
-    QVERIFY2(status->height() >= status->heightForWidth(status->width()),
-             qPrintable(QString("%1 px tall, its text needs %2").arg(status->height()).arg(status->heightForWidth(status->width()))));
+    // The layout settles over more than one pass of the event loop on a loaded machine: wait for it.
+    QTRY_VERIFY2_WITH_TIMEOUT(status->height() >= status->heightForWidth(status->width()),
+                              qPrintable(QString("%1 px tall, its text needs %2")
+                                             .arg(status->height())
+                                             .arg(status->heightForWidth(status->width()))),
+                              waitMs(5000));
   }
 
   void theUsbListFollowsCamerasPluggedInAndOut() {

@@ -145,10 +145,11 @@ CrossSensorReport crossSensorReport(const CrossSensorResult& r, const CrossSenso
   CurvePlot plot;
   plot.file = "cross_sensor.png";
   plot.title = "Top-1 accuracy across sensors (" + r.label_kind + ", elevation left out)";
-  plot.x_label = "trained on → tested on";
+  // The cameras numbered on the axis and named in its title: whole names under each point are elided.
+  plot.x_label = "trained on → tested on (1: " + cams[0] + ", 2: " + cams[1] + ")";
   plot.y_label = "accuracy (%)";
-  for (CrossSensorTraining t : kTrainings)
-    for (int camera = 0; camera < 2; ++camera) plot.x_categories.push_back(trainingName(t, cams) + " → " + cams[camera]);
+  for (const char* trained : {"1", "2", "both"})
+    for (const char* tested : {"1", "2"}) plot.x_categories.push_back(std::string(trained) + " → " + tested);
   for (std::size_t i = 0; i + 1 < r.cells.size(); i += 2) {
     const CrossSensorCell& a = r.cells[i];      // tested on the first camera
     const CrossSensorCell& b = r.cells[i + 1];  // … on the second
