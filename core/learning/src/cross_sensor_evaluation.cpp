@@ -8,9 +8,12 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/learning/training_twins.h"
+#include "report_numbers.h"
 
 namespace keyturn::learning {
 namespace {
+
+using detail::percent;
 
 constexpr std::array<CrossSensorTraining, 3> kTrainings = {CrossSensorTraining::First, CrossSensorTraining::Second,
                                                            CrossSensorTraining::Both};
@@ -60,12 +63,6 @@ void runJob(const CrossSensorData& d, const CrossSensorOptions& o, const Labels&
 std::string trainingName(CrossSensorTraining t, const std::array<std::string, 2>& cameras) {
   if (t == CrossSensorTraining::Both) return "both";
   return cameras[t == CrossSensorTraining::First ? 0 : 1];
-}
-
-std::string percent(double v) {
-  char buf[32];
-  std::snprintf(buf, sizeof buf, "%.1f", 100 * v);
-  return buf;
 }
 
 }  // namespace
