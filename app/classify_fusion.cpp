@@ -150,7 +150,7 @@ int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth
     else if (fused.certain_while_unknown)  // the belief is over the model's classes, the answer none of them
       std::cerr << "no class became certain: the fused belief over the model's classes reached " << options.stop_belief
                 << " (first at view " << fused.certain_while_unknown
-                << ") only where the fused answer was unknown (half or more of the views so far unknown)\n";
+                << ") only where the fused answer was unknown (the mean open-set score of the views so far under the model's threshold)\n";
     else
       std::cerr << "the fused belief never reached " << options.stop_belief << "\n";
   }

@@ -15,6 +15,7 @@
 #include "keyturn/learning/model_fusion.h"
 #include "keyturn/learning/model_predictions.h"
 #include "keyturn/learning/model_training.h"
+#include "keyturn/learning/turn_fusion.h"
 #include "learning_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
@@ -61,7 +62,7 @@ int runTrain(const TrainArgs& a) {
   learning::ClassifierParams params = a.params;
   params.kind = a.classifier;
   double s = 0;
-  learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set);
+  learning::Model m = learning::trainModel(t, learning::featureSetBlocks(a.features), kind, params, &s, open_set, azimuths);
   // Pose fusion's references (classify --fuse), when every view has its turntable angle.
   const bool posed = std::all_of(azimuths.begin(), azimuths.end(), [](double v) { return std::isfinite(v); });
   if (posed) learning::addPoseReferences(m, t, azimuths, kind, learning::FusionOptions().bin_deg);
@@ -76,6 +77,9 @@ int runTrain(const TrainArgs& a) {
       std::cerr << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
                 << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
                 << " views of left-out categories, " << os.calibration_groups << " trainings)";
+    if (std::isfinite(os.turn_threshold))
+      std::cerr << ", a turn's " << std::setprecision(4) << os.turn_threshold << " (" << os.calibration_turns
+                << " turns of " << learning::kTurnViews << " views)";
     else if (!open_set.methods.empty())
       std::cerr << "; closed-set (open-set calibration leaves categories out: it needs at least "
                 << learning::kOpenSetMinCategories << " categories)";

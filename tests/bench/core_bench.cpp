@@ -255,10 +255,10 @@ static void BM_LiveFusionFrameAtRest(benchmark::State& s) {
   std::vector<float> features(info.pose_references.mean.size());
   for (std::size_t k = 0; k < features.size(); ++k) features[k] = info.pose_references.mean[k] + 0.01f * static_cast<float>(k % 7);
   const auto views = static_cast<std::size_t>(s.range(0));
-  for (std::size_t b = 0; b < views; ++b) fusion.add(learning::Answer::Class, p, features, 5.0 * static_cast<double>(b));
+  for (std::size_t b = 0; b < views; ++b) fusion.add(learning::Answer::Class, 1.0, p, features, 5.0 * static_cast<double>(b));
   if (fusion.views() != views) s.SkipWithError("the turn did not take its views");
   const double newest = 5.0 * static_cast<double>(views - 1) + 0.5;
-  for (auto _ : s) benchmark::DoNotOptimize(fusion.add(learning::Answer::Class, p, features, newest));
+  for (auto _ : s) benchmark::DoNotOptimize(fusion.add(learning::Answer::Class, 1.0, p, features, newest));
 }
 BENCHMARK(BM_LiveFusionFrameAtRest)->Arg(1)->Arg(72)->Unit(benchmark::kMicrosecond);
 

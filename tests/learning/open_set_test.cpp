@@ -260,6 +260,36 @@ TEST(OpenSetModel, ThresholdAndReferencesSurviveTheModelFileAndAnswerUnknown) {
   EXPECT_EQ(answerLabel(back.info, after[2]), "no object");
 }
 
+// With every view's angle, train calibrates a turn's threshold too (turn_fusion.h): on turns of 3
+// views over 90° of the categories left out in turn, one starting at every left-out view. It is
+// kept in the model file; a model trained without angles has none and turns take the single
+// view's threshold.
+TEST(OpenSetModel, TheTurnThresholdIsCalibratedOnTurnsAndSurvivesTheModelFile) {
+  const int per = 16;  // 8 views per elevation, 45° apart
+  const FeatureTable t = tableOf(clusters(6, 0, per, 8, 1));
+  std::vector<double> az;
+  for (std::size_t r = 0; r < t.rows.size(); ++r) az.push_back(45.0 * static_cast<double>((r % per) / 2));
+  OpenSetOptions o;
+  o.methods = {"knn"};
+  const Model m = trainModel(t, {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o, az);
+  const OpenSet& s = m.info.open_set;
+  ASSERT_TRUE(std::isfinite(s.turn_threshold));
+  EXPECT_EQ(s.calibration_turns, 6 * per);  // every view of a full turn starts one
+  EXPECT_NE(s.turn_threshold, s.threshold);  // a mean of 3 scores spreads less than one
+  EXPECT_DOUBLE_EQ(s.thresholdFor(1), s.threshold);
+  EXPECT_DOUBLE_EQ(s.thresholdFor(3), s.turn_threshold);
+  const keyturn::test::ScratchFolder scratch("open_set_turns");
+  saveModel(scratch.path.string(), m);
+  EXPECT_DOUBLE_EQ(loadModel(scratch.path.string()).info.open_set.turn_threshold, s.turn_threshold);
+  EXPECT_EQ(loadModel(scratch.path.string()).info.open_set.calibration_turns, 6 * per);
+  // Without angles (or with one missing): no turn threshold.
+  EXPECT_TRUE(std::isnan(trainModel(t, {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o).info.open_set.turn_threshold));
+  az[3] = std::nan("");
+  EXPECT_TRUE(std::isnan(trainModel(t, {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o, az).info.open_set.turn_threshold));
+  EXPECT_EQ(errorOf([&] { trainModel(t, {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o, {1.0}); }),
+            "training: 96 views but 1 angles");
+}
+
 TEST(OpenSetModel, KnnRelativeClassScalesSurviveTheModelFile) {
   const Clusters train = clusters(6, 0, 30, 8, 1, 6.f, 3, 2.f);
   OpenSetOptions o;
@@ -448,7 +478,13 @@ TEST(OpenSetProtocol, AFoldReadAsTurnsOfTheTableFusesThreeViewsOfEachObject) {
   EXPECT_GT(s.fused_known_accuracy_closed, s.known_accuracy_closed + 0.05);
   EXPECT_GT(s.fused_known_accuracy_open, s.known_accuracy_open + 0.05);
   EXPECT_GT(s.false_accept, 0.02);
-  EXPECT_LT(s.fused_false_accept, s.false_accept);
+  // Turns are held to the stated rate as single views are: the turn threshold is calibrated on
+  // turns of the training categories left out in turn, as the single views' threshold on their
+  // views. So the turns' false accepts land near the single views' (12.0 and 13.5 % here, both
+  // above the stated 5 % on these clusters; binomial spread ~2.4 points over 192 turns), where the
+  // former uncalibrated vote (and the mean held to the single view's threshold: 1.6 %) traded
+  // known turns for fewer; the known turns are named far more often than single views.
+  EXPECT_NEAR(s.fused_false_accept, s.false_accept, 0.05);
   EXPECT_LE(s.fused_known_accuracy_open, s.fused_known_accuracy_closed);
   // The single views' figures do not depend on the angles; without them there are no turns.
   const OpenSetSummary alone = summariseOpenSet(single).at(0);

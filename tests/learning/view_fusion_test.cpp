@@ -281,24 +281,24 @@ TEST(Fusion, PoseReferencesShareTheOpenSetsRowsInTheSidecar) {
 
 // The studio's live fusion: one view per 5° bin however many frames show it (the newest frame while
 // the table stays in the bin, none once it has left), "no object" left out, and with an open-set
-// model "unknown" views add no evidence and make the answer while they are half.
+// model "unknown" views add no evidence and the answer is TurnFusion's (turn_fusion_test.cpp).
 TEST(Fusion, LiveFusionTakesOneViewPerBinAndKeepsUnknown) {
   ModelInfo info;
   info.classes = {"a", "b"};
   LiveFusion closed(info);
   EXPECT_EQ(closed.method(), "independent");  // no pose references
-  EXPECT_TRUE(closed.add(Answer::Class, {0.3f, 0.7f}, {}, 0.0));
-  EXPECT_TRUE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, 1.0));  // the same 5° bin: this frame stands for it
+  EXPECT_TRUE(closed.add(Answer::Class, 0, {0.3f, 0.7f}, {}, 0.0));
+  EXPECT_TRUE(closed.add(Answer::Class, 0, {0.8f, 0.2f}, {}, 1.0));  // the same 5° bin: this frame stands for it
   EXPECT_EQ(closed.views(), 1u);
   EXPECT_NEAR(closed.belief()[0], 0.8, 1e-6);
-  EXPECT_FALSE(closed.add(Answer::NoObject, {}, {}, 20.0));
-  EXPECT_FALSE(closed.add(Answer::Class, {0.8f, 0.2f}, {}, std::nan("")));
-  EXPECT_TRUE(closed.add(Answer::Class, {0.6f, 0.4f}, {}, 10.0));
-  EXPECT_FALSE(closed.add(Answer::Class, {0.1f, 0.9f}, {}, 2.0));  // a bin the table has left
-  EXPECT_TRUE(closed.add(Answer::Class, {0.5f, 0.5f}, {}, 11.0));  // the newest bin's view replaced, the first kept
+  EXPECT_FALSE(closed.add(Answer::NoObject, 0, {}, {}, 20.0));
+  EXPECT_FALSE(closed.add(Answer::Class, 0, {0.8f, 0.2f}, {}, std::nan("")));
+  EXPECT_TRUE(closed.add(Answer::Class, 0, {0.6f, 0.4f}, {}, 10.0));
+  EXPECT_FALSE(closed.add(Answer::Class, 0, {0.1f, 0.9f}, {}, 2.0));  // a bin the table has left
+  EXPECT_TRUE(closed.add(Answer::Class, 0, {0.5f, 0.5f}, {}, 11.0));  // the newest bin's view replaced, the first kept
   EXPECT_NEAR(closed.belief()[0], 0.8, 1e-6);
   EXPECT_DOUBLE_EQ(closed.turnedDeg(), 10.0);
-  EXPECT_TRUE(closed.add(Answer::Class, {0.6f, 0.4f}, {}, 10.0));
+  EXPECT_TRUE(closed.add(Answer::Class, 0, {0.6f, 0.4f}, {}, 10.0));
   EXPECT_EQ(closed.views(), 2u);
   EXPECT_DOUBLE_EQ(closed.turnedDeg(), 9.0);
   EXPECT_NEAR(closed.belief()[0], 0.48 / (0.48 + 0.08), 1e-6);  // 0.8 · 0.6 against 0.2 · 0.4
@@ -310,19 +310,20 @@ TEST(Fusion, LiveFusionTakesOneViewPerBinAndKeepsUnknown) {
   EXPECT_TRUE(closed.belief().empty());
 
   info.open_set.method = "knn";
+  info.open_set.threshold = 0.4;
   LiveFusion open(info);
-  EXPECT_TRUE(open.add(Answer::Unknown, {0.5f, 0.5f}, {}, 0.0));
+  EXPECT_TRUE(open.add(Answer::Unknown, 0.2, {0.5f, 0.5f}, {}, 0.0));
   EXPECT_EQ(open.answer(), Answer::Unknown);
   EXPECT_TRUE(open.belief().empty());  // an unknown view adds no evidence
-  EXPECT_TRUE(open.add(Answer::Class, {0.2f, 0.8f}, {}, 0.5));  // a later frame at rest is known
+  EXPECT_TRUE(open.add(Answer::Class, 0.5, {0.2f, 0.8f}, {}, 0.5));  // a later frame at rest is known
   EXPECT_EQ(open.answer(), Answer::Class);
   EXPECT_EQ(open.unknownViews(), 0u);
-  EXPECT_TRUE(open.add(Answer::Unknown, {0.5f, 0.5f}, {}, 0.9));  // and the next one is not
+  EXPECT_TRUE(open.add(Answer::Unknown, 0.2, {0.5f, 0.5f}, {}, 0.9));  // and the next one is not
   EXPECT_EQ(open.answer(), Answer::Unknown);
-  EXPECT_TRUE(open.add(Answer::Class, {0.1f, 0.9f}, {}, 30.0));
-  EXPECT_EQ(open.answer(), Answer::Unknown);  // one of two views unknown
-  EXPECT_TRUE(open.add(Answer::Class, {0.1f, 0.9f}, {}, 60.0));
-  EXPECT_EQ(open.answer(), Answer::Class);
+  EXPECT_TRUE(open.add(Answer::Class, 0.5, {0.1f, 0.9f}, {}, 30.0));
+  EXPECT_EQ(open.answer(), Answer::Unknown);  // mean score 0.35 of two views: under 0.4
+  EXPECT_TRUE(open.add(Answer::Class, 0.7, {0.1f, 0.9f}, {}, 60.0));
+  EXPECT_EQ(open.answer(), Answer::Class);    // 0.47
   EXPECT_EQ(open.best(), 1);
   EXPECT_EQ(open.unknownViews(), 1u);
 }

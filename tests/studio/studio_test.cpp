@@ -209,6 +209,11 @@ class StudioTest : public QObject {
   // rest it holds one view however many frames come (the newest: the bowl's first frame may be
   // unknown alone, 14 % of its frames are); a turn adds the views it brings (one per 5° bin); the
   // finished turn's belief stays; another object starts it again.
+  // A half turn: seen end-on (65°-105°) the drill shows 4-29 keypoints and its single views score
+  // under the threshold, so a quarter turn's answer rests on how many views a machine's recognition
+  // rate brings (CI's 6 views over 0°-90° read "unknown" by the former vote; the turn threshold's
+  // mean names it on 96-99 % of 6-view samples, docs/results.md "Fused turns"). Over 0°-180° every
+  // sample of 4 or more of the drill's simulated views is named.
   void theFusedBeliefFollowsTheTurningTable() {
     StudioWindow w(*factory_, simulated("ycb_035_power_drill"));
     w.show();
@@ -230,14 +235,14 @@ class StudioTest : public QObject {
     QVERIFY(std::any_of(info.begin(), info.end(), [&](QLabel* l) {
       return l->text().contains(stated) && l->text().contains("fuses by pose");
     }));
-    w.findChild<QDoubleSpinBox*>("poseTarget")->setValue(90);
+    w.findChild<QDoubleSpinBox*>("poseTarget")->setValue(180);
     QTest::mouseClick(w.findChild<QPushButton*>("poseMoveTo"), Qt::LeftButton);
-    QTRY_VERIFY_WITH_TIMEOUT(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, waitMs(15000));
+    QTRY_VERIFY_WITH_TIMEOUT(std::abs(angle->text().chopped(1).toDouble() - 180) < 0.2, waitMs(15000));
     const long arrived = w.rates().results;  // the frames taken before the table settled, recognised
     QTRY_VERIFY_WITH_TIMEOUT(w.rates().results > arrived + 10, waitMs(15000));
     QVERIFY2(w.fusedViews() >= 4, qPrintable(QString::number(w.fusedViews())));
     const int turned = w.fusedViews();
-    QVERIFY2(turned <= 19, qPrintable(QString::number(turned)));  // at most one per 5° bin from 0° to 90°
+    QVERIFY2(turned <= 37, qPrintable(QString::number(turned)));  // at most one per 5° bin from 0° to 180°
     QVERIFY2(fused->text().contains(QString("· %1 views, ").arg(turned)), qPrintable(fused->text()));
     QVERIFY2(fused->toolTip().contains(QString("ycb_035_power_drill")) && fused->toolTip().contains(QString("· %1 views, ").arg(turned)),
              qPrintable(fused->toolTip()));  // whole where the line is cut

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "keyturn/learning/fusion_evaluation.h"
+#include "keyturn/learning/turn_fusion.h"
+
 namespace keyturn::learning::detail {
 
 std::string captureGroupOf(const FeatureRow& row) { return row.instance + "/" + row.elevation; }
@@ -75,6 +78,22 @@ std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& membe
     seq.push_back(i);
   }
   return seq;
+}
+
+std::vector<std::vector<int>> turnsOf(const std::vector<double>& az, const std::vector<std::string>& group) {
+  std::vector<FusionView> views(az.size());
+  for (std::size_t i = 0; i < az.size(); ++i) views[i].azimuth_deg = az[i];
+  FusionSchedule turn;
+  turn.spread_deg = kTurnSpreadDeg;
+  const std::vector<double> offsets = turn.offsets(kTurnViews);
+  const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
+  std::vector<std::vector<int>> turns;
+  for (const auto& [name, members] : groupsByAngle(views, group))
+    for (const auto& [start_deg, start] : members) {
+      std::vector<int> seq = viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
+      if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
+    }
+  return turns;
 }
 
 }  // namespace keyturn::learning::detail

@@ -4,6 +4,7 @@
 #include <cmath>
 
 #include "keyturn/core/error.h"
+#include "keyturn/learning/turn_fusion.h"
 
 namespace keyturn::learning {
 
@@ -39,47 +40,28 @@ ModelFusion fusePredictions(const Model& m, const FeatureTable& t, const std::ve
   const bool pose = o.method == "pose";
   if (pose && m.info.pose_references.empty())
     throw Error("fusion: the model holds no pose references (trained without the views' poses): fuse independently");
-  const bool open = m.info.open_set.enabled();
-  // The views that add evidence, in order, and for each step how many of them it has seen.
-  std::vector<FusionView> evidence;
-  std::vector<std::size_t> seen;
-  std::vector<std::size_t> unknowns;
-  std::size_t unknown = 0;
-  for (std::size_t i = 0; i < preds.size(); ++i) {
-    const Prediction& p = preds[i];
-    const bool adds = p.answer == Answer::Class || (!open && p.answer == Answer::Unknown);
-    if (p.answer == Answer::Unknown) ++unknown;
-    if (adds) {
-      FusionView v;
-      v.probabilities = p.probabilities;
-      v.azimuth_deg = az[i];
-      if (pose) v.pose = poseEvidence(m.info.pose_references, t.select(m.info.blocks, {p.row}).row(0));
-      evidence.push_back(std::move(v));
-    }
-    seen.push_back(evidence.size());
-    unknowns.push_back(unknown);
-  }
-  if (evidence.empty() && unknown == 0) throw Error("fusion: none of the sequence's views could be described");
+  if (std::all_of(preds.begin(), preds.end(), [](const Prediction& p) { return p.answer == Answer::NoObject; }))
+    throw Error("fusion: none of the sequence's views could be described");
   ModelFusion out;
   out.method = o.method;
-  const FusedSequence fused = evidence.empty() ? FusedSequence{} : fuseViews(evidence, o);
+  TurnFusion turn(o, m.info.open_set);
   const std::size_t classes = m.info.classes.size();
   for (std::size_t i = 0; i < preds.size(); ++i) {
+    const Prediction& p = preds[i];
+    TurnView v{p.answer, p.score, p.probabilities, az[i], {}};
+    if (pose && p.answer != Answer::NoObject) v.pose = poseEvidence(m.info.pose_references, t.select(m.info.blocks, {p.row}).row(0));
+    turn.add(v);
     FusedStep s;
-    s.row = preds[i].row;
+    s.row = p.row;
     s.azimuth_deg = az[i];
-    s.view_answer = preds[i].answer;
-    if (seen[i] > 0) {
-      s.belief = fused.belief[seen[i] - 1];
-      s.best = fused.best[seen[i] - 1];
-    } else {
-      s.belief.assign(classes, 1.0 / static_cast<double>(std::max<std::size_t>(1, classes)));
-    }
-    const bool mostly_unknown = open && fusedAnswerIsUnknown(unknowns[i], i + 1);
-    s.answer = s.best < 0 ? (unknowns[i] ? Answer::Unknown : Answer::NoObject) : mostly_unknown ? Answer::Unknown : Answer::Class;
-    if (out.stopped_after == 0 && s.best >= 0 && s.belief[static_cast<std::size_t>(s.best)] >= o.stop_belief) {
-      if (s.answer == Answer::Class) out.stopped_after = i + 1;
-      else if (out.certain_while_unknown == 0) out.certain_while_unknown = i + 1;
+    s.view_answer = p.answer;
+    s.belief = turn.belief();
+    if (s.belief.empty()) s.belief.assign(classes, 1.0 / static_cast<double>(std::max<std::size_t>(1, classes)));
+    s.best = turn.best();
+    s.answer = turn.answer();
+    if (out.stopped_after == 0) {
+      if (turn.certain()) out.stopped_after = i + 1;
+      else if (turn.certainWhileUnknown() && out.certain_while_unknown == 0) out.certain_while_unknown = i + 1;
     }
     out.steps.push_back(std::move(s));
   }

@@ -1,12 +1,20 @@
 #include "keyturn/learning/model_training.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <set>
+
+#include "keyturn/core/error.h"
+#include "fold_views.h"
 
 namespace keyturn::learning {
 
 Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, LabelKind kind,
-                 const ClassifierParams& params, double* fit_s, const std::optional<OpenSetOptions>& open_set) {
+                 const ClassifierParams& params, double* fit_s, const std::optional<OpenSetOptions>& open_set,
+                 const std::vector<double>& azimuth_deg) {
+  if (!azimuth_deg.empty() && azimuth_deg.size() != t.rows.size())
+    throw Error("training: " + std::to_string(t.rows.size()) + " views but " + std::to_string(azimuth_deg.size()) + " angles");
   const Labels labels = labelRows(t, kind);
   Model m;
   m.info.params = params;
@@ -29,8 +37,16 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
     std::vector<std::string> categories;
     for (const auto& row : t.rows) categories.push_back(row.cls);
     const std::set<std::string> distinct(categories.begin(), categories.end());
+    // Turns need every view's angle (a view without one would leave holes the turns skip silently).
+    const bool posed = !azimuth_deg.empty() && std::all_of(azimuth_deg.begin(), azimuth_deg.end(),
+                                                           [](double a) { return std::isfinite(a); });
+    TurnRows turns;
+    if (posed) {
+      turns.azimuth_deg = azimuth_deg;
+      for (const auto& row : t.rows) turns.group.push_back(detail::captureGroupOf(row));
+    }
     if (o.required || distinct.size() >= kOpenSetMinCategories)
-      m.info.open_set = calibrateOpenSets(x, y, categories, params, o).front();
+      m.info.open_set = calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr).front();
   }
   return m;
 }

@@ -1,11 +1,13 @@
 #include "keyturn/learning/open_set_calibration.h"
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 #include <set>
 
 #include "keyturn/core/error.h"
 #include "keyturn/learning/splits.h"
+#include "fold_views.h"
 
 namespace keyturn::learning {
 
@@ -43,11 +45,14 @@ Matrix rowsOf(const Matrix& x, const std::vector<std::size_t>& rows) {
 
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
-                                       const OpenSetOptions& o) {
+                                       const OpenSetOptions& o, const TurnRows* turns) {
   if (o.methods.empty()) return {};
   for (const auto& m : o.methods) checkOpenSetMethod(m);
   if (static_cast<std::size_t>(x.rows()) != y.size() || y.size() != categories.size())
     throw Error("open-set calibration: rows, labels and categories differ in number");
+  if (turns && (turns->group.size() != y.size() || turns->azimuth_deg.size() != y.size()))
+    throw Error("open-set calibration: " + std::to_string(y.size()) + " rows but " + std::to_string(turns->group.size()) +
+                " capture groups and " + std::to_string(turns->azimuth_deg.size()) + " angles");
   const std::vector<std::string> distinct = [&] {
     const std::set<std::string> s(categories.begin(), categories.end());
     return std::vector<std::string>(s.begin(), s.end());
@@ -57,7 +62,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
                 "training views have " + std::to_string(distinct.size()));
   const std::vector<int> group_of = categoryGroups(distinct, o.groups, o.seed);
   const int groups = *std::max_element(group_of.begin(), group_of.end()) + 1;
-  std::vector<std::vector<double>> unknown(o.methods.size());
+  std::vector<std::vector<double>> unknown(o.methods.size()), unknown_turns(o.methods.size());
   for (int g = 0; g < groups; ++g) {
     std::vector<std::size_t> train, held;
     for (std::size_t r = 0; r < categories.size(); ++r) {
@@ -73,10 +78,23 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     auto clf = makeClassifier(params);
     clf->fit(xtrain, compact, inner_classes);
     const Matrix p = clf->predictProba(xheld);
+    // The left-out views read as turns: the mean score of each turn's views (TurnFusion's rule).
+    std::vector<std::vector<int>> held_turns;
+    if (turns) {
+      std::vector<double> az;
+      std::vector<std::string> group;
+      for (auto r : held) az.push_back(turns->azimuth_deg[r]), group.push_back(turns->group[r]);
+      held_turns = detail::turnsOf(az, group);
+    }
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
       const OpenSet scorer = fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours);
       const std::vector<double> s = openSetScores(scorer, xheld, p);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
+      for (const auto& seq : held_turns) {
+        double sum = 0;
+        for (int i : seq) sum += std::isfinite(s[static_cast<std::size_t>(i)]) ? s[static_cast<std::size_t>(i)] : 0.0;
+        unknown_turns[m].push_back(sum / static_cast<double>(seq.size()));
+      }
     }
   }
   std::vector<OpenSet> out;
@@ -86,6 +104,10 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     s.false_accept = o.false_accept;
     s.calibration_views = static_cast<int>(unknown[m].size());
     s.calibration_groups = groups;
+    if (!unknown_turns[m].empty()) {
+      s.turn_threshold = thresholdForFalseAccept(unknown_turns[m], o.false_accept);
+      s.calibration_turns = static_cast<int>(unknown_turns[m].size());
+    }
     out.push_back(std::move(s));
   }
   return out;

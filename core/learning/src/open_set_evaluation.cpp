@@ -1,11 +1,13 @@
 #include "keyturn/learning/open_set_evaluation.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <map>
 
 #include "keyturn/core/error.h"
 #include "keyturn/learning/fusion_evaluation.h"
+#include "keyturn/learning/turn_fusion.h"
 #include "fold_views.h"
 
 namespace keyturn::learning {
@@ -15,13 +17,12 @@ namespace {
 // probabilities, angle and pose evidence, and each capture group's views by angle.
 struct TurningViews {
   std::vector<FusionView> views;
-  detail::GroupedViews groups;
+  std::vector<std::string> group;  // each view's capture group
 };
 
 TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>& rows, const Matrix& x,
                           const Matrix& p, const PoseReferences& refs, const std::vector<double>& az) {
   TurningViews out;
-  std::vector<std::string> group;
   for (std::size_t k = 0; k < rows.size(); ++k) {
     const auto row = static_cast<Eigen::Index>(k);
     FusionView v;
@@ -29,45 +30,41 @@ TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>&
     v.azimuth_deg = az[rows[k]];
     if (std::isfinite(v.azimuth_deg)) v.pose = poseEvidence(refs, x.row(row));
     out.views.push_back(std::move(v));
-    group.push_back(detail::captureGroupOf(t.rows[rows[k]]));
+    out.group.push_back(detail::captureGroupOf(t.rows[rows[k]]));
   }
-  out.groups = detail::groupsByAngle(out.views, group);
   return out;
 }
 
 // Each turn's views (indices into tv.views): one starting at every view whose group has all of it.
 std::vector<std::vector<int>> turnsOf(const TurningViews& tv) {
-  FusionSchedule turn;
-  turn.spread_deg = kOpenSetFusedSpreadDeg;
-  const std::vector<double> offsets = turn.offsets(kOpenSetFusedViews);
-  const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
-  std::vector<std::vector<int>> turns;
-  for (const auto& [group, members] : tv.groups)
-    for (const auto& [start_deg, start] : members) {
-      std::vector<int> seq = detail::viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
-      if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
-    }
-  return turns;
+  std::vector<double> az;
+  for (const auto& v : tv.views) az.push_back(v.azimuth_deg);
+  return detail::turnsOf(az, tv.group);
 }
 
-// The fused answer of a sequence: the class index, or -1 for "unknown". Closed-set without a
-// scorer; with one, a view it rejects adds no evidence and the open-set rule decides.
-int fusedClass(const TurningViews& tv, const std::vector<int>& seq, const OpenSet* scorer = nullptr,
+// The fused answer of a sequence: the class index, or -1 for "unknown" (closed-set without scores).
+int fusedClass(const TurningViews& tv, const std::vector<int>& seq, const OpenSet& scorer = OpenSet(),
                const std::vector<double>* scores = nullptr) {
-  std::vector<FusionView> evidence;
-  std::size_t unknown = 0;
+  std::vector<FusionView> views;
+  std::vector<double> seq_scores;
   for (int i : seq) {
-    if (scorer && scorer->answerFor((*scores)[static_cast<std::size_t>(i)]) == Answer::Unknown) {
-      ++unknown;
-      continue;
-    }
-    evidence.push_back(tv.views[static_cast<std::size_t>(i)]);
+    views.push_back(tv.views[static_cast<std::size_t>(i)]);
+    seq_scores.push_back(scores ? (*scores)[static_cast<std::size_t>(i)] : 0.0);
   }
-  if (evidence.empty() || (scorer && fusedAnswerIsUnknown(unknown, seq.size()))) return -1;
-  return fuseViews(evidence, FusionOptions()).best.back();
+  return fusedTurnClass(views, seq_scores, scorer);
 }
 
 }  // namespace
+
+int fusedTurnClass(const std::vector<FusionView>& views, const std::vector<double>& scores, const OpenSet& scorer,
+                   const FusionOptions& options) {
+  if (scores.size() != views.size())
+    throw Error("fusion: " + std::to_string(views.size()) + " views but " + std::to_string(scores.size()) + " scores");
+  TurnFusion turn(options, scorer);
+  for (std::size_t i = 0; i < views.size(); ++i)
+    turn.add({scorer.answerFor(scores[i]), scores[i], views[i].probabilities, views[i].azimuth_deg, views[i].pose});
+  return turn.answer() == Answer::Class ? turn.best() : -1;
+}
 
 FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                                 const std::vector<int>& labels, const Fold& fold, const ClassifierParams& params,
@@ -130,7 +127,12 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
     const int c = fusedClass(known, seq);
     out.fused_known_closed_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
   }
-  for (const OpenSet& s : calibrateOpenSets(xtrain, compact, categories, params, options)) {
+  // The turn threshold calibrated as train calibrates it, when every training view has its angle.
+  TurnRows turn_rows;
+  const bool posed_training = !az.empty() && std::all_of(train.begin(), train.end(), [&](std::size_t r) { return std::isfinite(az[r]); });
+  if (posed_training)
+    for (auto r : train) turn_rows.group.push_back(detail::captureGroupOf(table.rows[r])), turn_rows.azimuth_deg.push_back(az[r]);
+  for (const OpenSet& s : calibrateOpenSets(xtrain, compact, categories, params, options, posed_training ? &turn_rows : nullptr)) {
     OpenSetFoldOutcome o;
     o.method = s.method;
     o.threshold = s.threshold;
@@ -140,10 +142,10 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
       if (s.answerFor(o.known_scores[k]) == Answer::Class) ++o.known_accepted, o.known_correct += right[k];
     for (double u : o.unknown_scores) o.unknown_accepted += s.answerFor(u) == Answer::Class;
     for (const auto& seq : known_turns) {
-      const int c = fusedClass(known, seq, &s, &o.known_scores);
+      const int c = fusedClass(known, seq, s, &o.known_scores);
       o.fused_known_correct += c >= 0 && present[static_cast<std::size_t>(c)] == truthOf(seq);
     }
-    for (const auto& seq : unknown_turns) o.fused_unknown_accepted += fusedClass(unknown, seq, &s, &o.unknown_scores) >= 0;
+    for (const auto& seq : unknown_turns) o.fused_unknown_accepted += fusedClass(unknown, seq, s, &o.unknown_scores) >= 0;
     out.open_set.push_back(std::move(o));
   }
   return out;

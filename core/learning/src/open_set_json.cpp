@@ -18,6 +18,10 @@ json openSetJson(const OpenSet& s) {
             {"threshold", s.threshold},
             {"false_accept", s.false_accept},
             {"calibration", {{"unknown_views", s.calibration_views}, {"groups", s.calibration_groups}}}};
+  if (std::isfinite(s.turn_threshold)) {
+    j["turn_threshold"] = s.turn_threshold;
+    j["calibration"]["unknown_turns"] = s.calibration_turns;
+  }
   if (!keepsReferences(s.method)) return j;
   if (s.method == "knn-relative") j["class_scale"] = s.class_scale;
   j["neighbours"] = s.neighbours;
@@ -51,6 +55,12 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
       const auto& c = j.at("calibration");
       s.calibration_views = jsonInteger(c, "unknown_views", 0, std::numeric_limits<int>::max(), where);
       s.calibration_groups = jsonInteger(c, "groups", 0, std::numeric_limits<int>::max(), where);
+      if (c.contains("unknown_turns"))
+        s.calibration_turns = jsonInteger(c, "unknown_turns", 0, std::numeric_limits<int>::max(), where);
+    }
+    if (j.contains("turn_threshold")) {
+      s.turn_threshold = j.at("turn_threshold").get<double>();
+      if (!std::isfinite(s.turn_threshold)) throw Error(where + ": turn_threshold must be finite");
     }
     if (!keepsReferences(s.method)) return s;
     if (s.method == "knn-relative") {

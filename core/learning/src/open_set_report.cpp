@@ -115,8 +115,9 @@ std::string openSetMarkdown(const EvaluationRun& run, ReportPlots& plots) {
         md << "### Over a turn of the table\n\nThe same views read as one object turning: " << kOpenSetFusedViews
            << " views spread over " << std::defaultfloat << kOpenSetFusedSpreadDeg
            << "°, starting at every view of a held-out capture group (instance and elevation), fused by pose; a view "
-              "the method rejects adds no evidence and the answer is unknown while at least half the views are "
-              "(the rule of the studio's live recognition and of a model's fused sequences; not calibrated: the stated rate is a single view's). "
+              "the method rejects adds no evidence and the answer is unknown while the views' mean score is under the turn threshold, "
+              "calibrated as a view's is, for the stated rate, on turns of the training categories left out in turn "
+              "(turn_fusion.h: the rule of the studio's live recognition and of a model's fused sequences). "
               "Single view → fused.\n\n"
            << "| features | classifier | method | known accuracy % (open) | closed-set % | false accepts % | "
               "sequences known / unknown |\n|---|---|---|---|---|---|---|\n"

@@ -84,7 +84,7 @@ void LiveView::fuse(const ViewResult& r) {
   for (const auto& [sequence, deg] : frame_poses_)
     if (sequence == r.frame->sequence) az = deg;
   const auto& rec = *r.recognition;
-  if (fusion_.add(rec.answer, rec.probabilities, rec.features, az)) fusion_fresh_ = true;
+  if (fusion_.add(rec.answer, rec.score, rec.probabilities, rec.features, az)) fusion_fresh_ = true;
 }
 
 void LiveView::setPaused(bool paused) { paused_ = paused; }

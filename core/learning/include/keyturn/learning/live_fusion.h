@@ -6,14 +6,14 @@
 // newest frame stands for it: a first frame taken as the object was set down (or a noisy one)
 // does not hold the answer until the table turns. A bin the table has left is not taken again.
 // Pose fusion when the
-// model holds pose references, else independent. With an open-set model a view answered
-// "unknown" adds no evidence and the fused answer is "unknown" while at least half the views are
-// (as model_fusion.h); a "no object" view is not a view of the object and is left out.
+// model holds pose references, else independent. The turn's counts, belief and answer are a
+// TurnFusion's (turn_fusion.h), as for classify --fuse and evaluate's turns.
 #include <string>
 #include <vector>
 
 #include "keyturn/learning/model_file.h"
 #include "keyturn/learning/open_set.h"
+#include "keyturn/learning/turn_fusion.h"
 #include "keyturn/learning/view_fusion.h"
 
 namespace keyturn::learning {
@@ -26,22 +26,23 @@ class LiveFusion {
   const std::string& method() const { return options_.method; }
   // False when the view is not taken: no model, "no object", no finite angle, a bin the table has
   // left, or probabilities (features, for the pose term) that are not one per class (the
-  // classifier's input). A view in the newest bin replaces that bin's view.
-  bool add(Answer answer, const std::vector<float>& probabilities, const std::vector<float>& features,
+  // classifier's input). A view in the newest bin replaces that bin's view. score: the view's
+  // open-set score (Recognition::score).
+  bool add(Answer answer, double score, const std::vector<float>& probabilities, const std::vector<float>& features,
            double azimuth_deg);
   void reset();  // a new object, or a new turn
 
-  std::size_t views() const { return taken_.size(); }  // taken, "unknown" ones included
-  std::size_t unknownViews() const { return unknown_; }
+  std::size_t views() const { return turn_.views(); }  // taken, "unknown" ones included
+  std::size_t unknownViews() const { return turn_.unknownViews(); }
   double turnedDeg() const { return turned_deg_; }     // summed turn between the views taken
-  std::vector<double> belief() const;                 // over the classes; empty before any evidence
-  int best() const;                                   // -1 before any evidence
-  Answer answer() const;                              // NoObject before any view
+  std::vector<double> belief() const { return turn_.belief(); }  // over the classes; empty before any evidence
+  int best() const { return turn_.best(); }                      // -1 before any evidence
+  Answer answer() const { return turn_.answer(); }               // NoObject before any view
 
  private:
   std::vector<std::string> classes_;
   PoseReferences references_;
-  bool open_set_ = false;
+  OpenSet open_set_;  // its method and threshold (the references stay in the model)
   FusionOptions options_;
   struct Taken {
     int bin = 0;
@@ -49,12 +50,10 @@ class LiveFusion {
   };
 
   std::vector<Taken> taken_;  // one per bin, in the order the table reached them
-  FusionState state_{FusionOptions{}};
-  std::size_t unknown_ = 0;
+  TurnFusion turn_{FusionOptions{}, OpenSet{}};
   double turned_deg_ = 0;
   // The same before the newest view, which a frame in its bin replaces.
-  FusionState before_newest_{FusionOptions{}};
-  std::size_t unknown_before_newest_ = 0;
+  TurnFusion before_newest_{FusionOptions{}, OpenSet{}};
   double turned_before_newest_ = 0;
 };
 

@@ -25,7 +25,7 @@ struct FusedStep {
   Answer view_answer = Answer::Class;  // the view alone
   std::vector<double> belief; // after this view, one per class, summing to 1
   int best = -1;              // the belief's argmax
-  Answer answer = Answer::Class;       // the fused answer (see fusePredictions)
+  Answer answer = Answer::Class;       // the fused answer (TurnFusion::answer)
 };
 
 struct ModelFusion {
@@ -39,10 +39,9 @@ struct ModelFusion {
 };
 
 // predictions: predictRows' answers for the sequence's views, in turntable order; azimuth_deg one
-// per prediction. A view answered "no object" adds no evidence; with an open-set model neither
-// does one answered "unknown", and the fused answer is "unknown" while at least half the views so
-// far are unknown. Throws keyturn::Error for pose fusion with a model without pose references, a
-// size mismatch, or a sequence with no described view.
+// per prediction. Each view is fed to a TurnFusion (turn_fusion.h: which views count, the open-set
+// rule and the stop). Throws keyturn::Error for pose fusion with a model without pose references,
+// a size mismatch, or a sequence with no described view.
 ModelFusion fusePredictions(const Model& model, const FeatureTable& table, const std::vector<Prediction>& predictions,
                             const std::vector<double>& azimuth_deg, const FusionOptions& options);
 

@@ -17,8 +17,11 @@ namespace keyturn::learning {
 // open_set: calibrate the first of its methods on the table's categories (open_set_calibration.h)
 // and store it in the model; none: a closed-set model. Fewer than three categories cannot be
 // calibrated: an error, or a closed-set model when open_set->required is false.
+// azimuth_deg: each row's turntable angle (or empty); with every angle known, the open set's turn
+// threshold is calibrated too (turn_fusion.h). Throws keyturn::Error when it is not one per row.
 Model trainModel(const FeatureTable& table, const std::vector<std::string>& blocks, LabelKind kind,
                  const ClassifierParams& params, double* fit_s = nullptr,
-                 const std::optional<OpenSetOptions>& open_set = std::nullopt);
+                 const std::optional<OpenSetOptions>& open_set = std::nullopt,
+                 const std::vector<double>& azimuth_deg = {});
 
 }  // namespace keyturn::learning

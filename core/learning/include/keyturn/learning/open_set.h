@@ -12,6 +12,8 @@
 // Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
+#include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -37,6 +39,16 @@ struct OpenSet {
   double false_accept = 0;     // the stated rate the threshold was calibrated for
   int calibration_views = 0;   // unknown views the threshold was set on
   int calibration_groups = 0;  // trainings, each without one group of categories
+  // A turn's threshold (turn_fusion.h): the mean score of a turn's views accepted when >= it,
+  // calibrated for the same false-accept rate on turns of the left-out categories' capture groups
+  // (kTurnViews views over kTurnSpreadDeg, as evaluate reads turns). NaN: not calibrated (a model
+  // trained before it, or on views without angles): a turn takes the single view's threshold.
+  double turn_threshold = std::nan("");
+  int calibration_turns = 0;
+  // The threshold a turn of `views` views is held to: a single view's for one view, else the turn's.
+  double thresholdFor(std::size_t views) const {
+    return views > 1 && std::isfinite(turn_threshold) ? turn_threshold : threshold;
+  }
   // knn: the training views, standardised (rows), their class, and the standardisation.
   int neighbours = 1;
   std::vector<float> mean, scale;

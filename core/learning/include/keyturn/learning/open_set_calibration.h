@@ -36,12 +36,21 @@ void setOpenSetMethod(OpenSetOptions& options, const std::string& method);
 // Distinct categories needed to calibrate: one group left out, two classes still to train on.
 constexpr std::size_t kOpenSetMinCategories = 3;
 
+// Each training row's capture group (instance and elevation) and turntable angle (NaN: none), for
+// the turn threshold: the left-out views read as turns of the table (turn_fusion.h).
+struct TurnRows {
+  std::vector<std::string> group;
+  std::vector<double> azimuth_deg;
+};
+
 // One calibrated OpenSet per options.methods, in order. x, y: the training rows and their class
-// indices (0 .. classes - 1, every class present); categories: each row's category (the unit left out). Throws
-// keyturn::Error when fewer than three categories leave no group out with two classes to train on.
+// indices (0 .. classes - 1, every class present); categories: each row's category (the unit left out).
+// With turns (one per row), the turn threshold too, for the same rate on the left-out views' turns
+// (left NaN when they form none). Throws keyturn::Error when fewer than three categories leave no
+// group out with two classes to train on, or turns are not one per row.
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
-                                       const OpenSetOptions& options);
+                                       const OpenSetOptions& options, const TurnRows* turns = nullptr);
 
 // Class indices made contiguous over the classes present: y's values mapped to 0 .. n - 1 in
 // increasing order; `present` (optional) receives the original index of each new one.

@@ -8,19 +8,27 @@
 
 #include "keyturn/learning/evaluation.h"
 #include "keyturn/learning/open_set_calibration.h"
+#include "keyturn/learning/turn_fusion.h"
+#include "keyturn/learning/view_fusion.h"
 
 namespace keyturn::learning {
 
 // The turn the fused figures read: this many views spread evenly over this many degrees of
 // one capture group (instance and elevation), starting at each of its views (the fusion target's
 // schedule, docs/results.md "Multi-view fusion").
-constexpr int kOpenSetFusedViews = 3;
-constexpr double kOpenSetFusedSpreadDeg = 90;
+constexpr int kOpenSetFusedViews = kTurnViews;
+constexpr double kOpenSetFusedSpreadDeg = kTurnSpreadDeg;
+
+// One turn as evaluate's open-set turns read it (a TurnFusion fed every view, each answered by its
+// score under `scorer`; a closed-set scorer answers every view), fused by pose unless options say
+// otherwise: the fused class, -1 for unknown.
+int fusedTurnClass(const std::vector<FusionView>& views, const std::vector<double>& scores, const OpenSet& scorer,
+                   const FusionOptions& options = FusionOptions());
 
 // fold.unknown must not be empty; labels: class index per table row (twins included).
 // azimuth_deg: each table row's turntable angle (NaN: none); when given, the known and unknown
 // views are also read as turning sequences and fused by pose (FoldOutcome::fused_*): closed-set,
-// and per method with the open-set rule (view_fusion.h, fusedAnswerIsUnknown).
+// and per method with the open-set rule (turn_fusion.h, TurnFusion).
 FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std::string>& blocks,
                                 const std::vector<int>& labels, const Fold& fold, const ClassifierParams& params,
                                 const OpenSetOptions& options, const TwinRows& twins = {},

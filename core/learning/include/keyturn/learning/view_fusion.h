@@ -98,10 +98,4 @@ class FusionState {
 // class counts, or pose fusion of a view without pose evidence.
 FusedSequence fuseViews(const std::vector<FusionView>& views, const FusionOptions& options);
 
-// The fused answer of an open-set model after `views` views of which `unknown_views` were answered
-// "unknown" alone (they add no evidence): "unknown" while at least half of them are. Not calibrated:
-// the model's stated false-accept rate is a single view's (evaluate's open-set protocol measures
-// the fused rates).
-inline bool fusedAnswerIsUnknown(std::size_t unknown_views, std::size_t views) { return 2 * unknown_views >= views; }
-
 }  // namespace keyturn::learning
