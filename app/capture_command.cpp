@@ -14,6 +14,7 @@
 #include "keyturn/rig/capture_rig.h"
 #include "keyturn/dataset/sidecars.h"
 #include "progress.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace keyturn::app {
 namespace {
@@ -40,7 +41,7 @@ int captureSequence(CaptureArgs a) {
   rig::refusePlaybackInto(a.devices, a.out);
   // One writer at a time, the lock taken before the simulated rig writes its state into DATASET/.sim.
   dataset::DatasetLock lock(a.out);
-  a.devices.sim.dir = a.out + "/.sim";
+  a.devices.sim.dir = dataset::datasetPath(a.out, dataset::kSimulatorFolder);
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
   rig::CaptureRig capture_rig(a.devices);
   o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
@@ -128,7 +129,7 @@ Command addCaptureCommand(CLI::App& app) {
                   "Simulated camera with a separately running `keyturn sim turntable --world FILE`: the shared world file");
   cmd->add_option("--calibration", a->calibration,
                   "Axis calibration from keyturn calibrate-axis: gives every view its camera-from-turntable "
-                  "transform (copied into the dataset as calibration.json)");
+                  "transform (copied into the dataset as " + std::string(dataset::kCalibrationFile) + ")");
   return {cmd, [a] { return runCapture(*a); }};
 }
 

@@ -2,6 +2,7 @@
 
 #include <iostream>
 
+#include "keyturn/dataset/dataset_layout.h"
 #include "keyturn/learning/dataset_features.h"
 
 namespace keyturn::app {
@@ -9,7 +10,7 @@ namespace keyturn::app {
 std::vector<dataset::LabelledView> datasetViews(const std::string& root) {
   std::vector<std::string> bad;
   auto views = dataset::datasetViews(root, &bad);
-  for (const auto& b : bad) std::cerr << "keyturn: " << root << "/manifest.csv: skipped " << b << "\n";
+  for (const auto& b : bad) std::cerr << "keyturn: " << dataset::manifestPath(root) << ": skipped " << b << "\n";
   return views;
 }
 

@@ -9,6 +9,8 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "slurm_scripts.h"
+#include "keyturn/dataset/dataset_layout.h"
+#include "keyturn/dataset/dataset_views.h"
 
 namespace keyturn::app {
 namespace {
@@ -16,8 +18,8 @@ namespace {
 namespace fs = std::filesystem;
 
 int runSlurm(SlurmPlan p) {
-  if (!fs::is_regular_file(fs::path(p.dataset) / "manifest.csv"))
-    throw Error(p.dataset + ": not a dataset folder (no manifest.csv)");
+  if (!dataset::isDataset(p.dataset))
+    throw Error(p.dataset + ": not a dataset folder (no " + dataset::kManifestFile + ")");
   p.keyturn = fs::canonical("/proc/self/exe").string();
   p.dataset = fs::absolute(p.dataset).lexically_normal().string();
   p.out = fs::absolute(p.out).lexically_normal().string();

@@ -23,8 +23,8 @@ bool isViewFile(const fs::path& p, bool depth_images) {
 }  // namespace
 
 bool isCompanionImage(const std::string& name) {
-  for (const char* s : {"_mask.png", "_maskcrop.png", "_crop.png", "_rgb.png", "_distance.png", "_amplitude.png",
-                        "_confidence.png"})
+  for (const char* s : {"_mask.png", "_maskcrop.png", "_crop.png", "_rgb.png", kDistanceImageSuffix,
+                        kAmplitudeImageSuffix, kConfidenceImageSuffix})
     if (endsWith(name, s)) return true;
   return false;
 }

@@ -14,6 +14,7 @@
 #include "keyturn/rig/frame_files.h"
 #include "keyturn/dataset/sidecars.h"
 #include "keyturn/rig/captured_views.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace fs = std::filesystem;
 
@@ -62,7 +63,7 @@ std::string viewName(const dataset::ViewRecord& r) {
 
 Recording::Recording(std::string root, PlaybackOptions options) : root_(std::move(root)), options_(options) {
   while (root_.size() > 1 && root_.back() == '/') root_.pop_back();
-  const std::string manifest = root_ + "/manifest.csv";
+  const std::string manifest = dataset::manifestPath(root_);
   if (!fs::is_directory(root_)) throw Error(root_ + ": no such dataset to play back");
   if (!fs::is_regular_file(manifest)) throw Error(manifest + ": missing (not a keyturn dataset to play back)");
   views_ = dataset::Dataset::readManifest(root_);
@@ -102,7 +103,7 @@ drivers::TofFrame Recording::load(std::size_t index) const {
   for (const auto& f : r.files)
     if (!fs::exists(root_ + "/" + f)) throw Error(root_ + "/" + f + ": missing (view " + viewName(r) + " of the recording)");
   const std::string pcd = r.pcd();
-  if (pcd.empty()) throw Error(root_ + "/manifest.csv: view " + viewName(r) + " lists no point cloud");
+  if (pcd.empty()) throw Error(dataset::manifestPath(root_) + ": view " + viewName(r) + " lists no point cloud");
   ViewCamera camera;
   if (!r.sidecar().empty()) camera = readViewCamera(root_ + "/" + r.sidecar());
   drivers::TofFrame f =
@@ -132,7 +133,7 @@ drivers::TofFrame Recording::next() {
     if (index == views_.size()) {
       if (!options_.loop) {
         ended_ = true;
-        throw EndOfRecording(root_ + "/manifest.csv: end of the recording after its " + std::to_string(views_.size()) +
+        throw EndOfRecording(dataset::manifestPath(root_) + ": end of the recording after its " + std::to_string(views_.size()) +
                     " views (not looping)");
       }
       index = 0;

@@ -10,6 +10,7 @@
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace keyturn::rig {
 namespace {
@@ -50,7 +51,7 @@ void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, co
     for (double el : s.elevations) {
       if (s.stop && *s.stop) return;
       SimulatedRigOptions so;
-      so.dir = s.out + "/.sim";
+      so.dir = dataset::datasetPath(s.out, dataset::kSimulatorFolder);
       so.camera.mesh = obj.mesh;
       so.camera.elevation_deg = el;
       so.camera.seed = s.seed;
@@ -74,7 +75,7 @@ CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& 
                                   const dataset::ObjectRow& obj, const sim::Mesh& mesh, const dataset::ViewKey& key, double el) {
   const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
   SimulatedRigOptions so;
-  so.dir = s.out + "/.sim";
+  so.dir = dataset::datasetPath(s.out, dataset::kSimulatorFolder);
   so.camera.mesh = obj.mesh;
   so.camera.elevation_deg = draw.elevation_deg;
   so.camera.distance = sim::operatorDistance(sim::scaledMesh(mesh, draw.scale)) * draw.distance_scale;

@@ -8,6 +8,7 @@
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/core/view_files.h"
 
 namespace fs = std::filesystem;
 
@@ -33,9 +34,9 @@ drivers::TofFrame readFrameFiles(const std::string& pcd_path, double range_m) {
   f.width = f.cloud.width;
   f.height = f.cloud.height;
   const std::size_t n = f.cloud.size();
-  f.distance = readPng16(base + "_distance.png", f.width, f.height);
-  f.amplitude = readPng16(base + "_amplitude.png", f.width, f.height);
-  f.confidence = readPng16(base + "_confidence.png", f.width, f.height);
+  f.distance = readPng16(base + kDistanceImageSuffix, f.width, f.height);
+  f.amplitude = readPng16(base + kAmplitudeImageSuffix, f.width, f.height);
+  f.confidence = readPng16(base + kConfidenceImageSuffix, f.width, f.height);
   if (f.distance.empty() && range_m > 0) {
     f.distance.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
@@ -65,7 +66,7 @@ std::vector<std::string> writeFrameFiles(const std::string& pcd_path, const driv
   const struct {
     const char* suffix;
     const std::vector<std::uint16_t>* img;
-  } images[] = {{"_distance.png", &f.distance}, {"_amplitude.png", &f.amplitude}, {"_confidence.png", &f.confidence}};
+  } images[] = {{kDistanceImageSuffix, &f.distance}, {kAmplitudeImageSuffix, &f.amplitude}, {kConfidenceImageSuffix, &f.confidence}};
   for (const auto& im : images) {
     if (im.img->size() != static_cast<std::size_t>(f.width) * f.height) continue;  // e.g. no confidence map
     savePng16(base + im.suffix, *im.img, f.width, f.height);

@@ -18,6 +18,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/core/view_files.h"
 #include "keyturn/dataset/feature_cache_files.h"
 #include "utc_time.h"
 
@@ -28,8 +29,6 @@
 namespace fs = std::filesystem;
 
 namespace keyturn::dataset {
-
-const char* const kSnapshotsFolder = "snapshots";
 
 std::string isoNow() {
   const auto now = std::chrono::system_clock::now();
@@ -45,11 +44,10 @@ std::string isoNow() {
 
 namespace {
 
-constexpr const char* kManifest = "manifest.csv";
 constexpr int kColumns = 9;
 
-// A file the studio saved beside the views (snapshots/NAME: not in a subfolder, where a class
-// called "snapshots" would keep its views).
+// A file the studio saved beside the views (kSnapshotsFolder/NAME: not in a subfolder, where a
+// class of that name would keep its views).
 bool isSnapshot(const std::string& rel) {
   const std::string prefix = std::string(kSnapshotsFolder) + "/";
   return rel.rfind(prefix, 0) == 0 && rel.find('/', prefix.size()) == std::string::npos;
@@ -58,8 +56,8 @@ bool isSnapshot(const std::string& rel) {
 // What a writer keeps beside the views before the first one: the dataset's description and
 // manifest, the axis calibration, the simulator's state and the writers' lock.
 bool isWritersOwnFile(const std::string& rel) {
-  return rel == "dataset.json" || rel == kManifest || rel == "calibration.json" || rel == kLockFile ||
-         rel.rfind(".sim/", 0) == 0;
+  return rel == kDescriptionFile || rel == kManifestFile || rel == kCalibrationFile || rel == kLockFile ||
+         rel.rfind(std::string(kSimulatorFolder) + "/", 0) == 0;
 }
 
 std::string fmt(double v, int decimals) {
@@ -192,7 +190,7 @@ std::string manifestHeader() {
 Dataset::Dataset(std::string root) : Dataset(root, DatasetLock(root)) {}
 
 Dataset::Dataset(std::string root, DatasetLock lock) : root_(std::move(root)), lock_(std::move(lock)) {
-  const std::string info = root_ + "/dataset.json";
+  const std::string info = datasetPath(root_, kDescriptionFile);
   if (!fs::exists(info)) {
     const nlohmann::json j = {{"format", "keyturn-dataset"}, {"version", 1}, {"created", isoNow()},
                               {"keyturn_version", KEYTURN_VERSION}};
@@ -200,8 +198,8 @@ Dataset::Dataset(std::string root, DatasetLock lock) : root_(std::move(root)), l
   }
   // The lock keeps other writers out; the feature cache (.keyturn/) may be filling in another process,
   // and the simulator keeps its own state.
-  temporaries_removed_ = removeInterruptedWriteTemporaries(root_, {".keyturn", ".sim"});
-  const std::string manifest = root_ + "/" + kManifest;
+  temporaries_removed_ = removeInterruptedWriteTemporaries(root_, {kKeyturnFolder, kSimulatorFolder});
+  const std::string manifest = manifestPath(root_);
   if (!fs::exists(manifest)) writeFileDurably(manifest, manifestHeader() + "\n");
   repairInterruptedAppend(manifest);
   std::vector<std::string> bad;
@@ -254,7 +252,7 @@ nlohmann::json baseSidecar(const ViewKey& key, const ViewMetadata& meta) {
 void Dataset::removeFilesWithoutRow(const std::string& abs_stem) const {
   std::set<std::string> referenced;
   for (const auto& v : views_) referenced.insert(v.files.begin(), v.files.end());
-  for (const char* suffix : {".pcd", "_distance.png", "_amplitude.png", "_confidence.png", ".json"}) {
+  for (const char* suffix : {".pcd", kDistanceImageSuffix, kAmplitudeImageSuffix, kConfidenceImageSuffix, ".json"}) {
     const std::string path = abs_stem + suffix;
     std::error_code ec;
     if (!referenced.count(path.substr(root_.size() + 1)) && fs::is_regular_file(path, ec)) fs::remove(path, ec);
@@ -281,7 +279,7 @@ ViewRecord Dataset::commitView(ViewRecord r, const std::string& abs_stem, const 
   // Every file is durable under its final name by now (each one renamed into place after its
   // temporary was flushed): the checksums are of the bytes committed, the row comes after them.
   for (const auto& f : r.files) r.sha256.push_back(sha256File(root_ + "/" + f));
-  appendLineDurably(root_ + "/" + kManifest, rowOf(r));  // the view exists from here on
+  appendLineDurably(manifestPath(root_), rowOf(r));  // the view exists from here on
   views_.push_back(r);
   return r;
 }
@@ -321,7 +319,7 @@ ViewRecord Dataset::writeImported(const ViewKey& key, const ViewMetadata& meta, 
 
 std::vector<ViewRecord> Dataset::readManifest(const std::string& root, std::vector<std::string>* bad_rows) {
   std::vector<ViewRecord> out;
-  const std::string path = root + "/" + kManifest;
+  const std::string path = manifestPath(root);
   std::ifstream in(path);
   if (!in) throw Error(path + ": no manifest (not a keyturn dataset?)");
   std::string line;
@@ -423,7 +421,7 @@ void removeDatasetWithoutViews(const std::string& root) {
     if (!isWritersOwnFile(rel) && !isInterruptedWriteTemporary(rel)) return;
   }
   if (ec) return;
-  if (fs::exists(fs::path(root) / kManifest)) {
+  if (fs::exists(fs::path(root) / kManifestFile)) {
     std::vector<std::string> bad;
     try {
       if (!Dataset::readManifest(root, &bad).empty() || !bad.empty()) return;  // views, or not keyturn's

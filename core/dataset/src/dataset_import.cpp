@@ -9,6 +9,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace fs = std::filesystem;
 
@@ -27,7 +28,7 @@ void checkOut(const std::string& out) {
   std::error_code ec;
   if (!fs::exists(out, ec)) return;
   if (!fs::is_directory(out, ec)) throw Error(out + ": exists and is not a folder");
-  if (fs::is_regular_file(fs::path(out) / "manifest.csv", ec)) return;
+  if (fs::is_regular_file(manifestPath(out), ec)) return;
   if (!fs::is_empty(out, ec)) throw Error(out + ": exists and is neither empty nor a keyturn dataset (no manifest.csv)");
 }
 

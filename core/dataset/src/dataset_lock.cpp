@@ -17,7 +17,6 @@
 
 namespace keyturn::dataset {
 
-const char* const kLockFile = ".keyturn-lock";
 
 namespace {
 

@@ -4,12 +4,13 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/dataset/dataset.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace keyturn::dataset {
 
 namespace fs = std::filesystem;
 
-bool isDataset(const std::string& path) { return fs::is_regular_file(fs::path(path) / "manifest.csv"); }
+bool isDataset(const std::string& path) { return fs::is_regular_file(manifestPath(path)); }
 
 std::vector<LabelledView> datasetViews(const std::string& root, std::vector<std::string>* skipped,
                                        std::vector<ViewRecord>* records) {

@@ -8,7 +8,6 @@ namespace fs = std::filesystem;
 
 namespace keyturn::dataset {
 
-const char* const kKeyturnFolder = ".keyturn";
 
 std::string featureCacheFile(const std::string& root, const std::string& hash, int shard, int shards) {
   std::string name = "features-" + hash;

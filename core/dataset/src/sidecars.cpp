@@ -8,6 +8,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/dataset/dataset_layout.h"
 
 namespace keyturn::dataset {
 namespace {
@@ -91,7 +92,7 @@ Eigen::Matrix4d adoptAxisCalibration(const std::string& path, const std::string&
   const Eigen::Matrix4d m = readAxisCalibration(path);
   std::ifstream in(path, std::ios::binary);
   std::filesystem::create_directories(dataset_root);
-  writeFileDurably(dataset_root + "/calibration.json",
+  writeFileDurably(datasetPath(dataset_root, kCalibrationFile),
                    std::string((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>()));
   return m;
 }

@@ -5,6 +5,12 @@
 
 namespace keyturn {
 
+// The images a captured frame keeps beside its PCD (VIEW.pcd → VIEW_distance.png, …; rig's
+// frame_files.h writes and reads them, a dataset keeps them with its views).
+inline constexpr const char* kDistanceImageSuffix = "_distance.png";
+inline constexpr const char* kAmplitudeImageSuffix = "_amplitude.png";
+inline constexpr const char* kConfidenceImageSuffix = "_confidence.png";
+
 struct ViewFileList {
   std::vector<std::string> files;   // in argument order, folders sorted
   std::vector<std::string> errors;  // one line per argument that could not be used

@@ -18,13 +18,10 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/dataset/dataset_layout.h"
 #include "keyturn/dataset/dataset_lock.h"
 
 namespace keyturn::dataset {
-
-// "snapshots": the folder, relative to the dataset root, where the studio saves live frames. Its
-// files are the dataset's own but no view's, so verify does not call them orphans.
-extern const char* const kSnapshotsFolder;
 
 struct ViewKey {
   std::string cls, instance, elevation;  // elevation label, e.g. "30"

@@ -8,11 +8,9 @@
 #include <string>
 
 #include "keyturn/core/error.h"
+#include "keyturn/dataset/dataset_layout.h"  // kLockFile
 
 namespace keyturn::dataset {
-
-// ".keyturn-lock": the lock file, relative to the dataset root (one of the dataset's own files).
-extern const char* const kLockFile;
 
 // Another writer holds the dataset: one line naming the dataset and the holder.
 class DatasetBusyError : public Error {

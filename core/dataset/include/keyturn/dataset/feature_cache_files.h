@@ -7,10 +7,9 @@
 #include <string>
 #include <vector>
 
-namespace keyturn::dataset {
+#include "keyturn/dataset/dataset_layout.h"  // kKeyturnFolder
 
-// ".keyturn": the folder, relative to the dataset root.
-extern const char* const kKeyturnFolder;
+namespace keyturn::dataset {
 
 // DATASET/.keyturn/features-<hash>[.shard-I-of-N].csv; shard counts from 0, I = shard + 1.
 std::string featureCacheFile(const std::string& root, const std::string& hash, int shard = 0, int shards = 1);
