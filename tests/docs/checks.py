@@ -269,6 +269,25 @@ def check_demo_folder(c):
                  f"README's describe example {m.group(1)}")
 
 
+def check_studio_objects(c):
+    """docs/studio.md names the object list --object is checked against, and its first object (the default)."""
+    rel = "docs/studio.md"
+    m = c.find(rel, r"\(`--object`, an instance from\s+`(data/objects/[\w-]+\.csv)`.*?default the first, the \w+ `(\w+)`\)")
+    if not m:
+        return
+    exe = c.build / "app" / "keyturn-studio"
+    if not exe.exists():
+        return c.ok(f"{rel}: keyturn-studio not built: its object list not checked")
+    p = subprocess.run([str(exe), "--simulated", "--object", "no-such-object-kt"], capture_output=True, text=True,
+                       timeout=60, env={"PATH": "/usr/bin:/bin", "LC_ALL": "C.UTF-8"})
+    named = re.search(r"not in (\S+) \(([\w, ]+)\)", p.stderr)
+    c.expect(p.returncode == 1 and named and named.group(1).endswith("/" + m.group(1)),
+             f"{rel}: --object is checked against {m.group(1)} (keyturn-studio says: {p.stderr.strip()[:120]})")
+    first = (c.source / m.group(1)).read_text().splitlines()[1].split(",")[1]
+    c.expect(first == m.group(2) and named and named.group(2).split(", ")[0] == first,
+             f"{rel}: --object's default, the list's first, is {m.group(2)} (the list's first: {first})")
+
+
 def run_all(source, build, folders):
     c = Context(source, build, folders)
     readme = folders.get("README.md")
@@ -282,6 +301,7 @@ def run_all(source, build, folders):
                   lambda: check_repeatability_report(c, readme),
                   lambda: check_studio_model_labels(c),
                   lambda: check_demo_folder(c),
+                  lambda: check_studio_objects(c),
                   lambda: check_dataset_size(c, readme)]:
         try:
             check()
