@@ -288,6 +288,19 @@ def check_studio_objects(c):
              f"{rel}: --object's default, the list's first, is {m.group(2)} (the list's first: {first})")
 
 
+def check_stability_one_view(c):
+    """docs/descriptors.md quotes how `keyturn stability` refuses a single view; the program does so."""
+    rel = "docs/descriptors.md"
+    m = c.find(rel, r"one view alone is refused in one line,\s+`([^`]+)` \(exit (\d+)\)")
+    if not m:
+        return
+    p = subprocess.run([str(c.build / "app" / "keyturn"), "stability", str(c.source / "data/frames/mosd_learn0.pcd"),
+                        "-q"], capture_output=True, text=True, timeout=120)
+    c.expect(p.returncode == int(m.group(2)) and p.stderr.strip() == m.group(1),
+             f"{rel}: stability on one file: docs say '{m.group(1)}' (exit {m.group(2)}), it said "
+             f"'{p.stderr.strip()}' (exit {p.returncode})")
+
+
 def run_all(source, build, folders):
     c = Context(source, build, folders)
     readme = folders.get("README.md")
@@ -302,6 +315,7 @@ def run_all(source, build, folders):
                   lambda: check_studio_model_labels(c),
                   lambda: check_demo_folder(c),
                   lambda: check_studio_objects(c),
+                  lambda: check_stability_one_view(c),
                   lambda: check_dataset_size(c, readme)]:
         try:
             check()
