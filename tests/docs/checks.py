@@ -301,6 +301,28 @@ def check_stability_one_view(c):
              f"'{p.stderr.strip()}' (exit {p.returncode})")
 
 
+def check_programs_named(c):
+    """The runnable examples of the README, the command-line guide and the Python page name the programs a user
+    has after the README's set-up: build/app/keyturn (not on PATH) and Debian's /usr/bin/python3 (a python3
+    first on PATH may be another Python, without numpy). The docs test puts both on PATH, so only this sees it."""
+    import run_examples  # the same block and command reading as the examples
+    bare = {"keyturn", "keyturn-studio", "python3", "python"}
+    for rel in ["README.md", "docs/cli.md", "docs/python.md"]:
+        if not (c.source / rel).exists():
+            continue
+        found = []
+        for block in run_examples.read_blocks(c.source, rel):
+            if block.lang not in run_examples.SHELL_LANGS or run_examples.Plan(block).skip_reason:
+                continue
+            for n, cmd in run_examples.commands_of(block):
+                for part in re.split(r"&&|\|\||[;|()]|\$\(|\b(?:do|then)\b", cmd):
+                    words = [w for w in part.split() if not re.match(r"^\w+=", w)]
+                    if words and words[0] in bare:
+                        found.append(f"{rel}:{n}: {words[0]}")
+        c.expect(not found, f"{rel}: runnable examples name build/app/keyturn and /usr/bin/python3 "
+                            f"(bare: {', '.join(found) or 'none'})")
+
+
 def run_all(source, build, folders):
     c = Context(source, build, folders)
     readme = folders.get("README.md")
@@ -316,6 +338,7 @@ def run_all(source, build, folders):
                   lambda: check_demo_folder(c),
                   lambda: check_studio_objects(c),
                   lambda: check_stability_one_view(c),
+                  lambda: check_programs_named(c),
                   lambda: check_dataset_size(c, readme)]:
         try:
             check()
