@@ -323,6 +323,62 @@ def check_programs_named(c):
                             f"(bare: {', '.join(found) or 'none'})")
 
 
+def prose_lines(text):
+    """The lines of a Markdown text outside fenced blocks."""
+    out, fence = [], None
+    for line in text.splitlines():
+        m = re.match(r"^\s*(```+|~~~+)", line)
+        if m and fence is None:
+            fence = m.group(1)
+        elif m and line.strip().startswith(fence):
+            fence = None
+        elif fence is None:
+            out.append(line)
+    return out
+
+
+def anchors_of(text):
+    """GitHub's anchors of a Markdown text's headings (lower case, punctuation dropped, spaces to hyphens,
+    -1, -2 … for repeats)."""
+    seen, out = {}, set()
+    for line in prose_lines(text):
+        m = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if not m:
+            continue
+        title = re.sub(r"\[([^]]*)\]\([^)]*\)", r"\1", m.group(1))
+        slug = re.sub(r"[^\w\- ]", "", title.lower()).replace(" ", "-")
+        n = seen.get(slug, 0)
+        seen[slug] = n + 1
+        out.add(slug if n == 0 else f"{slug}-{n}")
+    return out
+
+
+def check_links(c):
+    """Every link between the docs resolves: [text](FILE#ANCHOR) and images to files that exist, anchors to
+    headings of the file; and the `docs/FILE.md#ANCHOR` the prose cites in code spans."""
+    docs = ["README.md"] + sorted(str(p.relative_to(c.source)) for p in (c.source / "docs").glob("*.md"))
+    bad, count = [], 0
+    for rel in docs:
+        here = (c.source / rel).parent
+        for n, line in enumerate(prose_lines(c.doc(rel)), 1):
+            targets = [(t, here) for t in re.findall(r"\]\(([^)\s]+)\)", line)]
+            targets += [(t, c.source) for t in re.findall(r"`((?:docs/)?[\w./-]+\.md#[\w-]+)`", line)]
+            targets += [(t, c.source) for t in re.findall(r"(?<![\w/(`-])(docs/[\w./-]+\.md#[\w-]+)(?!`)", line)]
+            for target, base in targets:
+                if re.match(r"^[a-z]+:", target):
+                    continue
+                count += 1
+                path, _, frag = target.partition("#")
+                f = (base / path).resolve() if path else c.source / rel
+                if base == c.source and path and not f.exists():
+                    f = (here / path).resolve()
+                if not f.exists():
+                    bad.append(f"{rel}: {target} (no such file)")
+                elif frag and f.suffix == ".md" and frag not in anchors_of(f.read_text(encoding="utf-8")):
+                    bad.append(f"{rel}: {target} (no such heading)")
+    c.expect(count > 20 and not bad, f"links between the docs resolve ({count} links; broken: {bad})")
+
+
 def run_all(source, build, folders):
     c = Context(source, build, folders)
     readme = folders.get("README.md")
@@ -339,6 +395,7 @@ def run_all(source, build, folders):
                   lambda: check_studio_objects(c),
                   lambda: check_stability_one_view(c),
                   lambda: check_programs_named(c),
+                  lambda: check_links(c),
                   lambda: check_dataset_size(c, readme)]:
         try:
             check()
