@@ -75,9 +75,9 @@ def header_of_pcd(path):
 
 def check_option_defaults(c):
     for rel, pattern, command, option in [
-        ("README.md", r"`--extent`\s*\(([\d.]+) m\)", "describe", "--extent"),
-        ("README.md", r"`--range (\w+)` \(default\)", "describe", "--range"),
-        ("README.md", r"`low_keypoints`\s*\(1 when K < (\d+)", "describe", "--low-keypoints"),
+        ("docs/cli.md", r"`--extent`\s*\(([\d.]+) m\)", "describe", "--extent"),
+        ("docs/cli.md", r"`--range (\w+)` \(default\)", "describe", "--range"),
+        ("docs/cli.md", r"`low_keypoints`\s*\(1 when K < (\d+)", "describe", "--low-keypoints"),
         ("docs/descriptors.md", r"(\d+) bins by default", "describe", "--bins"),
         ("docs/descriptors.md", r"\(`--seed`, default (\d+)\)", "describe", "--seed"),
         ("docs/studio.md", r"`--threads N` \(recognition threads, default (\d+)\)", "studio", "--threads"),
@@ -110,66 +110,66 @@ def check_option_defaults(c):
 
 
 def check_describe_columns(c, work):
-    m = c.find("README.md", r"- Columns: (.*?)`<feature>_<bin>`")
+    m = c.find("docs/cli.md", r"- Columns: (.*?)`<feature>_<bin>`")
     csv = work / "features.csv"
     if not m:
         return
     if not csv.exists():
-        return c.fail(f"README.md: {csv.name} was not written by the describe example")
+        return c.fail(f"docs/cli.md: {csv.name} was not written by the describe example")
     quoted = re.findall(r"`([^`]+)`", m.group(1))
     names = [n.strip() for q in quoted for n in q.split(",") if re.fullmatch(r"\s*[a-z_]+\s*", n)]
     header = csv.read_text().splitlines()[0].split(",")
     c.expect(header[:len(names)] == names,
-             f"README.md: describe's leading columns: docs say {names}, features.csv has {header[:len(names)]}")
-    ex = c.find("README.md", r"keyturn describe out/demo/dataset --features ([\w,]+)\s*\\\s*\n\s*--bins (\d+)")
+             f"docs/cli.md: describe's leading columns: docs say {names}, features.csv has {header[:len(names)]}")
+    ex = c.find("docs/cli.md", r"keyturn describe out/demo/dataset --features ([\w,]+)\s*\\\s*\n\s*--bins (\d+)")
     if ex:
         feats, bins = ex.group(1).split(","), int(ex.group(2))
         want = [f"{f}_{b}" for f in feats for b in range(bins)]
         c.expect(header[len(names):] == want,
-                 f"README.md: describe's feature columns are <feature>_<bin> for {feats} × {bins} bins "
+                 f"docs/cli.md: describe's feature columns are <feature>_<bin> for {feats} × {bins} bins "
                  f"({len(header) - len(names)} columns, {len(want)} expected)")
 
 
 def check_bench_keys(c):
-    """Every key the README names for bench --json is there, in the top level and in each view."""
-    m = c.find("README.md", r"JSON keys(.*?)per-stage `stages\.\{…\}\.\{([\w,]+)\}`(.*?)Measured figures")
+    """Every key docs/cli.md names for bench --json is there, in the top level and in each view."""
+    m = c.find("docs/cli.md", r"JSON keys(.*?)per-stage `stages\.\{…\}\.\{([\w,]+)\}`(.*?)Measured figures")
     if not m:
         return
     listed = [k for k in re.findall(r"`([a-z_]+)`", m.group(1))]
     tail = re.findall(r"`([a-z_]+)`", m.group(3))
     j = json.loads(c.keyturn("bench", "--json", "--repetitions", "1", "--pcl-repetitions", "1"))
     missing = [k for k in listed + ["stages"] + tail[:1] if k not in j]
-    c.expect(listed and not missing, f"README.md: bench --json has the keys the README lists (missing: {missing})")
+    c.expect(listed and not missing, f"docs/cli.md: bench --json has the keys the page lists (missing: {missing})")
     stats = m.group(2).split(",")
     stages = j.get("stages", {})
     bad = [s for s, v in stages.items() if sorted(v) != sorted(stats)]
-    c.expect(stages and not bad, f"README.md: every bench stage has {stats} (not: {bad})")
+    c.expect(stages and not bad, f"docs/cli.md: every bench stage has {stats} (not: {bad})")
     views = j.get("views", [])
     short = [v.get("name") for v in views if any(k not in v for k in listed)]
-    c.expect(views and not short, f"README.md: each of bench's views has those keys (not: {short})")
+    c.expect(views and not short, f"docs/cli.md: each of bench's views has those keys (not: {short})")
 
 
 def check_render_and_grab(c, work):
-    m = c.find("README.md", r"a simulated SR4000 view \((\d+) × (\d+) organized PCD: ([\w ]+)\)")
+    m = c.find("docs/cli.md", r"a simulated SR4000 view \((\d+) × (\d+) organized PCD: ([\w ]+)\)")
     pcd = work / "views" / "mug_000.pcd"
     if m:
         if not pcd.exists():
-            c.fail("README.md: the render example did not write views/mug_000.pcd")
+            c.fail("docs/cli.md: the render example did not write views/mug_000.pcd")
         else:
             h = header_of_pcd(pcd)
             got = (h.get("WIDTH"), h.get("HEIGHT"), h.get("FIELDS"))
             c.expect(got == (m.group(1), m.group(2), m.group(3)),
-                     f"README.md: render writes {m.group(1)} × {m.group(2)} with fields '{m.group(3)}' (got {got})")
-    m = c.find("README.md", r"`\{angle\}` becomes .*?: (`views/mug_\d+\.pcd`(?:,\s*`views/mug_\d+\.pcd`)*)")
+                     f"docs/cli.md: render writes {m.group(1)} × {m.group(2)} with fields '{m.group(3)}' (got {got})")
+    m = c.find("docs/cli.md", r"`\{angle\}` becomes .*?: (`views/mug_\d+\.pcd`(?:,\s*`views/mug_\d+\.pcd`)*)")
     if m:
         names = re.findall(r"`([^`]+)`", m.group(1))
         missing = [n for n in names if not (work / n).exists()]
-        c.expect(not missing, f"README.md: render's {{angle}} file names {names} (missing: {missing})")
+        c.expect(not missing, f"docs/cli.md: render's {{angle}} file names {names} (missing: {missing})")
 
 
-def check_dataset_format(c, readme_work):
+def check_dataset_format(c, cli_work):
     rel = "docs/dataset-format.md"
-    ds = readme_work / "datasets" / "sim"
+    ds = cli_work / "datasets" / "sim"
     m = c.find(rel, r"## manifest\.csv\s*```\s*\n([^\n]+)\n")
     if m and (ds / "manifest.csv").exists():
         got = (ds / "manifest.csv").read_text().splitlines()[0]
@@ -186,13 +186,13 @@ def check_dataset_format(c, readme_work):
         got = sorted(json.loads(sidecars[0].read_text()))
         c.expect(keys == got, f"{rel}: sidecar keys: docs {keys}, capture wrote {got}")
     m = c.find(rel, r"## Axis calibration file.*?```json\s*\n(.*?)```")
-    axis = readme_work / "axis.json"
+    axis = cli_work / "axis.json"
     if m and axis.exists():
         keys = sorted(re.findall(r'"(\w+)":', m.group(1)))
         got = sorted(json.loads(axis.read_text()))
         c.expect(keys == got, f"{rel}: calibration keys: docs {keys}, calibrate-axis wrote {got}")
     m = c.find(rel, r"## Feature cache.*?```\s*\n.*?\n(id,[\w,]+?),kpd2_0")
-    calibrated = readme_work / "datasets" / "calibrated"
+    calibrated = cli_work / "datasets" / "calibrated"
     if m and calibrated.exists():
         c.keyturn("describe", calibrated, "--cache", "-q")
         caches = sorted((calibrated / ".keyturn").glob("features-*.csv"))
@@ -203,7 +203,7 @@ def check_dataset_format(c, readme_work):
 
 def check_dataset_size(c, work):
     """The full simulated dataset's size, from a quarter-turn sample of every object and elevation."""
-    m = c.find("README.md", r"--out datasets/sr4kd-sim` \(([\d,]+)\s+views, about ([\d.]+) GB")
+    m = c.find("docs/cli.md", r"--out datasets/sr4kd-sim` \(([\d,]+)\s+views, about ([\d.]+) GB")
     r = c.find("docs/results.md", r"#\s+(\d+) objects × elevations ([\d,]+) × (\d+) views \((\d+)°\) = ([\d,]+) views")
     objects = [l for l in (c.source / "data/objects/objects.csv").read_text().splitlines()[1:] if l.strip()]
     elevations = (c.default("simulate", "--elevations") or "").strip('"').split(",")
@@ -216,7 +216,7 @@ def check_dataset_size(c, work):
                  f"{','.join(elevations)}, step {step:g}°: {total} views)")
     if not m:
         return
-    c.expect(int(m.group(1).replace(",", "")) == total, f"README.md: the simulated dataset has {total} views "
+    c.expect(int(m.group(1).replace(",", "")) == total, f"docs/cli.md: the simulated dataset has {total} views "
                                                         f"(docs: {m.group(1)})")
     sample = work / "size-sample"
     c.keyturn("simulate", "--objects", c.source / "data/objects/objects.csv", "--step", "90", "-q",
@@ -226,23 +226,23 @@ def check_dataset_size(c, work):
     estimate = size / rows * total / 1e9
     quoted = float(m.group(2))
     c.expect(abs(estimate - quoted) <= 0.15 * quoted,
-             f"README.md: about {quoted} GB for {total} views; measured {size / rows / 1e3:.0f} kB/view over "
+             f"docs/cli.md: about {quoted} GB for {total} views; measured {size / rows / 1e3:.0f} kB/view over "
              f"{rows} views → {estimate:.2f} GB")
 
 
 def check_repeatability_report(c, work):
-    m = c.find("README.md", r"The report folder holds (.*?) and (\w+) PNG charts")
+    m = c.find("docs/cli.md", r"The report folder holds (.*?) and (\w+) PNG charts")
     report = work / "reports" / "rep-lab"
     if not m:
         return
     if not report.exists():
-        return c.fail("README.md: the repeatability example wrote no reports/rep-lab")
+        return c.fail("docs/cli.md: the repeatability example wrote no reports/rep-lab")
     files = re.findall(r"`([\w.]+)`", m.group(1))
     missing = [f for f in files if not (report / f).exists()]
     words = {"one": 1, "two": 2, "three": 3, "four": 4, "five": 5}
     pngs = len(list(report.glob("*.png")))
     c.expect(not missing and pngs == words.get(m.group(2), -1),
-             f"README.md: the repeatability report holds {files} and {m.group(2)} PNGs (missing {missing}, "
+             f"docs/cli.md: the repeatability report holds {files} and {m.group(2)} PNGs (missing {missing}, "
              f"{pngs} PNGs)")
 
 
@@ -259,30 +259,144 @@ def check_studio_model_labels(c):
 
 
 def check_demo_folder(c):
-    """README's describe example reads the folder `keyturn demo` and scripts/demo.sh write."""
+    """docs/cli.md's describe example reads the folder `keyturn demo` and scripts/demo.sh write."""
     script = re.search(r"OUT=\$\{OUT:-([\w/.-]+)\}", (c.source / "scripts/demo.sh").read_text())
     default = c.default("demo", "--out")
-    m = c.find("README.md", r"keyturn describe ([\w/.-]+)/dataset --features")
+    m = c.find("docs/cli.md", r"keyturn describe ([\w/.-]+)/dataset --features")
     if m and script:
         c.expect(default == script.group(1) == m.group(1),
-                 f"README.md: the demo folder: keyturn demo --out default {default}, scripts/demo.sh {script.group(1)}, "
-                 f"README's describe example {m.group(1)}")
+                 f"docs/cli.md: the demo folder: keyturn demo --out default {default}, scripts/demo.sh {script.group(1)}, "
+                 f"its describe example {m.group(1)}")
+
+
+def check_studio_objects(c):
+    """docs/studio.md names the object list --object is checked against, and its first object (the default)."""
+    rel = "docs/studio.md"
+    m = c.find(rel, r"\(`--object`, an instance from\s+`(data/objects/[\w-]+\.csv)`.*?default the first, the \w+ `(\w+)`\)")
+    if not m:
+        return
+    exe = c.build / "app" / "keyturn-studio"
+    if not exe.exists():
+        return c.ok(f"{rel}: keyturn-studio not built: its object list not checked")
+    p = subprocess.run([str(exe), "--simulated", "--object", "no-such-object-kt"], capture_output=True, text=True,
+                       timeout=60, env={"PATH": "/usr/bin:/bin", "LC_ALL": "C.UTF-8"})
+    named = re.search(r"not in (\S+) \(([\w, ]+)\)", p.stderr)
+    c.expect(p.returncode == 1 and named and named.group(1).endswith("/" + m.group(1)),
+             f"{rel}: --object is checked against {m.group(1)} (keyturn-studio says: {p.stderr.strip()[:120]})")
+    first = (c.source / m.group(1)).read_text().splitlines()[1].split(",")[1]
+    c.expect(first == m.group(2) and named and named.group(2).split(", ")[0] == first,
+             f"{rel}: --object's default, the list's first, is {m.group(2)} (the list's first: {first})")
+
+
+def check_stability_one_view(c):
+    """docs/descriptors.md quotes how `keyturn stability` refuses a single view; the program does so."""
+    rel = "docs/descriptors.md"
+    m = c.find(rel, r"one view alone is refused in one line,\s+`([^`]+)` \(exit (\d+)\)")
+    if not m:
+        return
+    p = subprocess.run([str(c.build / "app" / "keyturn"), "stability", str(c.source / "data/frames/mosd_learn0.pcd"),
+                        "-q"], capture_output=True, text=True, timeout=120)
+    c.expect(p.returncode == int(m.group(2)) and p.stderr.strip() == m.group(1),
+             f"{rel}: stability on one file: docs say '{m.group(1)}' (exit {m.group(2)}), it said "
+             f"'{p.stderr.strip()}' (exit {p.returncode})")
+
+
+def check_programs_named(c):
+    """The runnable examples of the README, the command-line guide and the Python page name the programs a user
+    has after the README's set-up: build/app/keyturn (not on PATH) and Debian's /usr/bin/python3 (a python3
+    first on PATH may be another Python, without numpy). The docs test puts both on PATH, so only this sees it."""
+    import run_examples  # the same block and command reading as the examples
+    bare = {"keyturn", "keyturn-studio", "python3", "python"}
+    for rel in ["README.md", "docs/cli.md", "docs/python.md"]:
+        if not (c.source / rel).exists():
+            continue
+        found = []
+        for block in run_examples.read_blocks(c.source, rel):
+            if block.lang not in run_examples.SHELL_LANGS or run_examples.Plan(block).skip_reason:
+                continue
+            for n, cmd in run_examples.commands_of(block):
+                for part in re.split(r"&&|\|\||[;|()]|\$\(|\b(?:do|then)\b", cmd):
+                    words = [w for w in part.split() if not re.match(r"^\w+=", w)]
+                    if words and words[0] in bare:
+                        found.append(f"{rel}:{n}: {words[0]}")
+        c.expect(not found, f"{rel}: runnable examples name build/app/keyturn and /usr/bin/python3 "
+                            f"(bare: {', '.join(found) or 'none'})")
+
+
+def prose_lines(text):
+    """The lines of a Markdown text outside fenced blocks."""
+    out, fence = [], None
+    for line in text.splitlines():
+        m = re.match(r"^\s*(```+|~~~+)", line)
+        if m and fence is None:
+            fence = m.group(1)
+        elif m and line.strip().startswith(fence):
+            fence = None
+        elif fence is None:
+            out.append(line)
+    return out
+
+
+def anchors_of(text):
+    """GitHub's anchors of a Markdown text's headings (lower case, punctuation dropped, spaces to hyphens,
+    -1, -2 … for repeats)."""
+    seen, out = {}, set()
+    for line in prose_lines(text):
+        m = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
+        if not m:
+            continue
+        title = re.sub(r"\[([^]]*)\]\([^)]*\)", r"\1", m.group(1))
+        slug = re.sub(r"[^\w\- ]", "", title.lower()).replace(" ", "-")
+        n = seen.get(slug, 0)
+        seen[slug] = n + 1
+        out.add(slug if n == 0 else f"{slug}-{n}")
+    return out
+
+
+def check_links(c):
+    """Every link between the docs resolves: [text](FILE#ANCHOR) and images to files that exist, anchors to
+    headings of the file; and the `docs/FILE.md#ANCHOR` the prose cites in code spans."""
+    docs = ["README.md"] + sorted(str(p.relative_to(c.source)) for p in (c.source / "docs").glob("*.md"))
+    bad, count = [], 0
+    for rel in docs:
+        here = (c.source / rel).parent
+        for n, line in enumerate(prose_lines(c.doc(rel)), 1):
+            targets = [(t, here) for t in re.findall(r"\]\(([^)\s]+)\)", line)]
+            targets += [(t, c.source) for t in re.findall(r"`((?:docs/)?[\w./-]+\.md#[\w-]+)`", line)]
+            targets += [(t, c.source) for t in re.findall(r"(?<![\w/(`-])(docs/[\w./-]+\.md#[\w-]+)(?!`)", line)]
+            for target, base in targets:
+                if re.match(r"^[a-z]+:", target):
+                    continue
+                count += 1
+                path, _, frag = target.partition("#")
+                f = (base / path).resolve() if path else c.source / rel
+                if base == c.source and path and not f.exists():
+                    f = (here / path).resolve()
+                if not f.exists():
+                    bad.append(f"{rel}: {target} (no such file)")
+                elif frag and f.suffix == ".md" and frag not in anchors_of(f.read_text(encoding="utf-8")):
+                    bad.append(f"{rel}: {target} (no such heading)")
+    c.expect(count > 20 and not bad, f"links between the docs resolve ({count} links; broken: {bad})")
 
 
 def run_all(source, build, folders):
     c = Context(source, build, folders)
-    readme = folders.get("README.md")
+    cli = folders.get("docs/cli.md")
     camera = folders.get("docs/camera.md")
     for check in [lambda: check_option_defaults(c),
-                  lambda: check_describe_columns(c, readme),
+                  lambda: check_describe_columns(c, cli),
                   lambda: check_bench_keys(c),
-                  lambda: check_render_and_grab(c, readme),
+                  lambda: check_render_and_grab(c, cli),
                   lambda: check_camera_grab(c, camera),
-                  lambda: check_dataset_format(c, readme),
-                  lambda: check_repeatability_report(c, readme),
+                  lambda: check_dataset_format(c, cli),
+                  lambda: check_repeatability_report(c, cli),
                   lambda: check_studio_model_labels(c),
                   lambda: check_demo_folder(c),
-                  lambda: check_dataset_size(c, readme)]:
+                  lambda: check_studio_objects(c),
+                  lambda: check_stability_one_view(c),
+                  lambda: check_programs_named(c),
+                  lambda: check_links(c),
+                  lambda: check_dataset_size(c, cli)]:
         try:
             check()
         except Exception as e:  # a check that cannot run is a failure, never a pass

@@ -14,6 +14,9 @@ just above it, and the test lists it with its reason:
   <!-- docs-test: env NAME=VALUE -->               set for the block
   <!-- docs-test: file NAME -->                    (before any block) write the block's text to NAME
   <!-- docs-test: needs MODULE REASON -->          run only when python3 imports MODULE (an optional package)
+  <!-- docs-test: output -->                       (above a ```text block) what the shell block above it prints
+                                                   on standard output, compared line by line; a line "…" stands
+                                                   for any lines (output left out)
 
 An unmarked example that fails (one that needs hardware, say) fails the test with its file and line.
 Then the figures the docs quote that a program can confirm (defaults, column names, JSON keys,
@@ -112,6 +115,7 @@ class Plan:
         self.block, self.skip_reason, self.notes = block, None, []
         self.setup, self.env, self.display, self.file = [], {}, False, None
         self.skips, self.subs, self.needs = [], [], []
+        self.output = False
         for line, d in block.directives:
             word, _, rest = d.partition(" ")
             try:
@@ -142,6 +146,8 @@ class Plan:
                     self.display = True
                 elif word == "file":
                     self.file = rest.strip()
+                elif word == "output":
+                    self.output = True
                 else:
                     raise ValueError(f"unknown directive '{word}'")
             except ValueError as e:
@@ -169,28 +175,46 @@ class Plan:
             if text not in used_skips:
                 raise SystemExit(f"{self.block.where}: docs-test: skip \"{text}\" matches no command of the block")
         head = ["set -eo pipefail", "trap 'echo \"$__docs_line\" > .docs-test-line' ERR", "__docs_line=0"]
-        head += [f"__docs_line={self.block.line}\n{c}" for c in self.setup]
+        head += [f"__docs_line={self.block.line}\n{{ {c}\n}} >&2" for c in self.setup]  # its output is not the block's
         self.notes += [f"{self.block.where}: set up first: {c}" for c in self.setup]
         return "\n".join(head + body) + "\n"
 
 
 def run_script(script, cwd, env, display, timeout):
-    """(exit code, output, failing line or None); a script over its time is killed with its children."""
+    """(exit code, standard output, standard error, failing line or None); a script over its time is killed
+    with its children."""
     (cwd / ".docs-test-line").unlink(missing_ok=True)
     argv = ["bash", "-c", script]
     if display:
         argv = ["xvfb-run", "-a", "-s", "-screen 0 1600x1000x24"] + argv
-    p = subprocess.Popen(argv, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.STDOUT,
+    p = subprocess.Popen(argv, cwd=cwd, env=env, stdout=subprocess.PIPE, stderr=subprocess.PIPE,
                          start_new_session=True)
     try:
-        out, _ = p.communicate(timeout=timeout)
+        out, err = p.communicate(timeout=timeout)
     except subprocess.TimeoutExpired:
         os.killpg(p.pid, signal.SIGKILL)
-        out, _ = p.communicate()
-        return None, out.decode(errors="replace"), None
+        out, err = p.communicate()
+        return None, out.decode(errors="replace"), err.decode(errors="replace"), None
     marker = cwd / ".docs-test-line"
     line = marker.read_text().strip() if marker.exists() else None
-    return p.returncode, out.decode(errors="replace"), line
+    return p.returncode, out.decode(errors="replace"), err.decode(errors="replace"), line
+
+
+def output_differs(quoted, printed):
+    """None when the printed text is the quoted one (trailing blanks aside; a quoted line "…" stands for any
+    lines), else the first line that differs, in words."""
+    want = [l.rstrip() for l in quoted]
+    got = printed.rstrip("\n").split("\n") if printed.strip() else []
+    got = [l.rstrip() for l in got]
+    pattern = "".join("(?:.*\n)*?" if l.strip() == "…" else re.escape(l) + "\n" for l in want)
+    if re.fullmatch(pattern, "".join(l + "\n" for l in got)):
+        return None
+    for i, (w, g) in enumerate(zip(want, got)):
+        if w.strip() == "…":
+            break
+        if w != g:
+            return f"line {i + 1}: the docs say\n      {w}\n    it printed\n      {g}"
+    return f"the docs quote {len(want)} lines, it printed {len(got)}:\n" + "\n".join("      " + l for l in got[-12:])
 
 
 def python_has(module):
@@ -237,16 +261,31 @@ def main():
         env = dict(os.environ, PATH=path, HOME=str(folder / "home"),
                    LC_ALL="C.UTF-8")
         env.pop("DISPLAY", None)  # a block that needs a display says so (display), and gets Xvfb
+        printed = None  # the standard output of this document's last shell block, when it ran as written
         for block in read_blocks(source, rel):
             plan = Plan(block)
             if plan.file:
                 (folder / plan.file).write_text("\n".join(t for _, t in block.text) + "\n")
                 notes.append(f"{block.where}: written to {plan.file}")
                 continue
+            if plan.output:
+                if block.lang in SHELL_LANGS:
+                    failures.append(f"{block.where}: an output block is marked ```{block.lang}: mark it ```text")
+                elif printed is None:
+                    notes.append(f"{block.where}: output not compared (the shell block above did not run as written)")
+                else:
+                    differs = output_differs([t for _, t in block.text], printed)
+                    print(f"{block.where}: output {'as quoted' if differs is None else 'DIFFERS'}", flush=True)
+                    if differs:
+                        failures.append(f"{block.where}: the output quoted is not what the block above printed: "
+                                        f"{differs}")
+                printed = None
+                continue
             if block.lang not in SHELL_LANGS:
                 if not block.lang and any(COMMAND_LIKE.match(t) for _, t in block.text):
                     failures.append(f"{block.where}: a block of commands without a language: mark it ```sh")
                 continue
+            printed = None
             if plan.skip_reason:
                 notes.append(f"{block.where}: skipped ({plan.skip_reason})")
                 continue
@@ -257,14 +296,16 @@ def main():
             script = plan.script()
             notes.extend(plan.notes)
             t0 = time.monotonic()
-            rc, out, line = run_script(script, folder, dict(env, **plan.env), plan.display, args.timeout)
+            rc, out, err, line = run_script(script, folder, dict(env, **plan.env), plan.display, args.timeout)
+            if rc == 0 and not plan.skips and not plan.subs:
+                printed = out
             ran += 1
             took = time.monotonic() - t0
             print(f"{block.where}: {'ok' if rc == 0 else 'FAILED'} in {took:.1f} s", flush=True)
             if rc != 0:
                 what = f"timed out after {args.timeout:.0f} s" if rc is None else f"exited {rc}"
                 at = f"{rel}:{line}" if line and line != "0" else block.where
-                tail = "\n".join("    " + l for l in out.strip().splitlines()[-12:])
+                tail = "\n".join("    " + l for l in (out.strip() + "\n" + err.strip()).strip().splitlines()[-12:])
                 failures.append(f"{at}: example {what} (mark it in the docs if it needs hardware or takes "
                                 f"minutes):\n{tail}")
     print(f"\n{ran} example blocks run in {time.monotonic() - started:.0f} s; left out or reduced:")

@@ -59,9 +59,18 @@ def main():
     expect(rc == 0 and "skipped (no Python module no_such_module_kt: optional)" in out and "README.md:6: ok" in out,
            "a block that needs an absent Python module is skipped, one whose module is there runs", out)
 
+    output = ("<!-- docs-test: setup echo set-up -->\n```sh\nprintf 'a\\nb\\nc\\nd\\n'\necho to-stderr >&2\n```\n\n"
+              "<!-- docs-test: output -->\n```text\na\n…\nd\n```\n")
+    rc, out = run(build, output)
+    expect(rc == 0 and "README.md:8: output as quoted" in out,
+           "an output block is the block's standard output (its set-up's and standard error aside; … any lines)", out)
+    rc, out = run(build, output.replace("a\n…\nd\n```", "a\nB\nc\nd\n```"))
+    expect(rc == 1 and "README.md:8: the output quoted is not what the block above printed: line 2" in out,
+           "an output block that is not what the block printed fails, naming the line", out)
+
     for f in failures:
         print("FAILED:", f)
-    print(f"{6 - len(failures)} passed, {len(failures)} failed")
+    print(f"{8 - len(failures)} passed, {len(failures)} failed")
     return 1 if failures else 0
 
 
