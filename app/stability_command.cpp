@@ -105,7 +105,7 @@ Command addStabilityCommand(CLI::App& app) {
   cmd->add_option("inputs", a->inputs, "View files, folders of them, or keyturn datasets");
   cmd->add_flag("--builtin", a->builtin, "Add the built-in simulated SR4000 view (a mug)");
   cmd->add_option("--perturbations", a->perturbations,
-                  "Comma list of perturbation names, 'rigid' or 'all' (docs/descriptors.md#stability)")
+                  "Comma list of perturbation names, 'rigid' or 'all' (docs/descriptors.md, section Stability)")
       ->capture_default_str();
   cmd->add_option("--functions", a->functions, "Functions to study")->capture_default_str();
   cmd->add_option("--draws", a->draws, "Draws of each perturbation per view")->capture_default_str()->check(CLI::Range(1, 1000));
