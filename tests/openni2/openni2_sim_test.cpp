@@ -344,6 +344,11 @@ class OniPlayback : public OpenNI2Sim {
       EXPECT_EQ(depth.readFrame(&f), STATUS_OK);
     }
     rec.stop();
+    // The streams stop before the recorder goes: libOpenNI2 2.2's Recorder destructor locks its streams
+    // list and then each stream's recorders, a frame being delivered the other way round (deadlocked
+    // here once in 11 runs of this file when the streams still ran).
+    depth.stop();
+    colour.stop();
     return oni;
   }
 };
