@@ -4,7 +4,9 @@
 # (OpenNI2/Drivers beside the real libOpenNI2: PrimeSense's libPS1080, libPSLink, libOniFile, …)
 # beside the simulated camera's driver, so a program loading this libOpenNI2 sees both kinds.
 # The links point at the system's absolute paths (the folder stays movable); a link whose driver
-# has gone from the system is removed.
+# has gone from the system is removed. GUARDED names the system drivers the folder holds keyturn's
+# guard of instead of a link (libOniFile.so.0: libKeyturnOniFile.so.0, oni_file_guard.cpp); a link
+# to one of them, left by an earlier build, is removed.
 if(NOT DIR OR NOT OPENNI2)
   message(FATAL_ERROR "link_drivers.cmake: set DIR (keyturn's OpenNI2 folder) and OPENNI2 (the real libOpenNI2)")
 endif()
@@ -15,7 +17,10 @@ get_filename_component(_system_dir "${OPENNI2}" DIRECTORY)
 file(GLOB _system_drivers "${_system_dir}/OpenNI2/Drivers/lib*.so.0")
 foreach(_driver IN LISTS _system_drivers)
   get_filename_component(_name "${_driver}" NAME)
-  if(NOT _name STREQUAL "libKeyturnSimOpenNI2.so.0")  # a copy in the system's folder (docs/camera.md)
+  list(FIND GUARDED "${_name}" _guarded)  # (no IN_LIST: this runs with -P, where policies are old)
+  if(_guarded GREATER -1)
+    file(REMOVE "${_drivers}/${_name}")
+  elseif(NOT _name MATCHES "^libKeyturn(SimOpenNI2|OniFile)\\.so\\.0$")  # copies in the system's folder (docs/camera.md)
     file(CREATE_LINK "${_driver}" "${_drivers}/${_name}" SYMBOLIC)
   endif()
 endforeach()

@@ -15,12 +15,13 @@ sim() { LD_LIBRARY_PATH="$simdir${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}" "$@"; }
 nodev="$work/no-device"
 mkdir -p "$nodev/OpenNI2/Drivers" "$work/no-drivers/OpenNI2/Drivers"
 ln -s "$(readlink -f "$simdir/libOpenNI2.so.0")" "$nodev/libOpenNI2.so.0"
-ln -s "$(readlink -f "$simdir/OpenNI2/Drivers/libOniFile.so.0")" "$nodev/OpenNI2/Drivers/libOniFile.so.0"
+system_drivers=$(dirname "$(readlink -f "$simdir/libOpenNI2.so.0")")/OpenNI2/Drivers
+ln -s "$system_drivers/libOniFile.so.0" "$nodev/OpenNI2/Drivers/libOniFile.so.0"
 ln -s "$(readlink -f "$simdir/libOpenNI2.so.0")" "$work/no-drivers/libOpenNI2.so.0"
 LD_LIBRARY_PATH="$nodev" "$KT" grab --camera openni2 --out "$work/none.pcd" 2> "$work/none.err"
 check "no device: grab exits non-zero" test $? -ne 0
 check "no device: one line naming the drivers folder and the folder its links lead into" \
-  grep -qx "keyturn: no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: $nodev/OpenNI2/Drivers (links into $(dirname "$(readlink -f "$simdir/OpenNI2/Drivers/libOniFile.so.0")")))" "$work/none.err"
+  grep -qx "keyturn: no OpenNI2 device found (is it plugged in and readable by this user? OpenNI2's drivers folder: $nodev/OpenNI2/Drivers (links into $system_drivers))" "$work/none.err"
 check "no device: nothing else said" test "$(wc -l < "$work/none.err")" -eq 1
 LD_LIBRARY_PATH="$nodev" "$KT" devices > "$work/none-devices.txt"
 check "no device: devices says so" grep -qx "No OpenNI2 depth camera." "$work/none-devices.txt"
@@ -32,15 +33,17 @@ check "no drivers: devices still lists the SwissRangers and says why OpenNI2 is 
   python3 -c "import json,sys; j = json.load(open(sys.argv[1])); assert j['cameras'] == [] and j['openni2'] == [] and 'could not start' in j['openni2_error']" "$work/nodrivers.json"
 
 # Without any environment (issue 52): keyturn's RUNPATH finds its own folder, whose libOpenNI2 loads
-# the simulated camera's driver and links to every driver of the system's folder (real cameras).
-system_drivers=$(dirname "$(readlink -f "$simdir/libOpenNI2.so.0")")/OpenNI2/Drivers
+# the simulated camera's driver, links to every driver of the system's folder (real cameras) and, for
+# .oni recordings, keyturn's guard of the system's libOniFile (simulators/openni2_sim/oni_file_guard.cpp).
 linked=0
 for driver in "$system_drivers"/lib*.so.0; do
-  [ "$(basename "$driver")" = libKeyturnSimOpenNI2.so.0 ] && continue
+  case "$(basename "$driver")" in libKeyturn*|libOniFile.so.0) continue ;; esac
   [ "$(readlink "$simdir/OpenNI2/Drivers/$(basename "$driver")")" = "$driver" ] && linked=$((linked + 1))
 done
 check "the folder links every driver of $system_drivers ($linked)" \
-  test "$linked" -eq "$(ls "$system_drivers"/lib*.so.0 | grep -vc libKeyturnSimOpenNI2)" -a "$linked" -ge 1
+  test "$linked" -eq "$(ls "$system_drivers"/lib*.so.0 | grep -Evc '/(libKeyturn[^/]*|libOniFile\.so\.0)$')" -a "$linked" -ge 1
+check "the folder plays .oni recordings through keyturn's guard of libOniFile, not a link to it" \
+  test -f "$simdir/OpenNI2/Drivers/libKeyturnOniFile.so.0" -a ! -e "$simdir/OpenNI2/Drivers/libOniFile.so.0"
 env -u LD_LIBRARY_PATH "$KT" grab --camera openni2 --out "$work/noenv.pcd" 2> "$work/noenv.err"
 check "no environment: grab --camera openni2 takes the simulated camera" \
   grep -q "^keyturn grab: keyturn Simulated structured-light camera (keyturn-sim://default)" "$work/noenv.err"

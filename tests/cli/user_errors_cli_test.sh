@@ -110,24 +110,30 @@ if [ -n "$STUDIO" ]; then
   check "studio --playback with --simulated is refused" test $? -eq 1 -a "$(wc -l < "$work/both.err")" -eq 1
   env -u DISPLAY "$STUDIO" --threads 0 2> "$work/threads.err"
   check "studio --threads 0 is one line, exit 1" test $? -eq 1 -a "$(wc -l < "$work/threads.err")" -eq 1
-  # Ctrl-C closes the window as its close button does: exit 0 at once, the simulator's folder removed.
-  # (set -m: a background job of a script would otherwise start with SIGINT ignored.)
+  # Ctrl-C closes the window as its close button does: exit 0, settings saved, the simulator's folder
+  # removed. Sent as soon as the studio catches it (its simulated rig folder is made after the handler,
+  # before the window), so during start-up, the moment a fixed sleep used to guess past: a Ctrl-C then
+  # is kept and closes the window once it is up (issue 52: under load the sleep ended mid-start-up and
+  # the time measured from Ctrl-C was the rest of the start-up). env --default-signal: SIGINT at its
+  # default however this script was started (a background job of a script starts with it ignored,
+  # and the studio keeps an ignored SIGINT ignored).
+  rm -f "$work/studio.ini"
   HOME="$work/home" xvfb-run -a -s "-screen 0 1600x1000x24" bash -c '
-    set -m
-    "$1" --simulated --settings "$2/studio.ini" > /dev/null 2>&1 &
+    env --default-signal=INT "$1" --simulated --settings "$2/studio.ini" > /dev/null 2>&1 &
     pid=$!
-    # Up and running: its simulated rig folder exists (waited for, not a fixed sleep: a loaded machine starts it slowly).
-    for _ in $(seq 600); do [ -d "/tmp/keyturn-studio-$pid" ] && break; sleep 0.1; done
-    sleep 2
-    start=$(date +%s%N); kill -INT $pid; wait $pid; rc=$?
-    echo "$rc $(( ($(date +%s%N) - start) / 1000000 )) $pid"' _ "$STUDIO" "$work" > "$work/sigint.txt"
-  read -r rc ms pid < "$work/sigint.txt"
-  check "studio: Ctrl-C exits 0 (rc $rc)" test "$rc" -eq 0
-  # Not a speed target (about 0.3 s idle; 3.3 s was seen at load 15): a bound that only a studio
-  # waiting on a worker that never returns can exceed.
-  check "studio: exits after Ctrl-C, not hanging (${ms} ms)" test "$ms" -lt 20000
-  check "studio: its temporary folder is gone" test ! -e "/tmp/keyturn-studio-$pid"
+    for _ in $(seq 1200); do [ -d "/tmp/keyturn-studio-$pid" ] && break; sleep 0.05; done
+    kill -INT $pid; wait $pid; rc=$?
+    echo "$rc $(date +%s.%N) $pid"' _ "$STUDIO" "$work" > "$work/sigint.txt"
+  read -r rc exited pid < "$work/sigint.txt"
+  check "studio: Ctrl-C during start-up exits 0 (rc $rc)" test "$rc" -eq 0
   check "studio: settings saved on Ctrl-C" grep -q "geometry" "$work/studio.ini"
+  # From the close (the settings written) to the exit: devices closed, workers joined (the recognition
+  # workers finish the frame they hold). Not a speed target (about 0.2 s idle, 4.4 s at load 11, 12.7 s
+  # at load 29 on 2 cores): a bound that only a studio waiting on a worker that never returns can exceed.
+  ms=$(python3 -c 'import os, sys; print(int((float(sys.argv[2]) - os.stat(sys.argv[1]).st_mtime) * 1000))' \
+    "$work/studio.ini" "$exited" 2> /dev/null)
+  check "studio: exits after closing its window, not hanging (${ms:-?} ms)" test "${ms:-20000}" -lt 20000
+  check "studio: its temporary folder is gone" test ! -e "/tmp/keyturn-studio-$pid"
 fi
 
 # keyturn slurm: a folder that is no dataset, and evaluate options the stages set themselves.

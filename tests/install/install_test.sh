@@ -45,7 +45,7 @@ openni2=$prefix/lib/keyturn/openni2
 sample=$build/tests/openni2/openni2_sample_SimpleRead
 if [ -x "$sample" ]; then
   check "the simulated OpenNI2 camera's folder installed" test -e "$openni2/libOpenNI2.so.0" \
-    -a -f "$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0" -a -e "$openni2/OpenNI2/Drivers/libOniFile.so.0"
+    -a -f "$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0" -a -f "$openni2/OpenNI2/Drivers/libKeyturnOniFile.so.0"
   (sleep 2; echo q) | clean LD_DEBUG=files LD_LIBRARY_PATH="$openni2" "$sample" > "$work/openni2.out" 2> "$work/openni2.ld"
   check "an OpenNI2 program reads the simulated camera from the prefix" bash -c \
     "grep -q 'file=$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0' '$work/openni2.ld' && grep -qE '^\[[0-9]+\] +[0-9]+\$' '$work/openni2.out'"
