@@ -51,12 +51,15 @@ if [ -x "$sample" ]; then
     "grep -q 'file=$openni2/OpenNI2/Drivers/libKeyturnSimOpenNI2.so.0' '$work/openni2.ld' && grep -qE '^\[[0-9]+\] +[0-9]+\$' '$work/openni2.out'"
 fi
 # keyturn itself needs no environment for OpenNI2 (issue 52): its RUNPATH finds the prefix's folder,
-# which holds the simulated camera and links to the system's drivers (real cameras).
+# which holds the simulated camera and links to the system's drivers (real cameras); the system's
+# libOniFile (.oni playback) is reached through keyturn's guard, libKeyturnOniFile, in its place.
 if [ -d "$openni2" ]; then
   system_drivers=$(dirname "$(readlink -f "$openni2/libOpenNI2.so.0")")/OpenNI2/Drivers
   unlinked=$(for d in "$system_drivers"/lib*.so.0; do
-    [ "$(readlink "$openni2/OpenNI2/Drivers/$(basename "$d")")" = "$d" ] || basename "$d"; done | grep -v libKeyturnSimOpenNI2)
+    [ "$(readlink "$openni2/OpenNI2/Drivers/$(basename "$d")")" = "$d" ] || basename "$d"; done | grep -v -e libKeyturnSimOpenNI2 -e '^libOniFile\.so\.0$')
   check "the prefix's OpenNI2 folder links every driver of $system_drivers${unlinked:+ (not: $unlinked)}" test -z "$unlinked"
+  check "  and holds libOniFile only behind the guard" test ! -e "$openni2/OpenNI2/Drivers/libOniFile.so.0" \
+    -a -f "$openni2/OpenNI2/Drivers/libKeyturnOniFile.so.0"
   clean "$kt" devices > "$work/devices.txt" 2>&1
   check "keyturn devices from the prefix lists the simulated OpenNI2 camera" grep -q "openni2:keyturn-sim://default" "$work/devices.txt"
   clean LD_DEBUG=files "$kt" grab --camera openni2 --out "$work/oni.pcd" > /dev/null 2> "$work/oni.ld"
