@@ -37,6 +37,9 @@ packages=(
   # libtorch; OpenBLAS (single-threaded: evaluate runs folds in parallel) instead of
   # the reference BLAS, 3x faster network training (docs/results.md)
   libxgboost-dev xgboost libtorch-dev libopenblas0-serial
+  # reconstruction from a turntable capture (keyturn reconstruct): Open3D's C++ library
+  # (multi-view ICP, pose graph optimisation, TSDF integration, Poisson surfaces)
+  libopen3d-dev
   # BigBIRD's HDF5 files (keyturn import bigbird): the HDF5 C library
   libhdf5-dev
   # command line, configuration, JSON; camera files users have (ROS camera_info and OpenCV
