@@ -13,6 +13,8 @@
 #include <QListWidget>
 #include <QLineEdit>
 #include <QPushButton>
+#include <QScrollArea>
+#include <QScrollBar>
 #include <QSet>
 #include <QTemporaryDir>
 #include <QtTest>
@@ -557,6 +559,24 @@ class StudioTest : public QObject {
     QVERIFY(rates);
     QVERIFY(rates->isVisible());
     QVERIFY(rates->mapTo(&w, QPoint(0, rates->height())).y() <= w.height());
+  }
+
+  // At 1600 × 960 every turntable control is in view without scrolling the Devices panel (under the
+  // capture dock it was not: jog, Home, Move to and Stop sat below the fold).
+  void theTurntableControlsAreInViewAt1600By960() {
+    StudioWindow w(*factory_, simulated("ycb_025_mug"));
+    w.resize(1600, 960);
+    w.show();
+    QVERIFY(QTest::qWaitForWindowExposed(&w));
+    auto* move_to = w.findChild<QPushButton*>("poseMoveTo");
+    QVERIFY(move_to);
+    QScrollArea* area = nullptr;
+    for (QWidget* p = move_to->parentWidget(); p && !area; p = p->parentWidget()) area = qobject_cast<QScrollArea*>(p);
+    QVERIFY(area);
+    QCOMPARE(area->verticalScrollBar()->value(), 0);
+    const int bottom = move_to->mapTo(area->viewport(), QPoint(0, move_to->height())).y();
+    QVERIFY2(bottom <= area->viewport()->height(),
+             qPrintable(QString("Move to ends at %1 px, the Devices panel shows %2").arg(bottom).arg(area->viewport()->height())));
   }
 };
 

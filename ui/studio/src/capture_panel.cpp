@@ -219,7 +219,7 @@ void CapturePanel::progress(int done, int skipped, int total, double angle, Fram
   QString text = QString("%1° · %2 written, %3 already there").arg(angle, 0, 'f', 1).arg(done).arg(skipped);
   if (taken > 0) {
     const double per_view = clock_.elapsed() / 1000.0 / taken;
-    text += QString(" · %1 per view · ETA %2").arg(per_view, 0, 'f', 2).arg(clockText(per_view * (total - done - skipped)));
+    text += QString(" · %1 s per view · ETA %2").arg(per_view, 0, 'f', 2).arg(clockText(per_view * (total - done - skipped)));
   }
   eta_->setText(text);
   if (frame) {

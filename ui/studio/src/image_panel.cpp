@@ -87,6 +87,7 @@ QImage rgbImage(const std::vector<std::uint8_t>& rgb, int w, int h) {
 void ImagePanel::setTitle(const QString& title) {
   if (title == title_) return;
   title_ = title;
+  setToolTip(title);
   update();
 }
 
@@ -111,7 +112,11 @@ void ImagePanel::paintEvent(QPaintEvent*) {
   QFont bold = font();
   bold.setBold(true);
   p.setFont(bold);
-  p.drawText(QRect(0, 0, width(), title_h), Qt::AlignLeft | Qt::AlignVCenter, title_);
+  // A title wider than the panel ends in "…" (the whole of it is the tooltip) instead of running
+  // into the next panel's.
+  const int gap = QFontMetrics(bold).horizontalAdvance(' ');
+  p.drawText(QRect(0, 0, width() - gap, title_h), Qt::AlignLeft | Qt::AlignVCenter,
+             QFontMetrics(bold).elidedText(title_, Qt::ElideRight, width() - gap));
   p.setFont(font());
   const QRect area(0, title_h, width(), height() - title_h - bar_h);
   if (image_.isNull()) {

@@ -125,12 +125,17 @@ void LiveView::refresh() {
     widgets_.distance->setImage(distanceImage(frame->distance, fw, fh, mpc, &s), s);
     ImageScale a;
     if (depth && !depth->colour.empty()) {  // a depth camera's colour where the SR4000 has amplitude
-      widgets_.amplitude->setTitle(depth->registered ? tr("Colour (depth registered to it)") : tr("Colour"));
+      widgets_.amplitude->setTitle(depth->registered ? tr("Colour (registered)") : tr("Colour"));
       widgets_.amplitude->setImage(rgbImage(depth->colour, static_cast<int>(depth->colour_width),
                                             static_cast<int>(depth->colour_height)), a);
-    } else {
+    } else if (!depth || !frame->amplitude.empty()) {
+      // (A depth camera's frame that came without its colour, as one does when the colour stream
+      // lags under load, leaves the last colour image up rather than flashing an empty "IR".)
       widgets_.amplitude->setTitle(depth ? tr("IR") : tr("Amplitude"));
       widgets_.amplitude->setImage(greyImage(frame->amplitude, fw, fh, &a), a);
+    } else if (widgets_.amplitude->image().isNull()) {  // a depth camera with neither, so far
+      widgets_.amplitude->setTitle(tr("Colour"));
+      widgets_.amplitude->setPlaceholder(tr("none from this camera"));
     }
     if (!frame->confidence.empty()) {
       ImageScale c;

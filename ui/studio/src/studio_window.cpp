@@ -105,6 +105,10 @@ void StudioWindow::buildLayout(RigFactory& factory, int recognition_threads) {
   layout->addWidget(split, 1);
   setCentralWidget(central);
 
+  // The Devices panel takes the window's whole height (the capture dock sits beside it, under the
+  // live view): above the capture dock, 1600 × 1000 hid the turntable's jog, Home, Move-to and Stop.
+  setCorner(Qt::BottomLeftCorner, Qt::LeftDockWidgetArea);
+  setCorner(Qt::TopLeftCorner, Qt::LeftDockWidgetArea);
   addDockWidget(Qt::LeftDockWidgetArea, dock(tr("Devices"), "devicesDock", scrolling(devices_panel_, 420)));
   recognition_panel_ = new RecognitionPanel;
   recognition_panel_->setMaximumWidth(420);
