@@ -44,31 +44,50 @@ bool sameGeometry(const SceneView& a, const SceneView& b) {
 std::uint8_t toByte(double x) { return static_cast<std::uint8_t>(std::clamp(std::lround(x * 255.0), 0L, 255L)); }
 }  // namespace
 
+namespace {
+bool samePixel(const SurfacePixel& a, const SurfacePixel& b) {
+  return a.depth == b.depth && a.cos_incidence == b.cos_incidence && a.cos_light == b.cos_light && a.lit == b.lit &&
+         a.object == b.object;
+}
+}  // namespace
+
 void StructuredLightRenderer::cast(const SceneView& view) const {
   const Intrinsics& k = renderer_.intrinsics();
-  surfaces_ = renderer_.castPixelCentres(view, Eigen::Vector3f(static_cast<float>(model_.baseline), 0.f, 0.f));
-  cast_view_ = view;
-  cast_ = true;
+  std::vector<SurfacePixel> next =
+      renderer_.castPixelCentres(view, Eigen::Vector3f(static_cast<float>(model_.baseline), 0.f, 0.f));
   const std::size_t n = static_cast<std::size_t>(k.width) * k.height;
-  theta_.assign(n, 0.f);
-  lateral_.assign(n, 0.f);
-  rgb_.assign(3 * n, 0);
-  ir_.assign(n, 0);
+  // While the table turns only the pixels near the object change: the others keep what follows
+  // from them (an acos and the noise model's σ a pixel are most of a cast's cost otherwise).
+  const bool incremental = cast_ && surfaces_.size() == n && view.object_reflectivity == cast_view_.object_reflectivity &&
+                           view.table_reflectivity == cast_view_.table_reflectivity;
+  if (!incremental) {
+    theta_.assign(n, 0.f);
+    lateral_.assign(n, 0.f);
+    axial_.assign(n, 0.f);
+    rgb_.assign(3 * n, 0);
+    ir_.assign(n, 0);
+  }
   for (std::size_t i = 0; i < n; ++i) {
-    const SurfacePixel& s = surfaces_[i];
+    const SurfacePixel& s = next[i];
+    if (incremental && samePixel(s, surfaces_[i])) continue;
     const double t = std::min(std::acos(std::clamp(static_cast<double>(s.cos_incidence), 0.0, 1.0)), M_PI / 2 - 1e-3);
     theta_[i] = static_cast<float>(t);
     lateral_[i] = static_cast<float>(model_.lateral_px + 0.035 * t / (M_PI / 2 - t));  // Nguyen et al. σ_L (px)
+    axial_[i] = s.depth > 0 ? static_cast<float>(axialSigma(s.depth, t, model_)) : 0.f;
     // Colour: albedo shaded by a light at the camera, so no shadow is visible from it.
     const double shade = 0.2 + 0.8 * s.cos_incidence;
     const double albedo[3] = {s.object ? 0.85 : 0.55, 0.55, s.object ? 0.30 : 0.52};
     for (int c = 0; c < 3; ++c) rgb_[3 * i + c] = s.depth > 0 ? toByte(albedo[c] * shade) : toByte(0.12);
     // IR: the projector's light, 10-bit like the PS1080's IR image; dark in its shadow.
+    ir_[i] = 0;
     if (s.lit) {
       const double refl = s.object ? view.object_reflectivity : view.table_reflectivity;
       ir_[i] = static_cast<std::uint16_t>(std::min(1023.0, 400.0 * refl * s.cos_light / (s.depth * s.depth)));
     }
   }
+  surfaces_ = std::move(next);
+  cast_view_ = view;
+  cast_ = true;
 }
 
 namespace {
@@ -85,6 +104,9 @@ const std::vector<float>& normalTable() {
   }();
   return table;
 }
+
+// std::lround's rounding (half away from zero) without its library call: two of them a pixel.
+inline int roundToInt(float x) { return static_cast<int>(x >= 0.f ? x + 0.5f : x - 0.5f); }
 
 struct FastNormal {
   std::uint64_t state;
@@ -120,15 +142,15 @@ StructuredLightFrame StructuredLightRenderer::render(const SceneView& view) cons
       std::size_t j = i;
       if (view.noise && surfaces_[i].depth > 0) {
         const float sl = lateral_[i];
-        const int su = std::clamp(u + static_cast<int>(std::lround(sl * gauss())), 0, w - 1);
-        const int sv = std::clamp(v + static_cast<int>(std::lround(sl * gauss())), 0, h - 1);
+        const int su = std::clamp(u + roundToInt(sl * gauss()), 0, w - 1);
+        const int sv = std::clamp(v + roundToInt(sl * gauss()), 0, h - 1);
         j = static_cast<std::size_t>(sv) * w + su;
       }
       const SurfacePixel& m = surfaces_[j];
       if (m.depth <= 0 || !m.lit) continue;  // no surface, or the projector's shadow
       if (theta_[j] > max_theta) continue;   // too grazing for the pattern to be matched
       double z = m.depth;
-      if (view.noise) z += axialSigma(z, theta_[j], model_) * gauss();
+      if (view.noise) z += axial_[j] * gauss();
       if (z <= 0) continue;
       const double disparity = std::round(fb / z / step) * step;
       if (disparity <= 0) continue;

@@ -3,6 +3,7 @@
 #include <embree3/rtcore.h>
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <random>
@@ -22,6 +23,20 @@ struct TofViewRenderer::Scene {
   unsigned table_id = 0;
   mutable double built_angle = std::numeric_limits<double>::quiet_NaN();
   mutable double built_table = std::numeric_limits<double>::quiet_NaN();
+  // castPixelCentres' pixels that see the bare table and whose light the object cannot block,
+  // for one camera placement and light: the same at every turntable angle, so kept between
+  // frames. `near_object` lists the others (their rays meet the sphere around the object).
+  struct TableCast {
+    double distance = std::numeric_limits<double>::quiet_NaN(), elevation = 0, roll = 0, table = 0;
+    Eigen::Vector3f light_cam = Eigen::Vector3f::Zero();
+    std::vector<SurfacePixel> pixels;
+    std::vector<std::uint32_t> near_object;
+    bool matches(const SceneView& v, const Eigen::Vector3f& light) const {
+      return distance == v.distance && elevation == v.elevation_deg && roll == v.roll_deg &&
+             table == v.table_half_size && light_cam == light;
+    }
+  };
+  TableCast table_cast;
   ~Scene() {
     if (scene) rtcReleaseScene(scene);
     if (device) rtcReleaseDevice(device);
@@ -217,47 +232,133 @@ Cloud TofViewRenderer::render(const SceneView& view) const {
   return cloud;
 }
 
-std::vector<SurfacePixel> TofViewRenderer::castPixelCentres(const SceneView& view,
-                                                            const Eigen::Vector3f& light_cam) const {
+namespace {
+
+// A sphere holding the object at every turntable angle (centred on the turntable's axis).
+// A ray that misses it can only meet the table, which is the plane z = 0: most of a 640 × 480
+// frame, found without Embree; and the same at every turntable angle, so kept (the simulated
+// OpenNI2 camera casts every frame anew while the table turns: docs/benchmarks.md,
+// BM_RenderStructuredLightTurning).
+struct BoundingSphere {
+  Eigen::Vector3f centre = Eigen::Vector3f::Zero();
+  float radius = 0.f;
+  // Whether the segment origin + t·dir (dir unit length), t in [t0, t1], meets the sphere.
+  bool meets(const Eigen::Vector3f& origin, const Eigen::Vector3f& dir, float t0, float t1) const {
+    const Eigen::Vector3f oc = origin - centre;
+    const float b = oc.dot(dir);
+    const float c = oc.squaredNorm() - radius * radius;
+    const float disc = b * b - c;
+    if (disc < 0.f) return false;
+    const float root = std::sqrt(disc);
+    return -b + root >= t0 && -b - root <= t1;
+  }
+};
+
+BoundingSphere turningBound(const Mesh& object) {
+  float r2 = 0.f, z0 = std::numeric_limits<float>::infinity(), z1 = -z0;
+  for (const Eigen::Vector3f& v : object.vertices) {
+    r2 = std::max(r2, v.x() * v.x() + v.y() * v.y());
+    z0 = std::min(z0, v.z());
+    z1 = std::max(z1, v.z());
+  }
+  BoundingSphere b;
+  if (object.vertices.empty()) return b;
+  b.centre = Eigen::Vector3f(0.f, 0.f, 0.5f * (z0 + z1));
+  // 1 mm more than the vertices reach: a ray grazing the object is always left to Embree.
+  b.radius = std::sqrt(r2 + 0.25f * (z1 - z0) * (z1 - z0)) + 1e-3f;
+  return b;
+}
+
+}  // namespace
+
+std::vector<SurfacePixel> TofViewRenderer::castPixelCentres(const SceneView& view, const Eigen::Vector3f& light_cam,
+                                                            bool every_ray_to_embree) const {
   buildScene(view);
   const CameraPlacement placement = placeCamera(object_, view, k_);
   const Eigen::Vector3f light = placement.eye + placement.cam_to_world * light_cam;
+  const BoundingSphere bound = turningBound(object_);
+  const float table = static_cast<float>(view.table_half_size);
   RTCIntersectContext ctx;
   rtcInitIntersectContext(&ctx);
-  std::vector<SurfacePixel> out(static_cast<std::size_t>(k_.width) * k_.height);
-  for (int v = 0; v < k_.height; ++v) {
-    for (int u = 0; u < k_.width; ++u) {
-      const Eigen::Vector3f ray_cam(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
-                                    static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f);
-      const Eigen::Vector3f d = (placement.cam_to_world * ray_cam).normalized();
+  // One pixel. `through_embree`: both rays go to Embree; otherwise a ray that misses the sphere
+  // is answered by the table's plane. Returns false where the pixel needs Embree after all.
+  auto castPixel = [&](std::size_t i, bool through_embree, SurfacePixel& s) {
+    const int u = static_cast<int>(i % static_cast<std::size_t>(k_.width)), v = static_cast<int>(i / k_.width);
+    const Eigen::Vector3f ray_cam(static_cast<float>((u + 0.5 - k_.cx) / k_.fx),
+                                  static_cast<float>((v + 0.5 - k_.cy) / k_.fy), 1.f);
+    const Eigen::Vector3f d = (placement.cam_to_world * ray_cam).normalized();
+    float t_hit = 0.f;
+    Eigen::Vector3f n;
+    bool on_object = false;
+    if (through_embree) {
       RTCRayHit rh = firstHit(scene_->scene, ctx, placement.eye, d);
-      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) continue;
-      SurfacePixel& s = out[static_cast<std::size_t>(v) * k_.width + u];
-      const Eigen::Vector3f n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
-      const Eigen::Vector3f p = placement.eye + rh.ray.tfar * d;
-      s.depth = rh.ray.tfar / ray_cam.norm();  // range → z along the optical axis
-      s.cos_incidence = std::abs(n.dot(d));
-      s.object = rh.hit.geomID == scene_->object_id;
-      // The light sees p unless something lies between them; the segment stops
-      // short of p so that p's own triangle does not count.
-      const Eigen::Vector3f to_light = light - p;
-      const float dist = to_light.norm();
-      const Eigen::Vector3f l = to_light / dist;
-      // Lit only from the side the camera sees (a surface never lights its back face).
-      if (n.dot(l) * n.dot(-d) <= 0.f) continue;
+      if (rh.hit.geomID == RTC_INVALID_GEOMETRY_ID) return true;
+      t_hit = rh.ray.tfar;
+      n = Eigen::Vector3f(rh.hit.Ng_x, rh.hit.Ng_y, rh.hit.Ng_z).normalized();
+      on_object = rh.hit.geomID == scene_->object_id;
+    } else {  // the table's plane, or nothing
+      if (bound.meets(placement.eye, d, 0.f, std::numeric_limits<float>::infinity())) return false;
+      if (std::abs(d.z()) < 1e-12f) return true;
+      t_hit = -placement.eye.z() / d.z();
+      if (!(t_hit > 0.f)) return true;
+      const Eigen::Vector3f p = placement.eye + t_hit * d;
+      if (std::abs(p.x()) > table || std::abs(p.y()) > table) return true;
+      n = Eigen::Vector3f::UnitZ();
+    }
+    const Eigen::Vector3f p = placement.eye + t_hit * d;
+    s.depth = t_hit / ray_cam.norm();  // range → z along the optical axis
+    s.cos_incidence = std::abs(n.dot(d));
+    s.object = on_object;
+    // The light sees p unless something lies between them; the segment stops
+    // short of p so that p's own triangle does not count.
+    const Eigen::Vector3f to_light = light - p;
+    const float dist = to_light.norm();
+    const Eigen::Vector3f l = to_light / dist;
+    // Lit only from the side the camera sees (a surface never lights its back face).
+    if (n.dot(l) * n.dot(-d) <= 0.f) return true;
+    const float t_near = 1e-4f * std::max(1.f, dist);
+    if (!through_embree) {
+      if (bound.meets(p, l, t_near, dist)) return false;
+      s.lit = true;  // from the table, only the object can stand in the light's way
+    } else {
       RTCRay r;
       r.org_x = p.x(); r.org_y = p.y(); r.org_z = p.z();
       r.dir_x = l.x(); r.dir_y = l.y(); r.dir_z = l.z();
-      r.tnear = 1e-4f * std::max(1.f, dist);
+      r.tnear = t_near;
       r.tfar = dist;
       r.mask = ~0u;
       r.flags = 0;
       r.time = 0.f;
       rtcOccluded1(scene_->scene, &ctx, &r);
       s.lit = r.tfar >= 0.f;  // Embree sets tfar to -inf when the ray is blocked
-      s.cos_light = s.lit ? std::abs(n.dot(l)) : 0.f;
     }
+    s.cos_light = s.lit ? std::abs(n.dot(l)) : 0.f;
+    return true;
+  };
+
+  const std::size_t n = static_cast<std::size_t>(k_.width) * k_.height;
+  if (every_ray_to_embree) {
+    std::vector<SurfacePixel> out(n);
+    for (std::size_t i = 0; i < n; ++i) castPixel(i, true, out[i]);
+    return out;
   }
+  auto& cache = scene_->table_cast;
+  if (!cache.matches(view, light_cam)) {
+    cache = Scene::TableCast();
+    cache.pixels.assign(n, SurfacePixel());
+    for (std::size_t i = 0; i < n; ++i)
+      if (!castPixel(i, false, cache.pixels[i])) {
+        cache.pixels[i] = SurfacePixel();
+        cache.near_object.push_back(static_cast<std::uint32_t>(i));
+      }
+    cache.distance = view.distance;
+    cache.elevation = view.elevation_deg;
+    cache.roll = view.roll_deg;
+    cache.table = view.table_half_size;
+    cache.light_cam = light_cam;
+  }
+  std::vector<SurfacePixel> out = cache.pixels;
+  for (std::uint32_t i : cache.near_object) castPixel(i, true, out[i]);
   return out;
 }
 

@@ -24,6 +24,7 @@
 #include "keyturn/learning/live_fusion.h"
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/sim/mesh.h"
+#include "keyturn/sim/structured_light_view.h"
 #include "keyturn/sim/tof_view.h"
 
 using namespace keyturn;
@@ -232,6 +233,31 @@ static void BM_RenderView(benchmark::State& s) {
   }
 }
 BENCHMARK(BM_RenderView)->Unit(benchmark::kMillisecond);
+
+// One simulated Kinect-class frame (640 × 480 depth, colour and IR: a ray and a projector shadow
+// ray per pixel) while the turntable turns, so every frame is cast anew: the simulated OpenNI2
+// camera's cost per frame in the studio with the table moving (issue 52: it must keep 30 frames/s).
+static void BM_RenderStructuredLightTurning(benchmark::State& s) {
+  sim::StructuredLightRenderer r(sim::loadMesh(KEYTURN_DATA_DIR "/objects/mug__ycb_025_mug.ply"));
+  sim::SceneView v;
+  for (auto _ : s) {
+    v.turntable_deg += 0.7;  // 20°/s at 30 frames/s
+    v.seed++;
+    benchmark::DoNotOptimize(r.render(v));
+  }
+}
+BENCHMARK(BM_RenderStructuredLightTurning)->Unit(benchmark::kMillisecond);
+
+// The same camera with the table still: only the noise is drawn anew.
+static void BM_RenderStructuredLightStill(benchmark::State& s) {
+  sim::StructuredLightRenderer r(sim::loadMesh(KEYTURN_DATA_DIR "/objects/mug__ycb_025_mug.ply"));
+  sim::SceneView v;
+  for (auto _ : s) {
+    v.seed++;
+    benchmark::DoNotOptimize(r.render(v));
+  }
+}
+BENCHMARK(BM_RenderStructuredLightStill)->Unit(benchmark::kMillisecond);
 
 // Live recognition as the studio runs it: the built-in model (KPD2 + KPA3, XGBoost)
 // on one simulated SR4000 frame of the drill — filter, describe, classify.

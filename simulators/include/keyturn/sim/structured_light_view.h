@@ -70,10 +70,10 @@ class StructuredLightRenderer {
   TofViewRenderer renderer_;
   StructuredLightModel model_;
   // The last cast, for cast_view_, and what follows from it alone: each pixel's
-  // incidence angle (rad) and lateral σ (px), and the colour and IR images.
+  // incidence angle (rad), lateral σ (px) and axial σ (m), and the colour and IR images.
   void cast(const SceneView& view) const;
   mutable std::vector<SurfacePixel> surfaces_;
-  mutable std::vector<float> theta_, lateral_;
+  mutable std::vector<float> theta_, lateral_, axial_;  // axial: σ_z (m) at the pixel's depth and angle
   mutable std::vector<std::uint8_t> rgb_;
   mutable std::vector<std::uint16_t> ir_;
   mutable SceneView cast_view_;

@@ -67,7 +67,10 @@ class TofViewRenderer {
   // One ray per pixel centre (row-major, width × height) and, for each hit, a
   // second ray to `light_cam`, a point in the camera's optical frame (m) such
   // as a structured-light projector beside the lens: a real occlusion query.
-  std::vector<SurfacePixel> castPixelCentres(const SceneView& view, const Eigen::Vector3f& light_cam) const;
+  // Rays that miss a sphere around the turning object meet the table's plane analytically;
+  // `every_ray_to_embree` casts them all through Embree instead (the tests' reference).
+  std::vector<SurfacePixel> castPixelCentres(const SceneView& view, const Eigen::Vector3f& light_cam,
+                                             bool every_ray_to_embree = false) const;
   const Intrinsics& intrinsics() const { return k_; }
 
  private:
