@@ -19,7 +19,11 @@ CaptureOptions baseOptions(const DatasetSimulation& s) {
   CaptureOptions base;
   base.step_deg = s.step_deg;
   base.settle_s = 0.0;       // the simulated table reports only where it is
-  base.discard_frames = 0;   // and the simulated sensor needs no warm-up frames
+  // The simulated SR4000 renders when asked, so its first frame is at the new angle. The OpenNI2
+  // camera's frames run free: the newest may predate the move, and so may the one being rendered
+  // while the table arrived. The frame after both is the first at the angle (without discarding,
+  // a 90° view was the 0° frame again).
+  base.discard_frames = s.camera == SimulatedCamera::OpenNi2 ? 2 : 0;
   base.stop = s.stop;
   return base;
 }
@@ -55,6 +59,7 @@ void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, co
       so.camera.mesh = obj.mesh;
       so.camera.elevation_deg = el;
       so.camera.seed = s.seed;
+      so.camera.noise_per_pose = true;  // the same dataset on every run, whichever frame is taken
       so.fast = true;
       so.openni2 = s.camera == SimulatedCamera::OpenNi2;
       SimulatedRig simrig = openSimulatedRig(so);
@@ -82,6 +87,7 @@ CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& 
   so.camera.scale = draw.scale;
   so.camera.roll_deg = draw.roll_deg;
   so.camera.seed = viewHash(s.seed, key);  // each view its own noise
+  so.camera.noise_per_pose = true;
   so.fast = true;
   so.openni2 = s.camera == SimulatedCamera::OpenNi2;
   SimulatedRig simrig = openSimulatedRig(so);

@@ -23,6 +23,7 @@ CameraSpec writeSimulatedCameraConfig(const std::string& path, const SimulatedCa
   c.seed = o.seed;
   c.faults.random_rate = o.fault_rate;
   c.frame_rate = o.frame_rate;
+  c.noise_per_pose = o.noise_per_pose;
   c.world = o.world.empty() ? "" : fs::absolute(o.world).string();
   c.unplug_file = o.unplug_file;
   c.save(path);

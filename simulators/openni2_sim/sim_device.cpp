@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 
+#include "keyturn/core/fnv1a.h"
 #include "keyturn/sim/mesh.h"
 #include "sim_stream.h"
 
@@ -145,7 +146,13 @@ StructuredLightFrame SimDevice::renderFrame() {
   v.roll_deg = config_.roll;
   v.turntable_deg =
       config_.world.empty() ? config_.turntable_deg : readWorldTurntable(config_.world, config_.turntable_deg);
-  v.seed = config_.seed * 1000003ULL + static_cast<std::uint64_t>(frames_);  // repeatable per frame
+  if (config_.noise_per_pose) {  // one noise draw per angle, whichever frame a capture takes
+    std::string bits(sizeof(v.turntable_deg), '\0');
+    std::memcpy(bits.data(), &v.turntable_deg, bits.size());
+    v.seed = fnv1a(bits, config_.seed * 1000003ULL);
+  } else {
+    v.seed = config_.seed * 1000003ULL + static_cast<std::uint64_t>(frames_);  // repeatable per frame
+  }
   return renderer_->render(v);
 }
 

@@ -43,6 +43,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
     c.serial = jsonInteger(j, "serial", c.serial, std::uint32_t{0}, std::numeric_limits<std::uint32_t>::max(), path);
     c.seed = jsonInteger(j, "seed", c.seed, std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), path);
     c.frame_rate = j.value("frame_rate", c.frame_rate);
+    c.noise_per_pose = j.value("noise_per_pose", c.noise_per_pose);
     c.unplug_file = j.value("unplug_file", c.unplug_file);
     if (!(c.frame_rate >= 0 && c.frame_rate <= 1000)) throw Error(path + ": frame_rate must be in [0, 1000]");
     if (j.contains("faults")) {
@@ -73,7 +74,7 @@ MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
 void MesaSrSimConfig::save(const std::string& path) const {
   nlohmann::json j = {{"mesh", mesh},       {"distance", distance}, {"elevation", elevation},
                       {"turntable_deg", turntable_deg}, {"roll", roll}, {"scale", scale}, {"serial", serial}, {"seed", seed},
-                      {"frame_rate", frame_rate},
+                      {"frame_rate", frame_rate}, {"noise_per_pose", noise_per_pose},
                       {"faults", {{"open_fail", faults.open_fail}, {"timeout_every", faults.timeout_every},
                                   {"corrupt_every", faults.corrupt_every},
                                   {"disconnect_after", faults.disconnect_after},

@@ -44,6 +44,10 @@ struct MesaSrSimConfig {
   std::uint32_t serial = 4000123;
   std::uint64_t seed = 1;
   double frame_rate = 0.0;
+  // The simulated OpenNI2 driver: the same noise in every frame at one turntable angle. Its frames
+  // run free at 30/s, so which frame a capture takes depends on timing; with this on, a simulated
+  // dataset is the same on every run (keyturn simulate sets it). Off: new noise every frame.
+  bool noise_per_pose = false;
   std::string unplug_file;
   MesaSrSimFaults faults;
 
