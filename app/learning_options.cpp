@@ -42,6 +42,12 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                    "or auto (" + std::string(learning::defaultOpenSetMethod()) +
                    " when the data has at least 3 categories, else closed-set)")
         ->capture_default_str();
+  if (method)
+    cmd.add_option("--open-set-scale", o.scale_by,
+                   "knn-relative: camera (the distance over the class's scale times the view's camera's factor, "
+                   "each camera told by its organized grid) or pooled (the class's scale alone, whatever the camera)")
+        ->check(CLI::IsMember(learning::openSetScales()))
+        ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,
                  "Open-set: the rate of unknown views given a class that the threshold is calibrated for")
       ->check(CLI::Range(0.0, 0.99))

@@ -17,6 +17,7 @@
 #include "keyturn/learning/model_training.h"
 #include "keyturn/learning/turn_fusion.h"
 #include "learning_options.h"
+#include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
 #include "keyturn/dataset/view_poses.h"
@@ -47,15 +48,27 @@ std::vector<double> datasetRowAzimuths(const std::string& dataset, const learnin
   return azimuths;
 }
 
+// Each row's camera (cameraOf: the organized grid), for the open-set camera scale: a dataset is one
+// camera's views (keyturn simulate --camera, capture), so its first view tells it. The feature cache
+// does not keep it.
+void setDatasetCamera(const std::string& dataset, learning::FeatureTable& t, std::size_t from) {
+  const std::vector<dataset::LabelledView> views = datasetViews(dataset);
+  const std::string camera = learning::cameraOf(loadCloud(views.front().path, views.front().depth));
+  for (std::size_t r = from; r < t.rows.size(); ++r) t.rows[r].camera = camera;
+}
+
 int runTrain(const TrainArgs& a) {
   const learning::LabelKind kind = learning::parseLabelKind(a.label);
   learning::OpenSetOptions open_set = a.open_set;
   setOpenSetFlag(open_set, a.open_set_method);  // before describing: a wrong name fails at once
   learning::FeatureTable t = datasetFeatures(a.datasets.front(), a.flags.options, a.jobs, a.quiet);
   std::vector<double> azimuths = datasetRowAzimuths(a.datasets.front(), t);
+  setDatasetCamera(a.datasets.front(), t, 0);
   for (std::size_t d = 1; d < a.datasets.size(); ++d) {
     const learning::FeatureTable more = datasetFeatures(a.datasets[d], a.flags.options, a.jobs, a.quiet);
+    const std::size_t from = t.rows.size();
     learning::appendRows(t, more, a.datasets[d]);
+    setDatasetCamera(a.datasets[d], t, from);
     const std::vector<double> more_azimuths = datasetRowAzimuths(a.datasets[d], more);
     azimuths.insert(azimuths.end(), more_azimuths.begin(), more_azimuths.end());
   }
@@ -77,6 +90,8 @@ int runTrain(const TrainArgs& a) {
       std::cerr << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
                 << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
                 << " views of left-out categories, " << os.calibration_groups << " trainings)";
+    for (const auto& [camera, f] : os.camera_scale)
+      std::cerr << "; camera " << camera << " × " << std::setprecision(3) << f;
     if (std::isfinite(os.turn_threshold))
       std::cerr << ", a turn's " << std::setprecision(4) << os.turn_threshold << " (" << os.calibration_turns
                 << " turns of " << learning::kTurnViews << " views)";

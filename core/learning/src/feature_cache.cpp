@@ -68,8 +68,13 @@ DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions
 
 }  // namespace
 
+std::string cameraOf(const Cloud& cloud) {
+  return cloud.organized() ? std::to_string(cloud.width) + "x" + std::to_string(cloud.height) : std::string();
+}
+
 FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const FeatureTable& layout) {
   FeatureRow row;
+  row.camera = cameraOf(cloud);
   row.values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
   row.keypoints = -1;
   const DescriptorOptions o = optionsFor(layout, options);

@@ -44,8 +44,10 @@ std::vector<Prediction> predictRows(const Model& model, const FeatureTable& t, c
   if (!usable.empty()) {
     const Matrix x = t.select(model.info.blocks, usable);
     const Matrix p = model.classifier->predictProba(x);
+    std::vector<std::string> cameras;
+    for (std::size_t i : usable) cameras.push_back(t.rows[i].camera);
     const std::vector<double> scores =
-        model.info.open_set.enabled() ? openSetScores(model.info.open_set, x, p) : std::vector<double>();
+        model.info.open_set.enabled() ? openSetScores(model.info.open_set, x, p, &cameras) : std::vector<double>();
     for (std::size_t k = 0; k < usable.size(); ++k) {
       const auto r = static_cast<Eigen::Index>(k);
       Prediction pr{usable[k], -1, std::vector<float>(p.row(r).data(), p.row(r).data() + p.cols())};
@@ -67,14 +69,15 @@ std::string answerLabel(const ModelInfo& m, const Prediction& p) {
   return m.classes.at(static_cast<std::size_t>(p.best));
 }
 
-Prediction predictionOf(const ModelInfo& m, const Matrix& x, const Matrix& p) {
+Prediction predictionOf(const ModelInfo& m, const Matrix& x, const Matrix& p, const std::string& camera) {
   Prediction pr;
   if (p.rows() != 1) throw Error("one view's probabilities expected, got " + std::to_string(p.rows()) + " rows");
   pr.probabilities.assign(p.data(), p.data() + p.cols());
   Eigen::Index best = 0;
   if (p.cols() > 0) p.row(0).maxCoeff(&best), pr.best = static_cast<int>(best);
   if (m.open_set.enabled()) {
-    pr.score = openSetScores(m.open_set, x, p).at(0);
+    const std::vector<std::string> cameras = {camera};
+    pr.score = openSetScores(m.open_set, x, p, &cameras).at(0);
     pr.answer = m.open_set.answerFor(pr.score);
   }
   return pr;

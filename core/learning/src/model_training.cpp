@@ -45,8 +45,10 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
       turns.azimuth_deg = azimuth_deg;
       for (const auto& row : t.rows) turns.group.push_back(detail::captureGroupOf(row));
     }
+    std::vector<std::string> cameras;  // each view's camera, for the camera scale ("" : none known)
+    for (const auto& row : t.rows) cameras.push_back(row.camera);
     if (o.required || distinct.size() >= kOpenSetMinCategories)
-      m.info.open_set = calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr).front();
+      m.info.open_set = calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras).front();
   }
   return m;
 }

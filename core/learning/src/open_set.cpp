@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "keyturn/core/error.h"
 #include "standardised_views.h"
@@ -31,6 +32,17 @@ void checkOpenSetMethod(const std::string& method) {
 
 bool keepsReferences(const std::string& method) { return method == "knn" || method == "knn-relative"; }
 
+const std::vector<std::string>& openSetScales() {
+  static const std::vector<std::string> scales = {"pooled", "camera"};
+  return scales;
+}
+
+void checkOpenSetScale(const std::string& scale_by) {
+  const auto& s = openSetScales();
+  if (std::find(s.begin(), s.end(), scale_by) == s.end())
+    throw Error("open-set scale '" + scale_by + "' is not one of pooled, camera");
+}
+
 namespace {
 
 // Each class's own scale for knn-relative: the median, over its training views, of the RMS
@@ -38,13 +50,14 @@ namespace {
 // neighbours: the sensor's noise on it and the turntable's step). Measured across capture groups
 // (another instance or elevation) instead, known views were accepted more often but the
 // calibrated rate held worse (docs/results.md, "Open-set answers"). A class with one view takes
-// the median of the others.
-std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y) {
+// the median of the others. nearest (optional) receives each row's distance (NaN: its class has no other).
+std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y, std::vector<double>* nearest_of = nullptr) {
   const int classes = y.empty() ? 0 : *std::max_element(y.begin(), y.end()) + 1;
   std::vector<std::vector<Eigen::Index>> rows_of(static_cast<std::size_t>(classes));
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
   std::vector<float> scale(static_cast<std::size_t>(classes), std::nanf(""));
   std::vector<double> all;
+  if (nearest_of) nearest_of->assign(y.size(), std::nan(""));
   for (std::size_t c = 0; c < rows_of.size(); ++c) {  // within each class only: the sum of n_c², not n²
     std::vector<double> nearest;
     for (Eigen::Index a : rows_of[c]) {
@@ -52,6 +65,7 @@ std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y) {
       for (Eigen::Index b : rows_of[c])
         if (b != a) best = std::min(best, detail::rmsDistance(refs.row(a), refs.row(b)));
       if (std::isfinite(best)) nearest.push_back(best);
+      if (nearest_of && std::isfinite(best)) (*nearest_of)[static_cast<std::size_t>(a)] = best;
     }
     if (nearest.empty()) continue;
     scale[c] = static_cast<float>(std::max(1e-6, detail::medianOf(nearest)));
@@ -63,10 +77,28 @@ std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y) {
   return scale;
 }
 
+// Each camera's factor: the median over its rows of (distance to the nearest other view of the class) /
+// (the class's pooled scale). A camera whose views are sparser or noisier than the pool's (the SR4000's
+// against the OpenNI2's) gets a factor above 1, so its known views are not judged by the other's spread.
+std::map<std::string, float> cameraScales(const std::vector<std::string>& cameras, const std::vector<int>& y,
+                                          const std::vector<double>& nearest, const std::vector<float>& class_scale) {
+  std::map<std::string, std::vector<double>> ratios;
+  for (std::size_t r = 0; r < y.size(); ++r)
+    if (!cameras[r].empty() && std::isfinite(nearest[r]))
+      ratios[cameras[r]].push_back(nearest[r] / class_scale[static_cast<std::size_t>(y[r])]);
+  std::map<std::string, float> out;
+  for (const auto& [camera, v] : ratios) out[camera] = static_cast<float>(std::max(1e-6, detail::medianOf(v)));
+  return out;
+}
+
 }  // namespace
 
-OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours) {
+OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours,
+                         const std::string& scale_by, const std::vector<std::string>* cameras) {
   checkOpenSetMethod(method);
+  checkOpenSetScale(scale_by);
+  if (cameras && cameras->size() != y.size())
+    throw Error("open-set scales: " + std::to_string(y.size()) + " rows but " + std::to_string(cameras->size()) + " cameras");
   OpenSet s;
   s.method = method;
   if (!keepsReferences(method)) return s;
@@ -76,7 +108,11 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   detail::fitStandardisation(x, s.mean, s.scale);
   s.references = detail::standardisedRows(x, s.mean, s.scale);
   s.reference_class = y;
-  if (method == "knn-relative") s.class_scale = classScales(s.references, y);
+  if (method != "knn-relative") return s;
+  std::vector<double> nearest;
+  s.class_scale = classScales(s.references, y, &nearest);
+  s.scale_by = scale_by;
+  if (scale_by == "camera" && cameras) s.camera_scale = cameraScales(*cameras, y, nearest, s.class_scale);
   return s;
 }
 
@@ -97,10 +133,13 @@ double nearestDistance(const OpenSet& s, const Eigen::RowVectorXf& v, int c) {
 
 }  // namespace
 
-std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matrix& p) {
+std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matrix& p,
+                                  const std::vector<std::string>* cameras) {
   checkOpenSetMethod(s.method);
   if (p.rows() != x.rows()) throw Error("open-set scores: " + std::to_string(x.rows()) + " views but " +
                                         std::to_string(p.rows()) + " rows of probabilities");
+  if (cameras && cameras->size() != static_cast<std::size_t>(x.rows()))
+    throw Error("open-set scores: " + std::to_string(x.rows()) + " views but " + std::to_string(cameras->size()) + " cameras");
   std::vector<double> out(static_cast<std::size_t>(x.rows()), 0.0);
   for (Eigen::Index r = 0; r < x.rows(); ++r) {
     if (p.cols() == 0 || !p.row(r).allFinite()) continue;  // scores 0: rejected by any calibrated threshold
@@ -116,7 +155,10 @@ std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matri
     const Eigen::RowVectorXf v = detail::standardisedRow(x.row(r), s.mean, s.scale);
     double d = nearestDistance(s, v, static_cast<int>(best));
     if (s.method == "knn-relative")
-      d = static_cast<std::size_t>(best) < s.class_scale.size() ? d / s.class_scale[static_cast<std::size_t>(best)] : std::nan("");
+      d = static_cast<std::size_t>(best) < s.class_scale.size()
+              ? d / (s.class_scale[static_cast<std::size_t>(best)] *
+                     (cameras ? s.cameraFactor((*cameras)[static_cast<std::size_t>(r)]) : 1.f))
+              : std::nan("");
     out[static_cast<std::size_t>(r)] = std::isfinite(d) ? 1.0 / (1.0 + d) : 0.0;
   }
   return out;

@@ -45,9 +45,14 @@ Matrix rowsOf(const Matrix& x, const std::vector<std::size_t>& rows) {
 
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
-                                       const OpenSetOptions& o, const TurnRows* turns) {
+                                       const OpenSetOptions& o, const TurnRows* turns,
+                                       const std::vector<std::string>* cameras) {
   if (o.methods.empty()) return {};
   for (const auto& m : o.methods) checkOpenSetMethod(m);
+  checkOpenSetScale(o.scale_by);
+  if (cameras && cameras->size() != y.size())
+    throw Error("open-set calibration: " + std::to_string(y.size()) + " rows but " + std::to_string(cameras->size()) +
+                " cameras");
   if (static_cast<std::size_t>(x.rows()) != y.size() || y.size() != categories.size())
     throw Error("open-set calibration: rows, labels and categories differ in number");
   if (turns && (turns->group.size() != y.size() || turns->azimuth_deg.size() != y.size()))
@@ -75,6 +80,11 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     const int inner_classes = compact.empty() ? 0 : *std::max_element(compact.begin(), compact.end()) + 1;
     if (inner_classes < 2 || held.empty()) continue;  // nothing to learn or to score without this group
     const Matrix xtrain = rowsOf(x, train), xheld = rowsOf(x, held);
+    std::vector<std::string> camtrain, camheld;
+    if (cameras) {
+      for (auto r : train) camtrain.push_back((*cameras)[r]);
+      for (auto r : held) camheld.push_back((*cameras)[r]);
+    }
     auto clf = makeClassifier(params);
     clf->fit(xtrain, compact, inner_classes);
     const Matrix p = clf->predictProba(xheld);
@@ -87,8 +97,9 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
       held_turns = detail::turnsOf(az, group);
     }
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
-      const OpenSet scorer = fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours);
-      const std::vector<double> s = openSetScores(scorer, xheld, p);
+      const OpenSet scorer =
+          fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours, o.scale_by, cameras ? &camtrain : nullptr);
+      const std::vector<double> s = openSetScores(scorer, xheld, p, cameras ? &camheld : nullptr);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
       for (const auto& seq : held_turns) {
         double sum = 0;
@@ -99,7 +110,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   }
   std::vector<OpenSet> out;
   for (std::size_t m = 0; m < o.methods.size(); ++m) {
-    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours);
+    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras);
     s.threshold = thresholdForFalseAccept(unknown[m], o.false_accept);
     s.false_accept = o.false_accept;
     s.calibration_views = static_cast<int>(unknown[m].size());

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <map>
 
 #include "keyturn/core/checked_integer.h"
 #include "keyturn/core/error.h"
@@ -24,6 +25,10 @@ json openSetJson(const OpenSet& s) {
   }
   if (!keepsReferences(s.method)) return j;
   if (s.method == "knn-relative") j["class_scale"] = s.class_scale;
+  if (s.method == "knn-relative" && s.scale_by != "pooled") {  // absent: the pooled scale (models before issue 47's)
+    j["scale_by"] = s.scale_by;
+    j["camera_scale"] = s.camera_scale;
+  }
   j["neighbours"] = s.neighbours;
   j["mean"] = s.mean;
   j["scale"] = s.scale;
@@ -69,6 +74,17 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
         throw Error(where + ": knn-relative needs class_scale of " + std::to_string(classes) + " values");
       for (float v : s.class_scale)
         if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": class_scale values must be positive");
+      if (j.contains("scale_by")) {
+        s.scale_by = j.at("scale_by").get<std::string>();
+        try {
+          checkOpenSetScale(s.scale_by);
+        } catch (const Error& e) {
+          throw Error(where + ": " + e.what());
+        }
+        if (j.contains("camera_scale")) s.camera_scale = j.at("camera_scale").get<std::map<std::string, float>>();
+        for (const auto& [camera, v] : s.camera_scale)
+          if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": camera_scale of '" + camera + "' must be positive");
+      }
     }
     s.neighbours = jsonInteger(j, "neighbours", 1, 1 << 16, where);
     s.mean = j.at("mean").get<std::vector<float>>();

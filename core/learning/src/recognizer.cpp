@@ -102,7 +102,7 @@ Recognition Recognizer::recognize(const Cloud& cloud, bool with_geodesic_paths) 
     std::lock_guard<std::mutex> lock(*classify_mutex_);
     p = model_.classifier->predictProba(x);
   }
-  const Prediction answer = predictionOf(model_.info, x, p);
+  const Prediction answer = predictionOf(model_.info, x, p, cameraOf(cloud));
   r.probabilities = answer.probabilities;
   r.best = answer.best;
   r.answer = answer.answer;

@@ -49,8 +49,14 @@ FeatureTable featureLayout(const std::vector<std::string>& blocks, const Descrip
 std::string featureCachePath(const std::string& dataset, const DescriptorOptions& options, int shard = 0,
                              int shards = 1);
 
+// The camera a view came through, as the open-set scale tells cameras apart (open_set.h): the
+// organized grid "WxH" of the cloud (the SR4000's 176x144, a Kinect-class camera's 640x480); "" for an
+// unorganized cloud (a crop or a mesh scan: the pooled scale).
+std::string cameraOf(const Cloud& cloud);
+
 // One cloud described for the layout's blocks, as describeViews describes each file: a block that
 // cannot be computed stays NaN and the row's problem says why (keypoints -1: no keypoint block).
+// The row's camera is cameraOf(cloud).
 FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, const FeatureTable& layout);
 
 // Describes views for the layout's blocks only, in parallel (jobs 0: all cores). A block that cannot

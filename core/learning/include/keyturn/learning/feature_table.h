@@ -17,6 +17,7 @@ struct FeatureRow {
   int keypoints = 0;                    // K (ISS); -1 when the view could not be described
   std::string problem;                  // why a block is missing ("" when none is)
   bool no_object = false;               // too little in view to describe (EmptyViewError); not in the CSV
+  std::string camera;                   // the source's organized grid "WxH" (cameraOf), "" unknown; not in the CSV
   std::vector<float> values;            // all blocks back to back; NaN = missing
 };
 

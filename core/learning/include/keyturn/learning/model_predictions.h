@@ -31,8 +31,10 @@ struct Prediction {
 
 // The label a prediction answers: its class's name, "unknown" or "no object".
 std::string answerLabel(const ModelInfo& model, const Prediction& p);
-// The answer for one view's probabilities and features (x: one row, as the classifier saw it).
-Prediction predictionOf(const ModelInfo& model, const Matrix& x, const Matrix& probabilities);
+// The answer for one view's probabilities and features (x: one row, as the classifier saw it); camera:
+// the view's (cameraOf, feature_cache.h; "" unknown), for a model whose open-set scale is per camera.
+Prediction predictionOf(const ModelInfo& model, const Matrix& x, const Matrix& probabilities,
+                        const std::string& camera = "");
 
 // Predictions for the table's usable rows, in order: a row too empty to describe
 // (FeatureRow::no_object) is answered "no object"; any other row that could not be described at

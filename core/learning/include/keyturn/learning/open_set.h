@@ -8,12 +8,17 @@
 //   `neighbours` training views of the class the classifier chose (their mean distance);
 // - knn-relative: the same with d divided by the chosen class's own scale, the median distance
 //   from one of its training views to the nearest other (small noisy objects lie farther from
-//   their training views than large ones, known or not).
+//   their training views than large ones, known or not). With scale_by "camera" (the default of
+//   train since issue 47), d is also divided by the view's camera's own factor: how far that camera's
+//   training views lie from their nearest neighbour, relative to their class's scale (the SR4000's
+//   sparser, noisier views lie farther than the OpenNI2's). docs/results.md, "Beyond the training
+//   conditions", measures it against the one pooled scale and other levers.
 // Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
 #include <cmath>
 #include <cstddef>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -55,18 +60,38 @@ struct OpenSet {
   Matrix references;
   std::vector<int> reference_class;
   std::vector<float> class_scale;  // knn-relative: per class, the distance d is divided by
+  // knn-relative: "pooled" (the class scale alone) or "camera" (times the view's camera's factor).
+  std::string scale_by = "pooled";
+  // scale_by "camera": per camera (cameraOf, feature_cache.h: the organized grid "WxH"), the median over
+  // its training views of (distance to the nearest other view of the class) / (the class's scale).
+  std::map<std::string, float> camera_scale;
+  // The factor a view of `camera` is scaled by: 1 for the pooled scale, an unknown or "" camera.
+  float cameraFactor(const std::string& camera) const {
+    const auto it = camera_scale.find(camera);
+    return scale_by == "camera" && it != camera_scale.end() ? it->second : 1.f;
+  }
   bool enabled() const { return !method.empty(); }
   // Class when score >= threshold (or closed-set), else Unknown (a NaN score too).
   Answer answerFor(double score) const { return !enabled() || score >= threshold ? Answer::Class : Answer::Unknown; }
 };
 
+// The ways knn-relative scales a view's distance: pooled, camera (open_set.h's scale_by).
+const std::vector<std::string>& openSetScales();
+// Throws keyturn::Error naming the scale when it is not one of openSetScales().
+void checkOpenSetScale(const std::string& scale_by);
+
 // A scorer for `method` fitted on training rows x (labels y: class indices): knn keeps the
 // standardised rows; max-probability keeps nothing. threshold and calibration are left at 0.
-OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1);
+// scale_by "camera" (knn-relative) fits a factor per camera of `cameras` (one per row; rows of ""
+// count for no camera); without cameras it is the pooled scale.
+OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1,
+                         const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr);
 
-// One score per row of x (probabilities: the classifier's rows for x). A row whose score
-// cannot be computed (non-finite probabilities, no reference of its class) scores 0.
-std::vector<double> openSetScores(const OpenSet& scorer, const Matrix& x, const Matrix& probabilities);
+// One score per row of x (probabilities: the classifier's rows for x; cameras: each row's camera, or
+// none: every view at the pooled scale). A row whose score cannot be computed (non-finite
+// probabilities, no reference of its class) scores 0.
+std::vector<double> openSetScores(const OpenSet& scorer, const Matrix& x, const Matrix& probabilities,
+                                  const std::vector<std::string>* cameras = nullptr);
 
 // The threshold that accepts at most a fraction `false_accept` of these scores of unknown
 // views (score >= threshold): the smallest score above the highest rejected one. Throws

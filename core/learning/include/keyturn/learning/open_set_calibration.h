@@ -22,6 +22,9 @@ struct OpenSetOptions {
   double false_accept = 0.05;                  // the stated rate on unknown views
   int groups = 5;                              // at most; one training without each group
   int neighbours = 1;                          // knn, knn-relative
+  // knn-relative: the distance over the class's pooled scale, or also over the view's camera's factor
+  // (open_set.h; docs/results.md, "Beyond the training conditions"). Rows without a camera: pooled.
+  std::string scale_by = "camera";
   std::uint64_t seed = 7;                      // the categories' shuffle
   // false: data of fewer than three categories (nothing to leave out) gives a closed-set model
   // instead of an error (trainModel).
@@ -47,10 +50,12 @@ struct TurnRows {
 // indices (0 .. classes - 1, every class present); categories: each row's category (the unit left out).
 // With turns (one per row), the turn threshold too, for the same rate on the left-out views' turns
 // (left NaN when they form none). Throws keyturn::Error when fewer than three categories leave no
-// group out with two classes to train on, or turns are not one per row.
+// group out with two classes to train on, or turns are not one per row. cameras (one per row, "" for
+// none): each row's camera, for options.scale_by "camera"; the left-out views are scored with theirs.
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
-                                       const OpenSetOptions& options, const TurnRows* turns = nullptr);
+                                       const OpenSetOptions& options, const TurnRows* turns = nullptr,
+                                       const std::vector<std::string>* cameras = nullptr);
 
 // Class indices made contiguous over the classes present: y's values mapped to 0 .. n - 1 in
 // increasing order; `present` (optional) receives the original index of each new one.
