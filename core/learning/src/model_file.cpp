@@ -104,9 +104,9 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
   if (j.contains("pose_references") && !j.at("pose_references").is_null())
     m.pose_references = parsePoseReferencesJson(j.at("pose_references"), m.inputs, static_cast<int>(m.classes.size()),
                                                 source, m.open_set.enabled() ? &m.open_set : nullptr);
-  if (j.contains("training_views") && !j.at("training_views").is_null()) {
-    if (!keepsReferences(m.open_set.method))
-      throw Error(source + ": training_views describe the open set's references, and this model keeps none");
+  // The training views describe the open set's references: without them (a sidecar with its open set
+  // taken out, as old models are emulated) they describe nothing, and the model cannot be enrolled into.
+  if (j.contains("training_views") && !j.at("training_views").is_null() && keepsReferences(m.open_set.method)) {
     m.training_views = parseTrainingViewsJson(j.at("training_views"), static_cast<std::size_t>(m.open_set.references.rows()),
                                               m.inputs, source);
   }
