@@ -27,6 +27,7 @@ Command addRepeatabilityCommand(CLI::App& app);
 Command addEvaluateCommand(CLI::App& app);
 Command addTrainCommand(CLI::App& app);
 Command addClassifyCommand(CLI::App& app);
+Command addEnrollCommand(CLI::App& app);
 Command addConsistencyCommand(CLI::App& app);
 Command addSlurmCommand(CLI::App& app);
 Command addImportCommand(CLI::App& app);

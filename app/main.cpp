@@ -24,7 +24,7 @@ int main(int argc, char** argv) {
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
                              addSimulateCommand(app), addDemoCommand(app),
                              addCalibrateCommand(app), addRepeatabilityCommand(app),
-                             addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app),
+                             addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app), addEnrollCommand(app),
                              addConsistencyCommand(app), addSlurmCommand(app),
                              addImportCommand(app), addStabilityCommand(app)};
   try {

@@ -10,6 +10,7 @@
 #include "classifier_params_json.h"
 #include "open_set_json.h"
 #include "pose_references_json.h"
+#include "training_views_json.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_error.h"
@@ -40,6 +41,7 @@ json toJson(const ModelInfo& m) {
   if (m.open_set.enabled()) j["open_set"] = openSetJson(m.open_set);
   if (!m.pose_references.empty())
     j["pose_references"] = poseReferencesJson(m.pose_references, m.open_set.enabled() ? &m.open_set : nullptr);
+  if (!m.training_views.empty()) j["training_views"] = trainingViewsJson(m.training_views);
   return j;
 }
 
@@ -102,6 +104,12 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
   if (j.contains("pose_references") && !j.at("pose_references").is_null())
     m.pose_references = parsePoseReferencesJson(j.at("pose_references"), m.inputs, static_cast<int>(m.classes.size()),
                                                 source, m.open_set.enabled() ? &m.open_set : nullptr);
+  // The training views describe the open set's references: without them (a sidecar with its open set
+  // taken out, as old models are emulated) they describe nothing, and the model cannot be enrolled into.
+  if (j.contains("training_views") && !j.at("training_views").is_null() && keepsReferences(m.open_set.method)) {
+    m.training_views = parseTrainingViewsJson(j.at("training_views"), static_cast<std::size_t>(m.open_set.references.rows()),
+                                              m.inputs, source);
+  }
   return m;
 }
 

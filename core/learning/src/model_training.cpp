@@ -49,6 +49,19 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
     for (const auto& row : t.rows) cameras.push_back(row.camera);
     if (o.required || distinct.size() >= kOpenSetMinCategories)
       m.info.open_set = calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras).front();
+    // The references are the training rows: with what else each row was trained by, the model can
+    // be retrained with an object added (model_enrollment.h).
+    if (keepsReferences(m.info.open_set.method)) {
+      TrainingViews& v = m.info.training_views;
+      v.label = kind, v.open_set_groups = o.groups, v.open_set_seed = o.seed;
+      for (std::size_t r = 0; r < t.rows.size(); ++r) {
+        TrainingView view{t.rows[r].cls, t.rows[r].instance, t.rows[r].elevation,
+                          azimuth_deg.empty() ? std::nan("") : azimuth_deg[r], {}, t.rows[r].camera};
+        for (Eigen::Index k = 0; k < x.cols(); ++k)
+          if (!std::isfinite(x(static_cast<Eigen::Index>(r), k))) view.missing.push_back(static_cast<int>(k));
+        v.views.push_back(std::move(view));
+      }
+    }
   }
   return m;
 }

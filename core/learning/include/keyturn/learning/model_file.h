@@ -11,6 +11,7 @@
 
 #include "keyturn/learning/classifier.h"
 #include "keyturn/learning/open_set.h"
+#include "keyturn/learning/training_views.h"
 #include "keyturn/learning/view_fusion.h"
 
 namespace keyturn::learning {
@@ -30,6 +31,10 @@ struct ModelInfo {
   // Optional: the training views by azimuth for pose fusion (view_fusion.h; "pose_references" in
   // the sidecar). A model without them fuses views independently.
   PoseReferences pose_references;
+  // Optional: what retraining needs beside the open set's references, which are the training rows
+  // (enrollment: model_enrollment.h; "training_views" in the sidecar). A model without it cannot
+  // take a new object: it is retrained with keyturn train.
+  TrainingViews training_views;
 };
 
 // The per-class mean of each column, ignoring NaN (a block a view lacks); 0 where a
