@@ -124,9 +124,12 @@ std::vector<Eigen::Matrix4d> perturbPoses(std::vector<Eigen::Matrix4d> poses, do
 }
 
 PoseDifference poseDifference(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
+  // atan2 of sin and cos: acos alone turns a rotation's float-precision non-orthonormality into
+  // hundredths of a degree near 0°.
   const Eigen::Matrix3d R = a.topLeftCorner<3, 3>().transpose() * b.topLeftCorner<3, 3>();
-  const double c = std::clamp((R.trace() - 1.0) / 2.0, -1.0, 1.0);
-  return {std::acos(c) * 180.0 / M_PI, (a.topRightCorner<3, 1>() - b.topRightCorner<3, 1>()).norm()};
+  const Eigen::Vector3d s(R(2, 1) - R(1, 2), R(0, 2) - R(2, 0), R(1, 0) - R(0, 1));
+  const double angle = std::atan2(s.norm() / 2, (R.trace() - 1.0) / 2.0);
+  return {angle * 180.0 / M_PI, (a.topRightCorner<3, 1>() - b.topRightCorner<3, 1>()).norm()};
 }
 
 ImpliedAxis impliedAxis(const std::vector<Eigen::Matrix4d>& world_from_view) {

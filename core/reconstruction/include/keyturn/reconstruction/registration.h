@@ -4,7 +4,7 @@
 //   Free       every view's pose but the reference's is free (scans, hand-held captures):
 //              pairwise point-to-plane ICP (coarse to fine) between overlapping views into a pose
 //              graph, Open3D's global optimisation (Levenberg–Marquardt with line processes),
-//              then joint point-to-plane rounds over all pairs at once.
+//              then rounds of fine pairwise ICP from the optimised poses and optimisation again.
 //   Turntable  views from a turntable (poses = a rig camera's pose ∘ the table's angle): only the
 //              rig is refined, one rigid correction per rig camera (the axis direction, a point on
 //              it and the angle offset, as seen by that camera), so views cannot drift along an
@@ -32,11 +32,11 @@ struct RegistrationView {
 struct RegistrationOptions {
   PoseModel model = PoseModel::Free;
   bool refine = true;            // false: keep the poses, only measure them
-  double voxel_m = 0;            // finest working resolution; 0: 1/250 of the object's bounding-box diagonal
-  double initial_distance_voxels = 12;  // first ICP correspondence distance (× voxel): the poses' expected error
+  double voxel_m = 0;            // finest working resolution; 0: 1/250 of the object's size, at least the views' point spacing
+  double initial_distance_m = 0;  // first correspondence distance, the poses' expected error; 0: 1/20 of the object
   double min_overlap = 0.2;      // a pair overlaps when this fraction of either view has a close point
   int max_partners = 8;          // per view, the best-overlapping partners kept as pairs
-  int joint_rounds = 3;          // joint point-to-plane rounds after the pose graph (Free)
+  int joint_rounds = 2;          // Free: rounds of fine pairwise ICP and graph optimisation after the first
   int reference = 0;             // the view whose pose is kept
 };
 
