@@ -46,6 +46,8 @@ int runReconstruct(ReconstructArgs a) {
     views = reconstruction::posedViews(source, a.poses, selection);
   } catch (const MissingViewListError& e) {
     throw Error(std::string(e.what()) + " (--views LIST)");
+  } catch (const reconstruction::SeveralObjectsError& e) {
+    throw Error(std::string(e.what()) + " with --object CLASS/INSTANCE");
   }
   if (!a.poses_file.empty() && std::filesystem::is_directory(a.input))
     for (auto& v : views)  // the pose file's views found in INPUT when not where the file says

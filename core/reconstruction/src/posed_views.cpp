@@ -12,6 +12,7 @@
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/dataset/dataset_layout.h"
 #include "keyturn/dataset/study_views.h"
 
 namespace fs = std::filesystem;
@@ -39,8 +40,7 @@ std::vector<PosedView> posedViews(const std::string& input, const PoseReadOption
   } catch (const MissingViewListError&) {
     throw;
   } catch (const Error& e) {
-    if (fs::is_directory(input) && !fs::exists(fs::path(input) / "manifest.json") &&
-        !fs::exists(fs::path(input) / "manifest.csv"))
+    if (fs::is_directory(input) && !fs::exists(dataset::manifestPath(input)))
       throw Error(input + ": no poses: a folder must be a calibrated keyturn dataset (or give a pose file)");
     throw;
   }
@@ -72,8 +72,8 @@ std::vector<PosedView> posedViews(const std::string& input, const PoseReadOption
   } else if (objects.size() > 1) {
     auto it = objects.begin();
     const std::string a = it->first, b = (++it)->first;
-    throw Error(input + ": views of " + std::to_string(objects.size()) + " objects (" + a + ", " + b +
-                (objects.size() > 2 ? ", …" : "") + "): choose one with --object CLASS/INSTANCE");
+    throw SeveralObjectsError(input + ": views of " + std::to_string(objects.size()) + " objects (" + a + ", " + b +
+                              (objects.size() > 2 ? ", …" : "") + "): choose one");
   }
   if (!selection.elevations.empty()) {
     const std::set<std::string> keep(selection.elevations.begin(), selection.elevations.end());

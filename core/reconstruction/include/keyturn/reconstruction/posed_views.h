@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "keyturn/core/cloud.h"
+#include "keyturn/core/error.h"
 #include "keyturn/core/pose_list.h"
 
 namespace keyturn::reconstruction {
@@ -24,6 +25,12 @@ struct PosedView {
 struct ViewSelection {
   std::string object;                   // CLASS/INSTANCE; empty: the input must hold one object
   std::vector<std::string> elevations;  // empty: all
+};
+
+// An input holding several objects and no choice among them (a front end says how to choose).
+class SeveralObjectsError : public Error {
+ public:
+  using Error::Error;
 };
 
 // Throws keyturn::Error with one line for: no poses (a folder that is not a calibrated dataset,
