@@ -32,5 +32,6 @@ Command addConsistencyCommand(CLI::App& app);
 Command addSlurmCommand(CLI::App& app);
 Command addImportCommand(CLI::App& app);
 Command addStabilityCommand(CLI::App& app);
+Command addReconstructCommand(CLI::App& app);
 
 }  // namespace keyturn::app

@@ -26,7 +26,7 @@ int main(int argc, char** argv) {
                              addCalibrateCommand(app), addRepeatabilityCommand(app),
                              addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app), addEnrollCommand(app),
                              addConsistencyCommand(app), addSlurmCommand(app),
-                             addImportCommand(app), addStabilityCommand(app)};
+                             addImportCommand(app), addStabilityCommand(app), addReconstructCommand(app)};
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {

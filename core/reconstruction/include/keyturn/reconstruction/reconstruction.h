@@ -1,0 +1,76 @@
+#pragma once
+// From posed views of one object to its model: the views' points (filtered as describe filters
+// them), their poses refined (registration.h: free or turntable model), the fused cloud and its
+// Poisson surface (surface.h), with what changed and how well the views agree, per view.
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "keyturn/core/filter.h"
+#include "keyturn/reconstruction/posed_views.h"
+#include "keyturn/reconstruction/registration.h"
+#include "keyturn/reconstruction/surface.h"
+
+namespace keyturn::reconstruction {
+
+enum class ModelChoice { Auto, Free, Turntable };  // Auto: Turntable when every view is a turntable view
+
+struct ReconstructionOptions {
+  RegistrationOptions registration;
+  ModelChoice model = ModelChoice::Auto;
+  bool filter = true;
+  FilterOptions filter_options;
+  double fuse_voxel_m = 0;  // 0: half the registration voxel
+  PoissonOptions poisson;
+  // Evaluation against known truth (docs/reconstruction.md's tables), all optional.
+  std::vector<Eigen::Matrix4d> reference_poses;  // one per view, the true world_from_view (compared through the reference view)
+  std::optional<Mesh> reference_surface;
+  double fscore_tau_m = 0.001;
+};
+
+struct ViewOutcome {
+  std::string file;
+  std::size_t points = 0;
+  double residual_before_m = 0, residual_after_m = 0, overlap_before = 0, overlap_after = 0;
+  PoseDifference change;                          // refined against initial
+  std::optional<PoseDifference> error_before, error_after;  // against the reference poses
+};
+
+struct AxisReport {
+  std::string camera;  // the elevation
+  ImpliedAxis initial, refined;  // from the initial (calibrated) and the refined poses
+};
+
+struct Reconstruction {
+  std::vector<PosedView> views;  // poses refined
+  std::vector<Eigen::Matrix4d> initial_poses;
+  std::vector<ViewOutcome> outcomes;
+  std::vector<RegistrationPair> pairs;
+  std::vector<AxisReport> axes;
+  PoseModel model = PoseModel::Free;
+  bool refined = true;
+  double voxel_m = 0;
+  OrientedPoints cloud;
+  Mesh mesh;
+  // Against the reference surface, when given: the fused points' distances (initial and refined
+  // poses) and the mesh's F-score.
+  std::optional<double> cloud_distance_before_m, cloud_distance_after_m;
+  std::optional<SurfaceComparison> mesh_comparison;
+  std::vector<std::pair<std::string, double>> stage_seconds;
+};
+
+struct ReconstructionProgress {
+  RegistrationProgress stages;                                 // bars of the long stages
+  std::function<void(const std::string& line)> line = [](const std::string&) {};  // a line per stage
+};
+
+// Throws keyturn::Error (unreadable view, too few points, NoOverlapError).
+Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOptions& options,
+                           const ReconstructionProgress& progress = ReconstructionProgress());
+
+// DIR/cloud.ply, DIR/mesh.ply, DIR/poses.txt and DIR/report.json (created, written durably).
+void writeReconstruction(const std::string& dir, const Reconstruction& r, const std::string& input);
+std::string reconstructionJson(const Reconstruction& r, const std::string& input);
+std::string reconstructionSummary(const Reconstruction& r);
+
+}  // namespace keyturn::reconstruction

@@ -1,0 +1,56 @@
+#pragma once
+// The object's surface from registered views: the fused, oriented points and a watertight
+// Poisson surface over them (Kazhdan's screened Poisson as Open3D ships it), trimmed where the
+// points give it little support (low density: the surface Poisson closes over holes).
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+namespace keyturn::reconstruction {
+
+struct OrientedPoints {
+  std::vector<Eigen::Vector3f> points, normals;
+};
+
+struct Mesh {
+  std::vector<Eigen::Vector3f> vertices;
+  std::vector<Eigen::Vector3i> triangles;
+};
+
+struct FuseOptions {
+  double voxel_m = 0.001;  // one point per voxel of the fused cloud
+};
+
+// Every view's points in the common frame, one per voxel, with normals facing the sensor: the
+// view's origin when it lies outside the view (a camera's frame), else the side a range scan shows
+// (its normals' main axis, away from the scan's centroid). Throws keyturn::Error when fewer than
+// 100 points remain.
+struct FuseView {
+  const std::vector<Eigen::Vector3f>* points = nullptr;
+  Eigen::Matrix4d world_from_view = Eigen::Matrix4d::Identity();
+};
+OrientedPoints fuseViews(const std::vector<FuseView>& views, const FuseOptions& options);
+
+struct PoissonOptions {
+  int depth = 9;                 // octree depth (2^depth cells across the object)
+  double trim_quantile = 0.03;   // vertices below this density quantile are removed
+};
+Mesh poissonSurface(const OrientedPoints& cloud, const PoissonOptions& options);
+
+// Binary little-endian PLY (vertices and triangles; points and normals); throws keyturn::Error naming the file.
+void saveMeshPly(const std::string& path, const Mesh& mesh);
+void savePointsPly(const std::string& path, const OrientedPoints& cloud);  // x y z nx ny nz
+
+// A surface against a reference surface (both sampled uniformly, `samples` points each):
+// median and 90th-percentile distance of a point set to the reference, and the F-score at tau.
+struct SurfaceComparison {
+  double precision = 0, recall = 0, fscore = 0;  // at tau
+  double tau_m = 0;
+};
+std::vector<double> distancesToMesh(const std::vector<Eigen::Vector3f>& points, const Mesh& reference);
+SurfaceComparison compareSurfaces(const Mesh& surface, const Mesh& reference, double tau_m, std::size_t samples = 200000);
+
+// A triangle mesh file (PLY, OBJ, STL, OFF: Open3D's readers); throws keyturn::Error naming it.
+Mesh loadMesh(const std::string& path);
+
+}  // namespace keyturn::reconstruction

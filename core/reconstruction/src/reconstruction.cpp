@@ -1,0 +1,286 @@
+#include "keyturn/reconstruction/reconstruction.h"
+
+#include <Eigen/LU>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <filesystem>
+#include <map>
+#include <nlohmann/json.hpp>
+#include <iomanip>
+#include <sstream>
+
+#include "keyturn/core/cloud_io.h"
+#include "keyturn/core/durable_file.h"
+#include "keyturn/core/error.h"
+#include "keyturn/core/parallel_for.h"
+#include "keyturn/core/string_format.h"
+
+namespace keyturn::reconstruction {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// `digits` significant digits, "nan" for a missing value.
+std::string formatNumber(double x, int digits) {
+  std::string out;
+  appendFormat(out, "%.*g", digits, x);
+  return out;
+}
+
+double median(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  if (v.empty()) return std::nan("");
+  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
+  return v[v.size() / 2];
+}
+
+class StageClock {
+ public:
+  StageClock(Reconstruction& r, const ReconstructionProgress& p) : r_(r), p_(p) {}
+  void done(const std::string& stage, const std::string& detail) {
+    const double s = std::chrono::duration<double>(Clock::now() - start_).count();
+    r_.stage_seconds.emplace_back(stage, s);
+    std::ostringstream line;
+    line << stage << ": " << detail << " (" << std::fixed << std::setprecision(1) << s << " s)";
+    p_.line(line.str());
+    start_ = Clock::now();
+  }
+
+ private:
+  Reconstruction& r_;
+  const ReconstructionProgress& p_;
+  Clock::time_point start_ = Clock::now();
+};
+
+std::vector<Eigen::Vector3f> validPoints(const Cloud& c) {
+  std::vector<Eigen::Vector3f> out;
+  out.reserve(c.size());
+  for (const auto& p : c.points)
+    if (Cloud::isValid(p)) out.push_back(p);
+  return out;
+}
+
+OrientedPoints fuse(const std::vector<std::vector<Eigen::Vector3f>>& points, const std::vector<Eigen::Matrix4d>& poses,
+                    double voxel) {
+  std::vector<FuseView> fv;
+  for (std::size_t i = 0; i < points.size(); ++i) fv.push_back({&points[i], poses[i]});
+  return fuseViews(fv, FuseOptions{voxel});
+}
+
+}  // namespace
+
+Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOptions& options,
+                           const ReconstructionProgress& progress) {
+  Reconstruction r;
+  StageClock clock(r, progress);
+  if (views.size() < 2) throw Error("a reconstruction needs at least two views, got " + std::to_string(views.size()));
+  if (!options.reference_poses.empty() && options.reference_poses.size() != views.size())
+    throw Error("the reference poses are " + std::to_string(options.reference_poses.size()) + ", the views " +
+                std::to_string(views.size()));
+
+  // Views: read and filtered as describe filters them (a frame's support plane and background go).
+  std::vector<std::vector<Eigen::Vector3f>> points(views.size());
+  progress.stages.begin("reading views", views.size());
+  parallelFor(views.size(), 0, [&](std::size_t i) {
+    Cloud c = loadCloud(views[i].file);
+    if (options.filter) c = filterCloud(c, options.filter_options);
+    points[i] = validPoints(c);
+    if (points[i].size() < 100)
+      throw Error(views[i].file + ": " + std::to_string(points[i].size()) +
+                  " valid points after filtering, a view needs 100");
+    progress.stages.step();
+  });
+  progress.stages.end();
+  std::size_t total = 0;
+  for (const auto& p : points) total += p.size();
+  clock.done("views", std::to_string(views.size()) + " views, " + std::to_string(total) + " points" +
+                          (options.filter ? " after filtering" : ""));
+
+  const bool all_turntable = std::all_of(views.begin(), views.end(), [](const auto& v) { return v.turntable; });
+  if (options.model == ModelChoice::Turntable && !all_turntable)
+    throw Error("the turntable model needs every view's turntable angle: a calibrated dataset's views");
+  r.model = options.model == ModelChoice::Free ? PoseModel::Free
+            : all_turntable                    ? PoseModel::Turntable
+                                               : PoseModel::Free;
+  std::map<std::string, int> cameras;
+  for (const auto& v : views) cameras.emplace(v.elevation, int(cameras.size()));
+  std::vector<RegistrationView> rv(views.size());
+  for (std::size_t i = 0; i < views.size(); ++i)
+    rv[i] = {views[i].file, points[i], views[i].world_from_view, cameras[views[i].elevation]};
+  RegistrationOptions ro = options.registration;
+  ro.model = r.model;
+  const RegistrationResult reg = registerViews(rv, ro, progress.stages);
+  r.refined = ro.refine;
+  r.voxel_m = reg.voxel_m;
+  r.pairs = reg.pairs;
+  for (auto& v : rv) v.points.clear(), v.points.shrink_to_fit();
+  for (const auto& v : views) r.initial_poses.push_back(v.world_from_view);
+  {
+    std::ostringstream d;
+    d << (ro.refine ? "refined (" + std::string(poseModelName(r.model)) + " poses), " : "not refined, ")
+      << reg.pairs.size() << " overlapping pairs, views to each other (median) "
+      << formatNumber(median(reg.residual_before_m) * 1000, 3) << " mm → "
+      << formatNumber(median(reg.residual_after_m) * 1000, 3) << " mm";
+    clock.done("registration", d.str());
+  }
+
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    ViewOutcome o;
+    o.file = views[i].file;
+    o.points = points[i].size();
+    o.residual_before_m = reg.residual_before_m[i];
+    o.residual_after_m = reg.residual_after_m[i];
+    o.overlap_before = reg.overlap_before[i];
+    o.overlap_after = reg.overlap_after[i];
+    o.change = poseDifference(views[i].world_from_view, reg.world_from_view[i]);
+    if (!options.reference_poses.empty()) {
+      // Both sets in the reference's frame through the reference view (the gauge registration
+      // keeps): the identity when that view's pose was right, as in a perturbation test.
+      const int ref = ro.reference;
+      const Eigen::Matrix4d g0 = options.reference_poses[ref] * r.initial_poses[ref].inverse();
+      const Eigen::Matrix4d g1 = options.reference_poses[ref] * reg.world_from_view[ref].inverse();
+      o.error_before = poseDifference(options.reference_poses[i], g0 * r.initial_poses[i]);
+      o.error_after = poseDifference(options.reference_poses[i], g1 * reg.world_from_view[i]);
+    }
+    r.outcomes.push_back(o);
+    views[i].world_from_view = reg.world_from_view[i];
+  }
+  if (all_turntable) {
+    for (const auto& [camera, index] : cameras) {
+      std::vector<Eigen::Matrix4d> before, after;
+      for (std::size_t i = 0; i < views.size(); ++i)
+        if (views[i].elevation == camera) before.push_back(r.initial_poses[i]), after.push_back(views[i].world_from_view);
+      try {
+        r.axes.push_back({camera, impliedAxis(before), impliedAxis(after)});
+      } catch (const Error&) {  // one camera's views span less than 10°: it implies no axis
+      }
+    }
+  }
+
+  const double fuse_voxel = options.fuse_voxel_m > 0 ? options.fuse_voxel_m : reg.voxel_m / 2;
+  r.cloud = fuse(points, reg.world_from_view, fuse_voxel);
+  clock.done("fusion", std::to_string(r.cloud.points.size()) + " points at " + formatNumber(fuse_voxel * 1000, 3) + " mm");
+  r.mesh = poissonSurface(r.cloud, options.poisson);
+  clock.done("surface", "Poisson depth " + std::to_string(options.poisson.depth) + ", " +
+                            std::to_string(r.mesh.vertices.size()) + " vertices, " +
+                            std::to_string(r.mesh.triangles.size()) + " triangles");
+  r.views = std::move(views);
+
+  if (options.reference_surface) {
+    const auto before = fuse(points, r.initial_poses, fuse_voxel);
+    r.cloud_distance_before_m = median(distancesToMesh(before.points, *options.reference_surface));
+    r.cloud_distance_after_m = median(distancesToMesh(r.cloud.points, *options.reference_surface));
+    r.mesh_comparison = compareSurfaces(r.mesh, *options.reference_surface, options.fscore_tau_m);
+    clock.done("evaluation", "fused cloud to the reference surface " +
+                                 formatNumber(*r.cloud_distance_before_m * 1000, 3) + " mm → " +
+                                 formatNumber(*r.cloud_distance_after_m * 1000, 3) + " mm (median), mesh F-score at " +
+                                 formatNumber(options.fscore_tau_m * 1000, 3) + " mm " +
+                                 formatNumber(r.mesh_comparison->fscore, 3));
+  }
+  return r;
+}
+
+std::string reconstructionJson(const Reconstruction& r, const std::string& input) {
+  using nlohmann::json;
+  auto vec = [](const Eigen::Vector3d& v) { return json::array({v.x(), v.y(), v.z()}); };
+  auto diff = [](const PoseDifference& d) { return json{{"rotation_deg", d.rotation_deg}, {"translation_m", d.translation_m}}; };
+  auto num = [](double x) { return std::isfinite(x) ? json(x) : json(nullptr); };
+  json j;
+  j["input"] = input;
+  j["model"] = poseModelName(r.model);
+  j["refined"] = r.refined;
+  j["voxel_m"] = r.voxel_m;
+  std::vector<double> before, after, err_r0, err_t0, err_r1, err_t1;
+  for (const auto& o : r.outcomes) {
+    json v{{"file", o.file},
+           {"points", o.points},
+           {"residual_before_m", num(o.residual_before_m)},
+           {"residual_after_m", num(o.residual_after_m)},
+           {"overlap_before", o.overlap_before},
+           {"overlap_after", o.overlap_after},
+           {"pose_change", diff(o.change)}};
+    before.push_back(o.residual_before_m), after.push_back(o.residual_after_m);
+    if (o.error_before) {
+      v["pose_error_before"] = diff(*o.error_before), v["pose_error_after"] = diff(*o.error_after);
+      err_r0.push_back(o.error_before->rotation_deg), err_t0.push_back(o.error_before->translation_m);
+      err_r1.push_back(o.error_after->rotation_deg), err_t1.push_back(o.error_after->translation_m);
+    }
+    j["views"].push_back(v);
+  }
+  j["residual_median_before_m"] = num(median(before));
+  j["residual_median_after_m"] = num(median(after));
+  if (!err_r0.empty()) {
+    auto mx = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
+    j["pose_error"] = {{"before", {{"rotation_deg_median", median(err_r0)}, {"rotation_deg_max", mx(err_r0)},
+                                   {"translation_m_median", median(err_t0)}, {"translation_m_max", mx(err_t0)}}},
+                       {"after", {{"rotation_deg_median", median(err_r1)}, {"rotation_deg_max", mx(err_r1)},
+                                  {"translation_m_median", median(err_t1)}, {"translation_m_max", mx(err_t1)}}}};
+  }
+  for (const auto& p : r.pairs)
+    j["pairs"].push_back({{"a", p.a}, {"b", p.b}, {"overlap", p.overlap}, {"fitness", p.fitness}, {"pruned", p.pruned}});
+  for (const auto& a : r.axes)
+    j["axes"].push_back({{"camera", a.camera},
+                         {"calibrated", {{"direction", vec(a.initial.direction)}, {"point_m", vec(a.initial.point)}}},
+                         {"refined", {{"direction", vec(a.refined.direction)}, {"point_m", vec(a.refined.point)}}},
+                         {"angle_between_deg", std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI}});
+  j["cloud_points"] = r.cloud.points.size();
+  j["mesh"] = {{"vertices", r.mesh.vertices.size()}, {"triangles", r.mesh.triangles.size()}};
+  if (r.cloud_distance_after_m) {
+    j["reference_surface"] = {{"cloud_distance_median_before_m", *r.cloud_distance_before_m},
+                              {"cloud_distance_median_after_m", *r.cloud_distance_after_m},
+                              {"mesh_tau_m", r.mesh_comparison->tau_m},
+                              {"mesh_precision", r.mesh_comparison->precision},
+                              {"mesh_recall", r.mesh_comparison->recall},
+                              {"mesh_fscore", r.mesh_comparison->fscore}};
+  }
+  for (const auto& [stage, s] : r.stage_seconds) j["seconds"][stage] = s;
+  return j.dump(2) + "\n";
+}
+
+std::string reconstructionSummary(const Reconstruction& r) {
+  std::vector<double> before, after, change_r, change_t;
+  for (const auto& o : r.outcomes) {
+    before.push_back(o.residual_before_m), after.push_back(o.residual_after_m);
+    change_r.push_back(o.change.rotation_deg), change_t.push_back(o.change.translation_m);
+  }
+  std::ostringstream s;
+  s << r.outcomes.size() << " views, " << poseModelName(r.model) << " poses" << (r.refined ? " refined" : " kept")
+    << ": views to each other " << formatNumber(median(before) * 1000, 3) << " mm → "
+    << formatNumber(median(after) * 1000, 3) << " mm (median point-to-plane); pose change median "
+    << formatNumber(median(change_r), 3) << "° / " << formatNumber(median(change_t) * 1000, 3) << " mm\n";
+  std::vector<double> e_r, e_t;
+  for (const auto& o : r.outcomes)
+    if (o.error_after) e_r.push_back(o.error_after->rotation_deg), e_t.push_back(o.error_after->translation_m);
+  if (!e_r.empty())
+    s << "pose error against the reference: median " << formatNumber(median(e_r), 3) << "° / "
+      << formatNumber(median(e_t) * 1000, 3) << " mm, max " << formatNumber(*std::max_element(e_r.begin(), e_r.end()), 3)
+      << "° / " << formatNumber(*std::max_element(e_t.begin(), e_t.end()) * 1000, 3) << " mm\n";
+  for (const auto& a : r.axes)
+    s << "axis (" << (a.camera.empty() ? "camera" : a.camera) << ", camera frame): calibrated ["
+      << formatNumber(a.initial.direction.x(), 4) << ", " << formatNumber(a.initial.direction.y(), 4) << ", "
+      << formatNumber(a.initial.direction.z(), 4) << "], refined [" << formatNumber(a.refined.direction.x(), 4) << ", "
+      << formatNumber(a.refined.direction.y(), 4) << ", " << formatNumber(a.refined.direction.z(), 4) << "], "
+      << formatNumber(std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI, 3)
+      << "° apart; point moved " << formatNumber((a.initial.point - a.refined.point).norm() * 1000, 3) << " mm\n";
+  if (r.cloud_distance_after_m)
+    s << "reference surface: fused cloud " << formatNumber(*r.cloud_distance_before_m * 1000, 3) << " mm → "
+      << formatNumber(*r.cloud_distance_after_m * 1000, 3) << " mm (median), mesh F-score at "
+      << formatNumber(r.mesh_comparison->tau_m * 1000, 3) << " mm " << formatNumber(r.mesh_comparison->fscore, 3)
+      << "\n";
+  return s.str();
+}
+
+void writeReconstruction(const std::string& dir, const Reconstruction& r, const std::string& input) {
+  std::filesystem::create_directories(dir);
+  savePointsPly(dir + "/cloud.ply", r.cloud);
+  saveMeshPly(dir + "/mesh.ply", r.mesh);
+  std::vector<std::string> files;
+  std::vector<Eigen::Matrix4d> poses;
+  for (const auto& v : r.views) files.push_back(v.file), poses.push_back(v.world_from_view);
+  writeFileDurably(dir + "/poses.txt", poseListText(files, poses));
+  writeFileDurably(dir + "/report.json", reconstructionJson(r, input));
+}
+
+}  // namespace keyturn::reconstruction
