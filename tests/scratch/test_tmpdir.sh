@@ -23,7 +23,7 @@ case "$mode" in
     echo "test_tmpdir: $(printf '%s\n' "$left" | wc -l) entries left in $dir by the tests (each test's scratch goes through"
     echo "  tests/support/scratch_path.h's ScratchFolder, a script's through trap 'rm -rf ...' EXIT):"
     # By family (the name up to its pid or random part), then every entry.
-    printf '%s\n' "$left" | sed -E 's/[-_.][0-9]+([-_.].*)?$//; s/[-_.][A-Za-z0-9]{6}$//' | sort | uniq -c | sort -rn
+    printf '%s\n' "$left" | sed -E 's/[-_.][0-9]+([-_.].*)?$//; t; s/[-_.][A-Za-z0-9]{6}$//' | sort | uniq -c | sort -rn
     printf '%s\n' "$left" | sed 's/^/  /'
     exit 1 ;;
   *) echo "test_tmpdir: unknown mode $mode (reset or check)" >&2; exit 2 ;;
