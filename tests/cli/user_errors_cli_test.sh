@@ -121,7 +121,7 @@ if [ -n "$STUDIO" ]; then
   HOME="$work/home" xvfb-run -a -s "-screen 0 1600x1000x24" bash -c '
     env --default-signal=INT "$1" --simulated --settings "$2/studio.ini" > /dev/null 2>&1 &
     pid=$!
-    for _ in $(seq 1200); do [ -d "/tmp/keyturn-studio-$pid" ] && break; sleep 0.05; done
+    for _ in $(seq 1200); do [ -d "${TMPDIR:-/tmp}/keyturn-studio-$pid" ] && break; sleep 0.05; done
     kill -INT $pid; wait $pid; rc=$?
     echo "$rc $(date +%s.%N) $pid"' _ "$STUDIO" "$work" > "$work/sigint.txt"
   read -r rc exited pid < "$work/sigint.txt"
@@ -133,7 +133,7 @@ if [ -n "$STUDIO" ]; then
   ms=$(python3 -c 'import os, sys; print(int((float(sys.argv[2]) - os.stat(sys.argv[1]).st_mtime) * 1000))' \
     "$work/studio.ini" "$exited" 2> /dev/null)
   check "studio: exits after closing its window, not hanging (${ms:-?} ms)" test "${ms:-20000}" -lt 20000
-  check "studio: its temporary folder is gone" test ! -e "/tmp/keyturn-studio-$pid"
+  check "studio: its temporary folder is gone" test ! -e "${TMPDIR:-/tmp}/keyturn-studio-$pid"
 fi
 
 # keyturn slurm: a folder that is no dataset, and evaluate options the stages set themselves.

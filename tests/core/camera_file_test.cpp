@@ -15,18 +15,12 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 
 namespace {
-
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / ("keyturn_camfile_" + std::to_string(::getpid()) + "_" +
-                                                 ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::create_directories(d);
-  return d;
-}
 
 void writeText(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary | std::ios::trunc) << s; }
 
@@ -134,7 +128,8 @@ std::string errorOf(const fs::path& p) {
 }  // namespace
 
 TEST(CameraFile, RosOpen3dAndOpenCvFilesGiveTheFlatFilesPoints) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("camfile");
+  const fs::path d = scratch.made();
   const fs::path png = writeDepthImage(d);
   writeText(d / "flat.json", kFlat);
   writeText(d / "ros.yaml", kRosCameraInfo);
@@ -169,7 +164,8 @@ TEST(CameraFile, RosOpen3dAndOpenCvFilesGiveTheFlatFilesPoints) {
 }
 
 TEST(CameraFile, DistortionIsReadFromEachFormat) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("camfile");
+  const fs::path d = scratch.made();
   std::string ros = kRosCameraInfo;
   ros = replaced(ros, "data: [0, 0, 0, 0, 0]", "data: [-0.25, 0.08, 0.001, -0.002, 0.01]");
   writeText(d / "ros.yaml", ros);
@@ -191,7 +187,8 @@ TEST(CameraFile, DistortionIsReadFromEachFormat) {
 }
 
 TEST(CameraFile, DistortedPixelsBecomePointsOnTheirDistortedRays) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("camfile");
+  const fs::path d = scratch.made();
   const fs::path png = writeDepthImage(d);
   writeOpenCv(d / "opencv.yaml", (cv::Mat_<double>(1, 5) << -0.3, 0.12, 0.002, -0.0015, -0.02));
   const DepthImageOptions o = readCameraFile((d / "opencv.yaml").string());
@@ -238,7 +235,8 @@ TEST(CameraFile, UndistortionInvertsTheForwardModel) {
 }
 
 TEST(CameraFile, BadFilesAreOneLineNamingTheFileAndTheProblem) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("camfile");
+  const fs::path d = scratch.made();
   std::string ros8 = kRosCameraInfo;
   ros8 = replaced(ros8, "data: [525.5, 0, 31.5, 0, 524.25, 23.75, 0, 0, 1]", "data: [525.5, 0, 31.5, 0, 524.25, 23.75, 0, 0]");
   std::string ros34 = kRosCameraInfo;

@@ -7,17 +7,13 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/string_format.h"
+#include "support/scratch_path.h"
 #include "support/synthetic_clouds.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 
 namespace {
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() / ("keyturn_io_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
 
 Cloud sampleOrganized() {
   Cloud c = test::organizedPlanes(8, 6, 10.f, 1.0f, 0.8f, 2, 5, 1, 4);
@@ -43,8 +39,9 @@ std::string expectError(const std::string& path) {
 class PcdEncodingTest : public ::testing::TestWithParam<PcdEncoding> {};
 
 TEST_P(PcdEncodingTest, RoundTripKeepsOrganizationNaNsAndFields) {
+  const keyturn::test::ScratchFolder scratch("io");
   const Cloud c = sampleOrganized();
-  const std::string path = (tempDir() / "rt.pcd").string();
+  const std::string path = (scratch.made() / "rt.pcd").string();
   saveCloud(path, c, GetParam());
   const Cloud r = loadCloud(path);
   ASSERT_EQ(r.width, 8u);
@@ -59,7 +56,7 @@ TEST_P(PcdEncodingTest, RoundTripKeepsOrganizationNaNsAndFields) {
     EXPECT_NEAR(r.amplitude[i], c.amplitude[i], 1e-3f);
     EXPECT_NEAR(r.confidence[i], c.confidence[i], 1e-5f);
   }
-  for (const auto& e : fs::directory_iterator(tempDir()))
+  for (const auto& e : fs::directory_iterator(scratch.made()))
     EXPECT_NE(e.path().filename().string().rfind("rt.pcd.tmp", 0), 0u) << "temporary left: " << e.path();
   // Readable by others like every file keyturn writes (its temporary was made 0600).
   EXPECT_EQ(fs::status(path).permissions() & fs::perms::all,
@@ -71,8 +68,9 @@ INSTANTIATE_TEST_SUITE_P(AllEncodings, PcdEncodingTest,
                                            PcdEncoding::BinaryCompressed));
 
 TEST(CloudIo, PlyRoundTrip) {
+  const keyturn::test::ScratchFolder scratch("io");
   Cloud c = test::unorganized(test::cylinderSurface(0.05f, 0.1f, 12, 4));
-  const std::string path = (tempDir() / "rt.ply").string();
+  const std::string path = (scratch.made() / "rt.ply").string();
   saveCloud(path, c);
   const Cloud r = loadCloud(path);
   ASSERT_EQ(r.size(), c.size());
@@ -87,24 +85,27 @@ TEST(CloudIo, MissingFileNamesTheFile) {
 }
 
 TEST(CloudIo, EmptyFile) {
-  const std::string path = (tempDir() / "empty.pcd").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "empty.pcd").string();
   std::ofstream(path).close();
   EXPECT_NE(expectError(path).find("empty file"), std::string::npos);
 }
 
 TEST(CloudIo, GarbageHeader) {
-  const std::string path = (tempDir() / "garbage.pcd").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "garbage.pcd").string();
   std::ofstream(path) << "this is not a point cloud\n";
   EXPECT_NE(expectError(path).find("not a valid PCD"), std::string::npos);
 }
 
 TEST(CloudIo, BytesOfAFileThatAreNotTextAreEscapedInTheMessage) {
+  const keyturn::test::ScratchFolder scratch("io");
   // A PCD beginning with a UTF-16 byte order mark: the message quoted its header bytes raw, which
   // a terminal printed as they were and Python could not decode (keyturn.Error with no message).
-  const std::string path = (tempDir() / "bom.pcd").string();
+  const std::string path = (scratch.made() / "bom.pcd").string();
   std::ofstream(path, std::ios::binary) << "\xff\xfe# .PCD v.7\x1b[31m\nVERSION .7\n";
   EXPECT_EQ(expectError(path), path + ": not a valid PCD file (unknown header line 1: '\\xff\\xfe#')");
-  const std::string ply = (tempDir() / "ctrl.ply").string();
+  const std::string ply = (scratch.made() / "ctrl.ply").string();
   std::ofstream(ply, std::ios::binary) << "ply\nformat \x1b[2J\xc3\xa9t\xc3 1.0\n";
   EXPECT_EQ(expectError(ply), ply + ": header line 2: unknown format '\\x1b[2J\xc3\xa9t\\xc3'");  // é is kept
 }
@@ -120,8 +121,9 @@ TEST(CloudIo, PrintableTextKeepsUtf8AndEscapesEveryOtherByte) {
 }
 
 TEST(CloudIo, TruncatedBinaryAndCompressed) {
+  const keyturn::test::ScratchFolder scratch("io");
   for (auto enc : {PcdEncoding::Binary, PcdEncoding::BinaryCompressed}) {
-    const std::string path = (tempDir() / "trunc.pcd").string();
+    const std::string path = (scratch.made() / "trunc.pcd").string();
     saveCloud(path, sampleOrganized(), enc);
     // Keep the header and 20 bytes of data (PCL pads files, so cut from the front).
     std::ifstream in(path, std::ios::binary);
@@ -133,14 +135,16 @@ TEST(CloudIo, TruncatedBinaryAndCompressed) {
 }
 
 TEST(CloudIo, UnsupportedExtensionAndDirectory) {
-  const std::string path = (tempDir() / "view.xyz").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "view.xyz").string();
   std::ofstream(path) << "1 2 3\n";
   EXPECT_NE(expectError(path).find("unsupported format"), std::string::npos);
-  EXPECT_NE(expectError(tempDir().string()).find("is a directory"), std::string::npos);
+  EXPECT_NE(expectError(scratch.made().string()).find("is a directory"), std::string::npos);
 }
 
 TEST(CloudIo, AsciiHeaderPromisingBillionsOfPointsIsRejectedBeforeAllocating) {
-  const std::string path = (tempDir() / "huge.pcd").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "huge.pcd").string();
   std::ofstream(path) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
                          "WIDTH 2000000000\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2000000000\n"
                          "DATA ascii\n0 0 1\n";
@@ -149,7 +153,8 @@ TEST(CloudIo, AsciiHeaderPromisingBillionsOfPointsIsRejectedBeforeAllocating) {
 }
 
 TEST(CloudIo, AsciiWithFewerRowsThanPromisedIsAnError) {
-  const std::string path = (tempDir() / "short.pcd").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "short.pcd").string();
   std::ofstream(path) << "VERSION 0.7\nFIELDS x y z\nSIZE 4 4 4\nTYPE F F F\nCOUNT 1 1 1\n"
                          "WIDTH 4\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 4\nDATA ascii\n"
                          "0 0 1\n0.1 0 1\n";
@@ -157,7 +162,8 @@ TEST(CloudIo, AsciiWithFewerRowsThanPromisedIsAnError) {
 }
 
 TEST(CloudIo, PlyHeaderPromisingMoreVerticesThanTheFileHoldsIsRejected) {
-  const std::string path = (tempDir() / "huge.ply").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "huge.ply").string();
   std::ofstream(path, std::ios::binary) << "ply\nformat binary_little_endian 1.0\n"
                                            "element vertex 2000000000\nproperty float x\n"
                                            "property float y\nproperty float z\nend_header\n";
@@ -165,7 +171,8 @@ TEST(CloudIo, PlyHeaderPromisingMoreVerticesThanTheFileHoldsIsRejected) {
 }
 
 TEST(CloudIo, PlyMeshIsRefusedAsAView) {
-  const std::string path = (tempDir() / "mesh.ply").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "mesh.ply").string();
   std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\n"
                          "property float z\nelement face 1\nproperty list uchar int vertex_indices\nend_header\n"
                          "0 0 1\n0.1 0 1\n0 0.1 1\n3 0 1 2\n";
@@ -175,7 +182,8 @@ TEST(CloudIo, PlyMeshIsRefusedAsAView) {
 }
 
 TEST(CloudIo, PlyWithAnEmptyFaceElementIsACloud) {
-  const std::string path = (tempDir() / "noface.ply").string();
+  const keyturn::test::ScratchFolder scratch("io");
+  const std::string path = (scratch.made() / "noface.ply").string();
   std::ofstream(path) << "ply\nformat ascii 1.0\nelement vertex 2\nproperty float x\nproperty float y\n"
                          "property float z\nelement face 0\nproperty list uchar int vertex_indices\nend_header\n"
                          "0 0 1\n0.1 0 1\n";

@@ -16,19 +16,12 @@
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/view_files.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 
 namespace {
-
-fs::path tempDir() {
-  const fs::path d = fs::temp_directory_path() /
-                     ("keyturn_depth_" + std::to_string(::getpid()) + "_" +
-                      ::testing::UnitTest::GetInstance()->current_test_info()->name());
-  fs::create_directories(d);
-  return d;
-}
 
 void writeText(const fs::path& p, const std::string& s) { std::ofstream(p, std::ios::binary | std::ios::trunc) << s; }
 
@@ -74,7 +67,8 @@ TEST(DepthImage, PixelsBecomePinholePoints) {
 }
 
 TEST(DepthImage, WashingtonCompanionsGiveTheMaskAndTheCropOffset) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("depth");
+  const fs::path d = scratch.made();
   const std::vector<std::uint16_t> depth = {700, 710, 720, 730, 740, 750};
   savePng16((d / "mug_1_1_5_depthcrop.png").string(), depth, 3, 2);
   writeMask(d / "mug_1_1_5_maskcrop.png", 3, 2, {0, 1, 1, 1, 1, 0});
@@ -99,7 +93,8 @@ TEST(DepthImage, WashingtonCompanionsGiveTheMaskAndTheCropOffset) {
 }
 
 TEST(DepthImage, FoldersListDepthImagesOnlyWhenAskedAndNeverTheirCompanions) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("depth");
+  const fs::path d = scratch.made();
   savePng16((d / "v1_depth.png").string(), {1, 2, 3, 4}, 2, 2);
   writeMask(d / "v1_mask.png", 2, 2, {1, 1, 1, 1});
   savePng16((d / "a0.0_distance.png").string(), {1, 2, 3, 4}, 2, 2);
@@ -110,7 +105,8 @@ TEST(DepthImage, FoldersListDepthImagesOnlyWhenAskedAndNeverTheirCompanions) {
 }
 
 TEST(DepthImage, CameraFilesInJsonAndYaml) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("depth");
+  const fs::path d = scratch.made();
   writeText(d / "cam.json", R"({"fx": 525.5, "fy": 524.0, "cx": 319.5, "cy": 239.5, "depth_scale": 0.0002, "name": "x"})");
   writeText(d / "cam.yaml", "%YAML:1.0\n# a Kinect\nfx: 525.5\nfy: 524.0   # px\ncx: 319.5\ncy: \"239.5\"\n");
   for (const char* f : {"cam.json", "cam.yaml"}) {
@@ -147,7 +143,8 @@ TEST(DepthImage, CameraFilesInJsonAndYaml) {
 }
 
 TEST(DepthImage, BadImagesAreOneLineNamingTheFile) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("depth");
+  const fs::path d = scratch.made();
   const DepthImageOptions o = withIntrinsics(500, 500, 1, 1);
   savePng16((d / "good.png").string(), {100, 200, 300, 400}, 2, 2);
   cv::Mat eight(2, 2, CV_8UC1, cv::Scalar(9));
@@ -188,7 +185,8 @@ TEST(DepthImage, BadImagesAreOneLineNamingTheFile) {
 
 // A depth image and the PCD made from it are the same view: equal PDFs, equal K.
 TEST(DepthImage, DescribesToTheSamePdfsAsThePcdMadeFromIt) {
-  const fs::path d = tempDir();
+  const keyturn::test::ScratchFolder scratch("depth");
+  const fs::path d = scratch.made();
   // A box on a table seen from 0.8 m, 160 × 120, millimetres.
   const std::uint32_t w = 160, h = 120;
   std::vector<std::uint16_t> depth(w * h);
@@ -213,6 +211,7 @@ TEST(DepthImage, DescribesToTheSamePdfsAsThePcdMadeFromIt) {
 // intrinsics its grid implies, and read back: the same pixels valid, every point within the
 // quantisation of its depth.
 TEST(DepthImage, ARealKinectFrameSurvivesADepthPng) {
+  const keyturn::test::ScratchFolder scratch("depth");
   const Cloud original = loadCloud(std::string(KEYTURN_REAL_DATA) + "/full/learn0.pcd");
   ASSERT_EQ(original.width, 640u);
   // u = fx · x/z + cx (and v likewise) by least squares over the valid pixels.
@@ -230,7 +229,7 @@ TEST(DepthImage, ARealKinectFrameSurvivesADepthPng) {
   std::vector<std::uint16_t> depth(original.size(), 0);
   for (std::size_t i = 0; i < original.size(); ++i)
     if (Cloud::isValid(original.points[i])) depth[i] = static_cast<std::uint16_t>(std::lround(original.points[i].z() * 1000));
-  const fs::path png = tempDir() / "learn0_depth.png";
+  const fs::path png = scratch.made() / "learn0_depth.png";
   savePng16(png.string(), depth, original.width, original.height);
 
   const Cloud back = loadCloud(png.string(), withIntrinsics(ku[0], kv[0], ku[1], kv[1]));

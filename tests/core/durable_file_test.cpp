@@ -12,6 +12,7 @@
 
 #include "keyturn/core/error.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 namespace fs = std::filesystem;
@@ -23,16 +24,11 @@ std::string read(const fs::path& p) {
   return std::string(std::istreambuf_iterator<char>(in), {});
 }
 
-fs::path fresh(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / name;
-  fs::remove_all(d);
-  return d;
-}
-
 }  // namespace
 
 TEST(DurableFile, WritesReplacesAndLeavesNoTemporary) {
-  const fs::path d = fresh("keyturn_durable_write_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_write");
+  const fs::path& d = scratch.path;
   const fs::path f = d / "sub" / "a.txt";
   writeFileDurably(f.string(), std::string("one\0two", 7));
   EXPECT_EQ(read(f), std::string("one\0two", 7)) << "bytes as given, folders created";
@@ -42,7 +38,8 @@ TEST(DurableFile, WritesReplacesAndLeavesNoTemporary) {
 }
 
 TEST(DurableFile, AppendsWholeLinesAndCommitsATemporary) {
-  const fs::path d = fresh("keyturn_durable_append_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_append");
+  const fs::path& d = scratch.path;
   fs::create_directories(d);
   const std::string log = (d / "m.csv").string();
   appendLineDurably(log, "a,1");
@@ -56,7 +53,8 @@ TEST(DurableFile, AppendsWholeLinesAndCommitsATemporary) {
 }
 
 TEST(DurableFile, AFileThatCannotBeWrittenIsOneLineNamingItAndLeavesNoTemporary) {
-  const fs::path d = fresh("keyturn_durable_fail_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_fail");
+  const fs::path& d = scratch.path;
   fs::create_directories(d);
   // Its folder cannot be made: a file stands where it would go.
   std::ofstream(d / "plain") << "x";
@@ -76,14 +74,16 @@ TEST(DurableFile, AFileThatCannotBeWrittenIsOneLineNamingItAndLeavesNoTemporary)
 }
 
 TEST(DurableFile, WrittenFilesAreReadableByOthers) {
-  const fs::path d = fresh("keyturn_durable_mode_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_mode");
+  const fs::path& d = scratch.path;
   writeFileDurably((d / "m.json").string(), "{}");
   EXPECT_EQ(fs::status(d / "m.json").permissions() & fs::perms::all,
             fs::perms::owner_read | fs::perms::owner_write | fs::perms::group_read | fs::perms::others_read);
 }
 
 TEST(DurableFile, ALibraryWritesTheTemporaryByNameKeepingTheExtension) {
-  const fs::path d = fresh("keyturn_durable_with_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_with");
+  const fs::path& d = scratch.path;
   const std::string target = (d / "v" / "a5.0_distance.png").string();
   std::string seen;
   writeFileDurablyWith(target, [&](const std::string& tmp) {
@@ -118,7 +118,8 @@ TEST(DurableFile, KnowsTheTemporariesAKilledWriteLeaves) {
 }
 
 TEST(DurableFile, RemovesLeftoverTemporariesButNotUnderSkippedFolders) {
-  const fs::path d = fresh("keyturn_durable_leftovers_" + std::to_string(::getpid()));
+  const test::ScratchFolder scratch("durable_leftovers");
+  const fs::path& d = scratch.path;
   for (const char* f : {"m.csv.tmp.Ab12Cd", "c/i/e30/a5.0.json.tmp.Zz99Yy", "c/i/e30/a5.0.json", ".keyturn/f.bin.tmp.Ab12Cd"}) {
     fs::create_directories((d / f).parent_path());
     std::ofstream(d / f) << "x";

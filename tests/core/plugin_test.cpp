@@ -11,6 +11,7 @@
 
 #include "keyturn/core/error.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 namespace keyturn {
 namespace {
@@ -36,13 +37,12 @@ TEST(Plugin, AMissingEntryPointIsNamed) {
 }
 
 TEST(Plugin, KeyturnPluginPathIsSearchedFirstAndABadFileIsNamed) {
-  const fs::path dir = fs::temp_directory_path() / ("keyturn-plugin-test-" + std::to_string(::getpid()));
-  fs::create_directories(dir);
+  const test::ScratchFolder scratch("plugin_test");
+  const fs::path& dir = scratch.made();
   std::ofstream(dir / "libkeyturn_bogus.so") << "not a shared object\n";
   ::setenv("KEYTURN_PLUGIN_PATH", ("/nonexistent:" + dir.string()).c_str(), 1);
   const std::string msg = test::errorOf([] { pluginSymbol("bogus", "anything"); });
   ::unsetenv("KEYTURN_PLUGIN_PATH");
-  fs::remove_all(dir);
   EXPECT_NE(msg.find("plugin 'bogus' (" + (dir / "libkeyturn_bogus.so").string() + ") cannot be loaded: "),
             std::string::npos)
       << msg;

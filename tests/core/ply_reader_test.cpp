@@ -19,9 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-std::string write(const std::string& name, const std::string& bytes) {
-  const fs::path dir = keyturn::test::scratchPath("ply_reader_test");
-  fs::create_directories(dir);
+std::string write(const fs::path& dir, const std::string& name, const std::string& bytes) {
   const std::string path = (dir / name).string();
   std::ofstream(path, std::ios::binary) << bytes;
   return path;
@@ -54,7 +52,8 @@ std::string binaryTriangle(bool big) {
 class PlyByteOrder : public ::testing::TestWithParam<bool> {};
 
 TEST_P(PlyByteOrder, ReadsDoublesAndAFaceList) {
-  const PlyData ply = readPly(write("tri.ply", binaryTriangle(GetParam())));
+  const keyturn::test::ScratchFolder scratch("ply_reader");
+  const PlyData ply = readPly(write(scratch.made(), "tri.ply", binaryTriangle(GetParam())));
   const PlyElement* v = ply.find("vertex");
   ASSERT_NE(v, nullptr);
   ASSERT_EQ(v->count, 3u);
@@ -70,7 +69,8 @@ TEST_P(PlyByteOrder, ReadsDoublesAndAFaceList) {
 INSTANTIATE_TEST_SUITE_P(LittleAndBig, PlyByteOrder, ::testing::Values(false, true));
 
 TEST(PlyReader, AsciiWithCrLfAndNegativeIntegers) {
-  const PlyData ply = readPly(write("a.ply",
+  const keyturn::test::ScratchFolder scratch("ply_reader");
+  const PlyData ply = readPly(write(scratch.made(), "a.ply",
                                     "ply\r\nformat ascii 1.0\r\nelement vertex 2\r\nproperty float x\r\n"
                                     "property short y\r\nproperty uchar z\r\nend_header\r\n0.5 -7 255\r\n1e-3 3 0\r\n"));
   const PlyElement* v = ply.find("vertex");
@@ -80,10 +80,11 @@ TEST(PlyReader, AsciiWithCrLfAndNegativeIntegers) {
 }
 
 TEST(PlyReader, OrganizedCloudWrittenByKeyturnKeepsItsGrid) {
+  const keyturn::test::ScratchFolder scratch("ply_reader");
   Cloud c = test::organizedPlanes(16, 12, 50.f, 1.0f, 0.8f, 4, 9, 3, 7);
   c.amplitude.assign(c.size(), 0.25f);
   ASSERT_TRUE(c.organized());
-  const std::string path = write("org.ply", "");
+  const std::string path = write(scratch.made(), "org.ply", "");
   saveCloud(path, c);
   const Cloud r = loadCloud(path);
   EXPECT_EQ(r.width, c.width);
@@ -94,9 +95,10 @@ TEST(PlyReader, OrganizedCloudWrittenByKeyturnKeepsItsGrid) {
 }
 
 TEST(PlyReader, AGridWhoseSidesMultiplyToTheCountOnlyModulo2To64IsIgnored) {
+  const keyturn::test::ScratchFolder scratch("ply_reader");
   // 8589934605 × 545761658833005647 = 3 (mod 2^64): multiplied, the check passed and the
   // cloud became a 13 × 1321528399 "grid" (the sides cut to 32 bits) over 3 points.
-  const std::string path = write("grid.ply",
+  const std::string path = write(scratch.made(), "grid.ply",
                                  "ply\nformat ascii 1.0\nobj_info num_cols 8589934605\nobj_info num_rows 545761658833005647\n"
                                  "element vertex 3\nproperty float x\nproperty float y\nproperty float z\nend_header\n"
                                  "0 0 1\n0 1 1\n1 0 1\n");
@@ -107,6 +109,7 @@ TEST(PlyReader, AGridWhoseSidesMultiplyToTheCountOnlyModulo2To64IsIgnored) {
 }
 
 TEST(PlyReader, MalformedFilesAreOneClearLine) {
+  const keyturn::test::ScratchFolder scratch("ply_reader");
   struct Case {
     const char* name;
     std::string bytes;
@@ -145,7 +148,7 @@ TEST(PlyReader, MalformedFilesAreOneClearLine) {
        "a number longer than 64 characters ('66666666666666666666...')"},
   };
   for (const auto& c : cases) {
-    const std::string path = write(c.name, c.bytes);
+    const std::string path = write(scratch.made(), c.name, c.bytes);
     const std::string msg = test::errorOf([&] { readPly(path); });
     EXPECT_NE(msg.find(path + ": "), std::string::npos) << c.name << ": " << msg;
     EXPECT_NE(msg.find(c.expected), std::string::npos) << c.name << ": " << msg;

@@ -8,6 +8,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/pose_list.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using keyturn::test::errorOf;
@@ -15,9 +16,8 @@ namespace fs = std::filesystem;
 
 namespace {
 struct PoseFiles : ::testing::Test {
-  fs::path dir = fs::temp_directory_path() / ("keyturn_poses_" + std::to_string(::getpid()));
-  void SetUp() override { fs::create_directories(dir); }
-  void TearDown() override { fs::remove_all(dir); }
+  const test::ScratchFolder scratch{"poses"};
+  const fs::path& dir = scratch.made();
   std::string write(const std::string& name, const std::string& text) {
     std::ofstream((dir / name).string()) << text;
     return (dir / name).string();

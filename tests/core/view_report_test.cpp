@@ -76,8 +76,8 @@ TEST(ViewReport, ExplanationNamesTheInputAndTheResult) {
 
 // Many files: a corrupt one is reported by name and skipped, the good one's row kept, in file order.
 TEST(ViewReport, ManyFilesKeepTheGoodRowsAndNameTheBadFile) {
-  const auto dir = test::scratchPath("describe_files");
-  std::filesystem::create_directories(dir);
+  const test::ScratchFolder scratch("describe_files");
+  const auto& dir = scratch.made();
   const std::string good = (dir / "cube.pcd").string(), bad = (dir / "broken.pcd").string();
   saveCloud(good, test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))));
   std::ofstream(bad) << "# .PCD v0.7\nFIELDS x y\nnot a cloud\n";
@@ -91,7 +91,6 @@ TEST(ViewReport, ManyFilesKeepTheGoodRowsAndNameTheBadFile) {
   int calls = 0;
   std::mutex m;
   const DescribedFiles d = describeFiles({bad, good}, o, [&] { std::lock_guard<std::mutex> l(m); ++calls; });
-  std::filesystem::remove_all(dir);
 
   EXPECT_EQ(calls, 2);
   EXPECT_EQ(d.described, 1u);

@@ -52,12 +52,6 @@ void view(const fs::path& object, const std::string& stem, const std::vector<H5D
   writeH5((object / (stem + ".h5")).string(), datasets);
 }
 
-fs::path fresh(const std::string& name) {
-  const fs::path d = scratchPath(name);
-  fs::remove_all(d);
-  return d;
-}
-
 dataset::ImportReport run(const fs::path& src, const fs::path& out, const std::string& categories = "") {
   dataset::ImportOptions o;
   o.format = "bigbird";
@@ -70,7 +64,8 @@ dataset::ImportReport run(const fs::path& src, const fs::path& out, const std::s
 }  // namespace
 
 TEST(BigbirdImport, AViewsPointsAreMetresFromItsDepthAndIntrinsicsAndItsPoseFromTheTurntable) {
-  const fs::path d = fresh("bigbird_view"), obj = d / "src" / "mug_7";
+  const keyturn::test::ScratchFolder scratch("bigbird_view");
+  const fs::path& d = scratch.path, obj = d / "src" / "mug_7";
   fs::create_directories(obj);
   writeH5((obj / "calibration.h5").string(), calibrationDatasets({kCam}));
   for (int angle : {0, 3}) {
@@ -127,7 +122,8 @@ TEST(BigbirdImport, AViewsPointsAreMetresFromItsDepthAndIntrinsicsAndItsPoseFrom
 }
 
 TEST(BigbirdImport, CategoriesGiveTheClassAndAnObjectNotListedIsOneLine) {
-  const fs::path d = fresh("bigbird_categories");
+  const keyturn::test::ScratchFolder scratch("bigbird_categories");
+  const fs::path& d = scratch.path;
   for (const char* name : {"mug_7", "cup_2"}) {
     const fs::path obj = d / "src" / name;
     fs::create_directories(obj);
@@ -145,7 +141,8 @@ TEST(BigbirdImport, CategoriesGiveTheClassAndAnObjectNotListedIsOneLine) {
 }
 
 TEST(BigbirdImport, EachBadFileIsOneLineNamingItAndTheRestIsImported) {
-  const fs::path d = fresh("bigbird_bad"), src = d / "src", good = src / "good";
+  const keyturn::test::ScratchFolder scratch("bigbird_bad");
+  const fs::path& d = scratch.path, src = d / "src", good = src / "good";
   fs::create_directories(good);
   writeH5((good / "calibration.h5").string(), calibrationDatasets({kCam}));
   for (int angle = 0; angle <= 15; angle += 3) pose(good, angle, cameraFromTable(angle, kNp5ElevationDeg).inverse());
@@ -196,7 +193,8 @@ TEST(BigbirdImport, EachBadFileIsOneLineNamingItAndTheRestIsImported) {
 }
 
 TEST(BigbirdImport, ABadMaskIsOneLineAndItsViewNotImported) {
-  const fs::path d = fresh("bigbird_masks"), obj = d / "src" / "mug_7";
+  const keyturn::test::ScratchFolder scratch("bigbird_masks");
+  const fs::path& d = scratch.path, obj = d / "src" / "mug_7";
   fs::create_directories(obj / "masks");
   writeH5((obj / "calibration.h5").string(), calibrationDatasets({kCam}));
   std::vector<std::uint8_t> left(1280 * 1024, 0);

@@ -12,17 +12,12 @@
 
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/dataset/dataset_lock.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 
 namespace {
-
-fs::path freshRoot(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_lock_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
-  return root;
-}
 
 // The message of the DatasetBusyError that opening `root` for writing throws ("" when it opens).
 std::string refusal(const fs::path& root) {
@@ -37,7 +32,8 @@ std::string refusal(const fs::path& root) {
 }  // namespace
 
 TEST(DatasetLock, ASecondWriterInTheSameProcessIsRefusedNamingTheDatasetAndTheHolder) {
-  const fs::path root = freshRoot("same");
+  const keyturn::test::ScratchFolder scratch("lock_same");
+  const fs::path& root = scratch.path;
   {
     dataset::Dataset first(root.string());
     const std::string why = refusal(root);
@@ -51,7 +47,8 @@ TEST(DatasetLock, ASecondWriterInTheSameProcessIsRefusedNamingTheDatasetAndTheHo
 }
 
 TEST(DatasetLock, AWriterKilledWithSigkillLeavesTheLockFileButNotTheLock) {
-  const fs::path root = freshRoot("killed");
+  const keyturn::test::ScratchFolder scratch("lock_killed");
+  const fs::path& root = scratch.path;
   int ready[2];
   ASSERT_EQ(::pipe(ready), 0);
   const pid_t child = ::fork();
@@ -76,7 +73,8 @@ TEST(DatasetLock, AWriterKilledWithSigkillLeavesTheLockFileButNotTheLock) {
 }
 
 TEST(DatasetLock, VerifyTakesTheLockFileForTheDatasetsOwn) {
-  const fs::path root = freshRoot("verify");
+  const keyturn::test::ScratchFolder scratch("lock_verify");
+  const fs::path& root = scratch.path;
   { dataset::Dataset ds(root.string()); }
   ASSERT_TRUE(fs::exists(root / dataset::kLockFile));
   EXPECT_TRUE(dataset::Dataset::verify(root.string()).orphans.empty());

@@ -19,8 +19,8 @@ TEST(FeatureCacheFiles, TheCacheAndItsShardsAreNamedInTheDatasetsKeyturnFolder) 
 }
 
 TEST(FeatureCacheFiles, ShardsAreGroupedByTheirCountAndOtherCachesIgnored) {
-  const fs::path d = test::scratchPath("feature_cache_files");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("feature_cache_files");
+  const std::filesystem::path& d = scratch.path;
   EXPECT_TRUE(dataset::featureCacheShards(d.string(), "aaaa").empty());  // no folder: no shards
   fs::create_directories(d / ".keyturn");
   for (const char* f : {"features-aaaa.shard-2-of-2.csv", "features-aaaa.shard-1-of-2.csv", "features-aaaa.shard-1-of-3.csv",

@@ -9,15 +9,15 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/dataset/dataset.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 
 namespace {
 
-fs::path datasetWithTwoViews(const std::string& name) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_manifest_" + name + "_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+// ROOT (absent) made a dataset of two views; returns ROOT.
+const fs::path& datasetWithTwoViews(const fs::path& root) {
   dataset::Dataset ds(root.string());
   Cloud cloud;
   cloud.width = 2;
@@ -56,7 +56,8 @@ std::string refusal(const fs::path& root) {
 }  // namespace
 
 TEST(Manifest, CrlfEndingsAndAByteOrderMarkReadAsTheOriginal) {
-  const fs::path root = datasetWithTwoViews("crlf");
+  const keyturn::test::ScratchFolder scratch("manifest_crlf");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   const auto original = dataset::Dataset::readManifest(root.string());
   ASSERT_EQ(original.size(), 2u);
   writeText(root / "manifest.csv", "\xEF\xBB\xBF" + withCrlf(readText(root / "manifest.csv")));
@@ -82,7 +83,8 @@ TEST(Manifest, CrlfEndingsAndAByteOrderMarkReadAsTheOriginal) {
 }
 
 TEST(Manifest, AnotherHeaderIsRefusedWithTheReason) {
-  const fs::path root = datasetWithTwoViews("header");
+  const keyturn::test::ScratchFolder scratch("manifest_header");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   const std::string text = readText(root / "manifest.csv");
   const std::string rows = text.substr(text.find('\n') + 1);
   const std::string file = (root / "manifest.csv").string();
@@ -109,7 +111,8 @@ TEST(Manifest, AnotherHeaderIsRefusedWithTheReason) {
 // evaluate, train and describe --cache keep the features in DATASET/.keyturn/: keyturn's own file,
 // not an orphan of an interrupted capture.
 TEST(Manifest, TheFeatureCacheIsNoOrphan) {
-  const fs::path root = datasetWithTwoViews("cache");
+  const keyturn::test::ScratchFolder scratch("manifest_cache");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   fs::create_directories(root / ".keyturn");
   writeText(root / ".keyturn" / "features-0123456789abcdef.csv", "# keyturn-features 1\n");
   writeText(root / "box" / "stray.pcd", "x");
@@ -120,7 +123,8 @@ TEST(Manifest, TheFeatureCacheIsNoOrphan) {
 // A row whose file leaves the dataset folder is a bad row: verify must not open (and hash) a file
 // outside it, such as ../../../../etc/hostname (issue 35). The other rows are verified.
 TEST(Manifest, AFileOutsideTheDatasetIsABadRowAndTheRestIsVerified) {
-  const fs::path root = datasetWithTwoViews("outside");
+  const keyturn::test::ScratchFolder scratch("manifest_outside");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   const std::string sha = std::string(64, '0');
   std::ofstream(root / "manifest.csv", std::ios::app)
       << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,../../../../etc/hostname," << sha << "\n"
@@ -137,7 +141,8 @@ TEST(Manifest, AFileOutsideTheDatasetIsABadRowAndTheRestIsVerified) {
 // fuzz_dataset, 300 s pass (issue 35): a file name longer than the file system allows made
 // std::filesystem::exists throw in verify, which stopped the whole dataset ("unexpected failure").
 TEST(Manifest, AFileNameLongerThanTheFileSystemAllowsIsABadRowAndTheRestIsVerified) {
-  const fs::path root = datasetWithTwoViews("longname");
+  const keyturn::test::ScratchFolder scratch("manifest_longname");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,box/"
                                                       << std::string(300, 'a') << ".pcd," << std::string(64, '0') << "\n";
   const auto report = dataset::Dataset::verify(root.string());
@@ -153,7 +158,8 @@ TEST(Manifest, AFileNameLongerThanTheFileSystemAllowsIsABadRowAndTheRestIsVerifi
 // Past the component check, the whole path can still be refused by the system (ENAMETOOLONG past
 // PATH_MAX): that file is reported, not the dataset stopped.
 TEST(Manifest, APathTheSystemRefusesIsThatFilesProblem) {
-  const fs::path root = datasetWithTwoViews("longpath");
+  const keyturn::test::ScratchFolder scratch("manifest_longpath");
+  const fs::path& root = datasetWithTwoViews(scratch.path);
   std::string deep;
   for (int i = 0; i < 30; ++i) deep += std::string(200, 'd') + "/";
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,30,30.000,180.000,180.0000,2026-01-01T00:00:00.000Z,"

@@ -22,8 +22,8 @@ using test::writeText;
 // field the sidecar lacks stays empty (the camera's default applies: rig::readViewCamera), an imported
 // view records none, and a field of the wrong type is one line naming the file.
 TEST(SidecarCamera, TheCameraRecordedIsTheCameraReadBack) {
-  const fs::path d = keyturn::test::scratchPath("sidecars_camera");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("sidecars_camera");
+  const std::filesystem::path& d = scratch.path;
   dataset::Dataset ds((d / "ds").string());
   dataset::SidecarCamera cam;
   cam.device = "usb:4000123";

@@ -21,8 +21,8 @@ const char* kMatrix = "[[1,0,0,0.1],[0,1,0,0.2],[0,0,1,0.7],[0,0,0,1]]";
 }  // namespace
 
 TEST(Sidecars, ReadTheTransformOrNoneWhenUncalibrated) {
-  const fs::path d = keyturn::test::scratchPath("sidecars");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("sidecars");
+  const std::filesystem::path& d = scratch.path;
   const auto m = dataset::readViewTransform(writeText(d / "a.json", std::string("{\"camera_from_turntable\": ") + kMatrix + "}"));
   ASSERT_TRUE(m.has_value());
   EXPECT_DOUBLE_EQ((*m)(2, 3), 0.7);
@@ -38,8 +38,8 @@ TEST(Sidecars, ReadTheTransformOrNoneWhenUncalibrated) {
 }
 
 TEST(Sidecars, EachBadFileIsOneLineNamingIt) {
-  const fs::path d = keyturn::test::scratchPath("sidecars_bad");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("sidecars_bad");
+  const std::filesystem::path& d = scratch.path;
   const auto err = [&](const std::string& name, const std::string& text) {
     const std::string p = writeText(d / name, text);
     return test::errorOf([&] { dataset::readViewTransform(p); });

@@ -14,6 +14,7 @@
 #include "support/error_of.h"
 #include "keyturn/drivers/canopen_pose.h"
 #include "keyturn/sim/canopen_node_sim.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using keyturn::test::errorOf;
@@ -116,7 +117,8 @@ TEST(CanOpen, TurntableAxisInDegreesFromAnEncoder) {
 }
 
 TEST(CanOpen, AxesFileErrorsAreNamed) {
-  const auto p = (std::filesystem::temp_directory_path() / ("axes_" + std::to_string(::getpid()) + ".json")).string();
+  const keyturn::test::ScratchFolder scratch("canopen_axes");
+  const auto p = (scratch.made() / "axes.json").string();
   std::ofstream(p) << R"([{"name": "w", "node": 1}])";
   EXPECT_NE(errorOf([&] { CanOpenAxis::loadAll(p); }).find("axis 0: name must be x, y, z or turntable"), std::string::npos);
   std::ofstream(p) << R"([{"name": "x", "node": 200}])";

@@ -17,6 +17,7 @@
 #include "keyturn/drivers/modbus_turntable.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/turntable_sim.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using keyturn::test::errorOf;
@@ -276,8 +277,9 @@ TEST(ModbusTurntable, ReadOnlyEncoderRefusesToMove) {
 }
 
 TEST(ModbusTurntable, TheSimulatedTableWritesTheSharedWorld) {
+  const keyturn::test::ScratchFolder scratch("modbus_world");  // removed after the server below stops
   auto o = fastTable();
-  o.world_file = (std::filesystem::temp_directory_path() / ("keyturn_world_" + std::to_string(::getpid()) + ".json")).string();
+  o.world_file = (scratch.made() / "world.json").string();
   sim::TurntableServer server(o);
   auto table = connectTo(server);
   table->moveTo(135.0);

@@ -16,18 +16,13 @@
 
 #include "keyturn/drivers/openni2_camera.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 namespace keyturn {
 namespace {
 
 namespace fs = std::filesystem;
 using test::errorOf;
-
-struct TempDir {
-  fs::path path = fs::temp_directory_path() / ("keyturn-openni2-" + std::to_string(::getpid()));
-  TempDir() { fs::create_directories(path); }
-  ~TempDir() { fs::remove_all(path); }
-};
 
 // A simulated camera's configuration (libmesasr-sim's format, read by the simulated OpenNI2 driver too).
 std::string writeConfig(const fs::path& dir, const std::string& unplug_file) {
@@ -113,7 +108,8 @@ TEST(OpenNi2CameraDeathTest, TheSystemsDriversAreThereAndTheirDeviceComesFirst) 
 }
 
 TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
-  TempDir dir;
+  const keyturn::test::ScratchFolder dir("openni2");
+  dir.made();
   const std::string unplug = (dir.path / "unplugged").string();
   drivers::OpenNi2Options o;
   o.uri = "keyturn-sim://" + writeConfig(dir.path, unplug);
@@ -140,7 +136,8 @@ TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
 }
 
 TEST(OpenNi2Recordings, AnOniRecordedWithOpenNi2sRecorderPlaysBackTheSameFrames) {
-  TempDir dir;
+  const keyturn::test::ScratchFolder dir("openni2");
+  dir.made();
   const std::string oni = (dir.path / "take.oni").string();
   // Record with OpenNI2's own Recorder (as NiViewer or any OpenNI2 program would), keeping what the
   // stream delivered, by the device's timestamp.

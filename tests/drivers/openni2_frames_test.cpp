@@ -10,6 +10,7 @@
 
 #include "keyturn/drivers/openni2_camera.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 namespace keyturn {
 namespace {
@@ -80,8 +81,8 @@ TEST(OpenNi2Frames, ADepthBufferBecomesAnOrganizedCloudWithNoReturnAsNaN) {
 }
 
 TEST(OpenNi2Recordings, AMissingOrCorruptOniFileIsOneLineNamingIt) {
-  const std::filesystem::path dir = std::filesystem::temp_directory_path() / ("keyturn-oni-" + std::to_string(::getpid()));
-  std::filesystem::create_directories(dir);
+  const keyturn::test::ScratchFolder scratch("oni");
+  const std::filesystem::path& dir = scratch.made();
   drivers::OpenNi2Options o;
   o.oni_file = (dir / "missing.oni").string();
   EXPECT_EQ(errorOf([&] { drivers::OpenNi2Camera camera(o); }), o.oni_file + ": no such .oni recording");

@@ -15,6 +15,7 @@
 #include "keyturn/drivers/sr4000_camera.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/tof_view.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -26,9 +27,6 @@ namespace {
 class Sr4000SimTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = fs::temp_directory_path() / ("keyturn_sr4000_" + std::to_string(::getpid()) + "_" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
     useConfig(sim::MesaSrSimConfig());
     lib_ = MesaSrLibrary::load(KEYTURN_MESASR_SIM_PATH);
   }
@@ -47,7 +45,8 @@ class Sr4000SimTest : public ::testing::Test {
     return std::make_unique<Sr4000Camera>(lib_, Sr4000Connection::parse(how), o);
   }
 
-  fs::path dir_;
+  const keyturn::test::ScratchFolder scratch_{"sr4000"};
+  const fs::path& dir_ = scratch_.made();
   std::shared_ptr<MesaSrLibrary> lib_;
   std::vector<std::string> log_;
 };
@@ -67,7 +66,8 @@ TEST(MesaSrLibrary, WrongLibraryIsNamed) {
 }
 
 TEST(MesaSrSimConfig, IntegersThatDoNotFitAreNamedNotCast) {
-  const auto path = (fs::temp_directory_path() / ("keyturn_simcfg_" + std::to_string(::getpid()) + ".json")).string();
+  const keyturn::test::ScratchFolder scratch("simcfg");
+  const auto path = (scratch.made() / "sim.json").string();
   auto err = [&](const std::string& json) {
     std::ofstream(path) << json;
     return errorOf([&] { sim::MesaSrSimConfig::fromFile(path); });

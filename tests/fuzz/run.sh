@@ -21,6 +21,12 @@ if [ -n "${FUZZ_SECONDS:-}" ]; then runs=${2:--1}; else runs=${2:-4000}; fi
 here=$(cd "$(dirname "$0")" && pwd)
 if [ -n "${FUZZ_WORK:-}" ]; then out=$FUZZ_WORK; mkdir -p "$out"; else out=$(mktemp -d); fi
 out=$(cd "$out" && pwd)
+# The harnesses' own scratch (fuzz_file.h) goes to the work folder too: after a crash it stays with the input.
+mkdir -p "$out/tmp"
+export TMPDIR=$out/tmp
+# A work folder of our own (no FUZZ_WORK) goes when the run passes: kept with its logs and crash inputs when not.
+keep_work() { [ -n "${FUZZ_WORK:-}" ] || [ "${fail:-0}" -ne 0 ]; }
+trap 'keep_work || rm -rf "$out"' EXIT
 budget=()
 if [ -n "${FUZZ_SECONDS:-}" ]; then budget=(-max_total_time="$FUZZ_SECONDS"); fi
 pass=0; fail=0

@@ -50,12 +50,6 @@ ClassifierParams paramsFor(const std::string& kind) {
   return p;
 }
 
-fs::path tempDir() {
-  const fs::path d = keyturn::test::scratchPath("learning_test");
-  fs::create_directories(d);
-  return d;
-}
-
 }  // namespace
 
 class ClassifierKind : public ::testing::TestWithParam<std::string> {};
@@ -92,6 +86,7 @@ TEST_P(ClassifierKind, SameSeedSameModel) {
 }
 
 TEST_P(ClassifierKind, SavedModelPredictsIdentically) {
+  const keyturn::test::ScratchFolder scratch("learning_test");
   Matrix x, test;
   std::vector<int> y, y_test;
   blobs(30, 5, x, y);
@@ -104,7 +99,7 @@ TEST_P(ClassifierKind, SavedModelPredictsIdentically) {
   m.info.spec = {{"bins", "12"}, {"keypoints", "iss"}};
   m.classifier = makeClassifier(m.info.params);
   m.classifier->fit(x, y, 3);
-  const std::string dir = (tempDir() / ("model_" + GetParam())).string();
+  const std::string dir = (scratch.made() / ("model_" + GetParam())).string();
   saveModel(dir, m);
   EXPECT_FALSE(fs::exists(dir + ".tmp"));
   const Model back = loadModel(dir);
@@ -178,6 +173,7 @@ TEST(ModelFile, FeaturesComputedAnotherWayAreNamed) {
 }
 
 TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
+  const keyturn::test::ScratchFolder scratch("learning_test");
   for (const std::string kind : {"xgboost", "mlp"}) {
     Matrix x;
     std::vector<int> y;
@@ -189,7 +185,7 @@ TEST(ModelFile, WeightsThatDoNotMatchTheSidecarAreRefused) {
     m.info.inputs = 12;
     m.classifier = makeClassifier(m.info.params);
     m.classifier->fit(x, y, 3);
-    const fs::path dir = tempDir() / ("bad_" + kind);
+    const fs::path dir = scratch.made() / ("bad_" + kind);
     saveModel(dir.string(), m);
     // Claim 16 inputs in the sidecar: the weights were trained on 12.
     nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));

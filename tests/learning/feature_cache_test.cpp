@@ -68,8 +68,8 @@ std::vector<float> block(const FeatureTable& t, const FeatureRow& r, const std::
 }  // namespace
 
 TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
-  const fs::path root = keyturn::test::scratchPath("feature_cache_blocks");
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("feature_cache_blocks");
+  const std::filesystem::path& root = scratch.path;
   const auto views = writeViews(root);
   const DescriptorOptions o;
   const FeatureTable all = featureLayout(cacheBlocks(), o);
@@ -100,8 +100,8 @@ TEST(FeatureCache, SomeBlocksAreTheSameValuesAsTheWholeCache) {
 // The cache, train and classify describe a view as `keyturn describe` and the studio's
 // recogniser do: the same filtered points, K and PDFs for a full frame with its table.
 TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
-  const fs::path root = keyturn::test::scratchPath("feature_cache_describe");
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("feature_cache_describe");
+  const std::filesystem::path& root = scratch.path;
   const auto views = writeViews(root);
   DescriptorOptions o;
   o.features = {Feature::KPD2, Feature::KPA3, Feature::GKPD2};
@@ -133,8 +133,8 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_EQ(all.width(), 22 * 32 + 4 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);
 
-  const fs::path root = keyturn::test::scratchPath("feature_cache_refill");
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("feature_cache_refill");
+  const std::filesystem::path& root = scratch.path;
   auto views = writeViews(root);
   DescriptorOptions o;
   o.histogram.bins = 8;
@@ -152,8 +152,8 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_EQ(t3.rows[2].id, views[2].id);
 
   // Shards of another folder merge into the same table.
-  const fs::path sharded = keyturn::test::scratchPath("feature_cache_shards");
-  fs::remove_all(sharded);
+  const keyturn::test::ScratchFolder shards_scratch("feature_cache_shards");
+  const std::filesystem::path& sharded = shards_scratch.path;
   Counting shards;
   for (int s = 0; s < 2; ++s) describeCacheShard({sharded.string(), views, o, 1, &shards}, s, 2);
   EXPECT_EQ(shards.begun, 3u);
@@ -171,8 +171,8 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
 // describes in memory the blocks asked for and writes nothing while the cache lacks a view, then
 // reads the cache Fill wrote once it holds every view, values equal to those described.
 TEST(DatasetFeatures, NeverWritesTheCacheAndReadsItOnceFilled) {
-  const fs::path root = keyturn::test::scratchPath("dataset_features");
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("dataset_features");
+  const std::filesystem::path& root = scratch.path;
   const auto views = writeViews(root);
   const DescriptorOptions o;
   const FeatureCache c{root.string(), views, o, 2, nullptr};

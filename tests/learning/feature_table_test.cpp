@@ -36,18 +36,15 @@ FeatureTable sample(int first_view, int views) {
   return t;
 }
 
-std::string path(const std::string& name) {
-  const fs::path d = keyturn::test::scratchPath("feature_table_test");
-  fs::create_directories(d);
-  return (d / name).string();
-}
+std::string path(const fs::path& dir, const std::string& name) { return (dir / name).string(); }
 
 }  // namespace
 
 TEST(FeatureTable, RoundTripKeepsLabelsValuesAndMissingValues) {
+  const keyturn::test::ScratchFolder scratch("feature_table");
   const FeatureTable t = sample(0, 3);
-  saveFeatureTable(path("t.csv"), t);
-  const FeatureTable r = loadFeatureTable(path("t.csv"));
+  saveFeatureTable(path(scratch.made(), "t.csv"), t);
+  const FeatureTable r = loadFeatureTable(path(scratch.made(), "t.csv"));
   EXPECT_EQ(r.blocks, t.blocks);
   EXPECT_EQ(r.sizes, t.sizes);
   EXPECT_EQ(r.spec, t.spec);
@@ -106,8 +103,9 @@ TEST(FeatureTable, DatasetsTrainedOnTogetherKeepEveryRowAndRefuseOtherFeatures) 
 }
 
 TEST(FeatureTable, DamagedCachesNameTheLine) {
-  saveFeatureTable(path("ok.csv"), sample(0, 2));
-  std::ifstream in(path("ok.csv"));
+  const keyturn::test::ScratchFolder scratch("feature_table");
+  saveFeatureTable(path(scratch.made(), "ok.csv"), sample(0, 2));
+  std::ifstream in(path(scratch.made(), "ok.csv"));
   std::string text((std::istreambuf_iterator<char>(in)), {});
   struct Case {
     std::string from, to, expected;
@@ -123,11 +121,11 @@ TEST(FeatureTable, DamagedCachesNameTheLine) {
     const auto at = broken.find(c.from);
     ASSERT_NE(at, std::string::npos) << c.from;
     broken.replace(at, c.from.size(), c.to);
-    std::ofstream(path("bad.csv")) << broken;
-    const std::string msg = keyturn::test::errorOf([&] { loadFeatureTable(path("bad.csv")); });
+    std::ofstream(path(scratch.made(), "bad.csv")) << broken;
+    const std::string msg = keyturn::test::errorOf([&] { loadFeatureTable(path(scratch.made(), "bad.csv")); });
     EXPECT_NE(msg.find(c.expected), std::string::npos) << msg;
   }
-  std::ofstream(path("short.csv")) << text.substr(0, text.size() - 9);
-  EXPECT_NE(keyturn::test::errorOf([&] { loadFeatureTable(path("short.csv")); }).find("cells, the header has"),
+  std::ofstream(path(scratch.made(), "short.csv")) << text.substr(0, text.size() - 9);
+  EXPECT_NE(keyturn::test::errorOf([&] { loadFeatureTable(path(scratch.made(), "short.csv")); }).find("cells, the header has"),
             std::string::npos);
 }

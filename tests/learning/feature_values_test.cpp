@@ -50,8 +50,8 @@ std::string blockOf(const FeatureTable& t, std::size_t column) {
   return "?";
 }
 
-std::vector<LabelledView> views() {
-  const fs::path dir = keyturn::test::scratchPath("feature_values");
+// A simulated view written to DIR (made) and three real ones.
+std::vector<LabelledView> views(const fs::path& dir) {
   fs::create_directories(dir);
   sim::SceneView v;
   v.turntable_deg = 40;
@@ -70,7 +70,8 @@ std::vector<LabelledView> views() {
 TEST(FeatureValues, TheDefaultChainComputesWhatItsCacheVersionRecorded) {
   const DescriptorOptions o;
   const FeatureTable layout = featureLayout(keyturnBlocks(), o);
-  const std::vector<LabelledView> vs = views();
+  const keyturn::test::ScratchFolder scratch("feature_values");
+  const std::vector<LabelledView> vs = views(scratch.path);
   const std::vector<FeatureRow> rows = describeViews(vs, o, layout, 1, nullptr);
   ASSERT_EQ(rows.size(), vs.size());
 

@@ -296,7 +296,8 @@ TEST(OpenSetModel, KnnRelativeClassScalesSurviveTheModelFile) {
   o.methods = {"knn-relative"};
   const Model m = trainModel(tableOf(train), {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
   ASSERT_EQ(m.info.open_set.class_scale.size(), 6u);
-  const fs::path dir = keyturn::test::scratchPath("knn_relative_model");
+  const keyturn::test::ScratchFolder scratch("knn_relative_model");
+  const std::filesystem::path& dir = scratch.path;
   saveModel(dir.string(), m);
   const Model back = loadModel(dir.string());
   EXPECT_EQ(back.info.open_set.method, "knn-relative");
@@ -317,8 +318,8 @@ TEST(OpenSetModel, AModelWithoutOpenSetStaysClosedSet) {
   // The shipped studio model as it was before issue 34: its sidecar without open_set.
   const fs::path source = fs::path(KEYTURN_DATA_DIR) / "models/sim-objects";
   EXPECT_EQ(loadModel(source.string()).info.open_set.method, "knn-relative");
-  const fs::path dir = keyturn::test::scratchPath("closed_set_model");
-  fs::create_directories(dir);
+  const keyturn::test::ScratchFolder scratch("closed_set_model");
+  const std::filesystem::path& dir = scratch.made();
   nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(source / "model.json"));
   sidecar.erase("open_set");
   sidecar.erase("pose_references");

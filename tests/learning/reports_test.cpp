@@ -150,7 +150,8 @@ TEST(EvaluationReport, NestedValidationChoosesTheInformativeSetInEveryFold) {
   EXPECT_NE(report.markdown.find("kfold4, xgboost, `noise|kpd2`: `kpd2` in 4 folds"), std::string::npos)
       << report.markdown;
   EXPECT_NE(report.json.find("\"chosen\": \"kpd2\""), std::string::npos);
-  const std::string list = keyturn::test::scratchPath("nested_fixed_split.txt").string();
+  const keyturn::test::ScratchFolder scratch("nested_fixed_split");
+  const std::string list = (scratch.made() / "split.txt").string();
   std::ofstream(list) << t.rows[0].id << "\n";
   plan.protocols = {"fixed:" + list};  // one fold: nothing to choose on
   EXPECT_EQ(errorOf([&] { prepareEvaluation(plan, [&](int) { return t; }); }),

@@ -253,8 +253,8 @@ TEST(Fusion, PoseReferencesShareTheOpenSetsRowsInTheSidecar) {
   m.classifier = makeClassifier(info.params);
   Matrix x = refs.references;
   m.classifier->fit(x, refs.reference_class, 2);
-  const auto dir = keyturn::test::scratchPath("fusion_shared_rows");
-  std::filesystem::remove_all(dir);
+  const keyturn::test::ScratchFolder scratch("fusion_shared_rows");
+  const std::filesystem::path& dir = scratch.path;
   saveModel(dir.string(), m);
   const std::string sidecar = keyturn::test::readText(dir / "model.json");
   const auto j = nlohmann::json::parse(sidecar);

@@ -27,18 +27,14 @@ class OpenNI2Sim : public ::testing::Test {
  protected:
   void SetUp() override {
     ASSERT_EQ(OpenNI::initialize(), STATUS_OK) << OpenNI::getExtendedError();
-    dir_ = keyturn::test::scratchPath(::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::create_directories(dir_);
   }
-  void TearDown() override {
-    OpenNI::shutdown();
-    fs::remove_all(dir_);
-  }
+  void TearDown() override { OpenNI::shutdown(); }
   // A configuration file (MesaSrSimConfig's JSON) and the URI that names it.
   std::string uri(const std::string& json, const std::string& name = "sim.json") {
     return "keyturn-sim://" + keyturn::test::writeText(dir_ / name, json);
   }
-  fs::path dir_;
+  const keyturn::test::ScratchFolder scratch_{"openni2_sim"};
+  const fs::path& dir_ = scratch_.made();
 };
 
 std::vector<OniDepthPixel> pixels(const VideoFrameRef& f) {

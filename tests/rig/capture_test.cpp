@@ -16,6 +16,7 @@
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/turntable_sim.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -24,14 +25,7 @@ namespace {
 
 class SimulatedRig : public ::testing::Test {
  protected:
-  void SetUp() override {
-    dir_ = fs::temp_directory_path() /
-           ("keyturn_rig_" + std::to_string(::getpid()) + "_" +
-            ::testing::UnitTest::GetInstance()->current_test_info()->name());
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-    world_ = (dir_ / "world.json").string();
-  }
+  void SetUp() override { world_ = (dir_ / "world.json").string(); }
   void TearDown() override { ::unsetenv("MESASR_SIM_CONFIG"); }
 
   void start(sim::TurntableFaults faults = {}, sim::MesaSrSimFaults camera_faults = {}) {
@@ -70,7 +64,9 @@ class SimulatedRig : public ::testing::Test {
     return o;
   }
 
-  fs::path dir_;
+  // First: removed after the simulators below, which write into it, have stopped.
+  const test::ScratchFolder scratch_{"rig"};
+  const fs::path& dir_ = scratch_.made();
   std::string world_;
   std::unique_ptr<sim::TurntableServer> server_;
   std::unique_ptr<drivers::ModbusTurntable> table_;
@@ -206,8 +202,8 @@ drivers::TofFrame tinyFrame() {
 }  // namespace
 
 TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("ds");
+  const std::filesystem::path& root = scratch.path;
   dataset::Dataset ds(root.string());
   const drivers::TofFrame f = tinyFrame();
   for (double a : {0.0, 5.0, 10.0}) rig::writeFrameView(ds, {"box", "b1", "45", a}, dataset::ViewMetadata(), f);
@@ -226,8 +222,8 @@ TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
 }
 
 TEST(Dataset, TheStudiosSnapshotsAreTheDatasetsOwnNotOrphans) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_snap_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("snap");
+  const std::filesystem::path& root = scratch.path;
   dataset::Dataset ds(root.string());
   const drivers::TofFrame f = tinyFrame();
   rig::writeFrameView(ds, {"box", "b1", "45", 0.0}, dataset::ViewMetadata(), f);
@@ -244,8 +240,8 @@ TEST(Dataset, TheStudiosSnapshotsAreTheDatasetsOwnNotOrphans) {
 }
 
 TEST(Dataset, AnAppendCutOffByACrashIsDroppedOnReopen) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_ds_cut_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("ds_cut");
+  const std::filesystem::path& root = scratch.path;
   { dataset::Dataset ds(root.string()); }
   std::ofstream(root / "manifest.csv", std::ios::app) << "box,b1,45,45.000,0.000,0.0";  // no newline
   EXPECT_EQ(dataset::Dataset::verify(root.string()).bad_rows.size(), 1u);

@@ -15,8 +15,8 @@ using namespace keyturn;
 namespace fs = std::filesystem;
 
 TEST(CapturedViews, AFrameWrittenAsAViewReadsBackWithItsCamerasSettings) {
-  const fs::path d = test::scratchPath("captured_views");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("captured_views");
+  const std::filesystem::path& d = scratch.path;
   dataset::Dataset ds(d.string());
   drivers::TofFrame f;
   f.width = f.height = 2;

@@ -12,6 +12,7 @@
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/captured_views.h"
 #include "keyturn/rig/dataset_playback.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -47,10 +48,6 @@ drivers::TofFrame frame(int k) {
 class Playback : public ::testing::Test {
  protected:
   void SetUp() override {
-    root_ = (fs::temp_directory_path() / ("keyturn_playback_" + std::to_string(::getpid()) + "_" +
-                                          ::testing::UnitTest::GetInstance()->current_test_info()->name()))
-                .string();
-    fs::remove_all(root_);
     dataset::Dataset ds(root_);
     for (int k = 0; k < 4; ++k) {
       dataset::ViewMetadata m;
@@ -60,7 +57,6 @@ class Playback : public ::testing::Test {
     }
     stampViews({0.0, 0.25, 0.5, 0.75});
   }
-  void TearDown() override { fs::remove_all(root_); }
 
   // Rewrites the manifest's captured_at column (seconds after 2026-11-22T00:00:00Z); "" leaves no stamp.
   void stampViews(const std::vector<double>& seconds, bool blank = false) {
@@ -86,7 +82,8 @@ class Playback : public ::testing::Test {
     return std::make_shared<rig::Recording>(root_, rig::PlaybackOptions{rate, loop});
   }
 
-  std::string root_;
+  const keyturn::test::ScratchFolder scratch_{"playback"};
+  const std::string root_ = scratch_.path.string();
 };
 
 }  // namespace

@@ -17,18 +17,13 @@
 #include "keyturn/rig/dataset_simulation.h"
 #include "keyturn/dataset/sidecars.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
 using keyturn::test::errorOf;
 
 namespace {
-
-fs::path freshDir(const std::string& name) {
-  const fs::path d = fs::temp_directory_path() / ("keyturn_rig_sim_" + std::to_string(::getpid()) + "_" + name);
-  fs::remove_all(d);
-  return d;
-}
 
 rig::DatasetSimulation mugAt(const fs::path& out) {
   rig::DatasetSimulation s;
@@ -42,7 +37,8 @@ rig::DatasetSimulation mugAt(const fs::path& out) {
 }  // namespace
 
 TEST(DatasetSimulation, WritesEveryViewOnceAndResumes) {
-  const fs::path out = freshDir("resume");
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  const fs::path out = scratch.path / "resume";
   const rig::DatasetSimulation s = mugAt(out);
   EXPECT_EQ(s.views(), 6u);  // 1 object × 2 elevations × 3 angles
   std::size_t told = 0;
@@ -64,7 +60,8 @@ TEST(DatasetSimulation, WritesEveryViewOnceAndResumes) {
 // The training-side twin (simulate --jitter-*): each view its own elevation, roll, distance and
 // integration time, drawn from its identity alone, under the nominal view's label.
 TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
-  const fs::path out = freshDir("jitter");
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  const fs::path out = scratch.path / "jitter";
   rig::DatasetSimulation s = mugAt(out);
   s.elevations = {30};
   s.jitter.distance = 0.2;
@@ -111,13 +108,15 @@ TEST(DatasetSimulation, JitterGivesEachViewItsOwnCameraUnderItsNominalLabel) {
 }
 
 TEST(DatasetSimulation, AMissingMeshIsNamedWithItsObject) {
-  rig::DatasetSimulation s = mugAt(freshDir("mesh"));
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  rig::DatasetSimulation s = mugAt(scratch.path / "mesh");
   s.objects = {{"cup", "blue", "/nonexistent/cup.ply"}};
   EXPECT_EQ(errorOf([&] { s.checkMeshes("objects.csv"); }), "objects.csv: cup/blue: no mesh at /nonexistent/cup.ply");
 }
 
 TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
-  const fs::path dir = freshDir("devices");
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  const fs::path dir = scratch.path / "devices";
   rig::CaptureDevices d;
   d.sim.dir = (dir / ".sim").string();
   rig::CaptureRig simulated(d);
@@ -136,12 +135,13 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
 }
 
 TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
-  const fs::path empty = freshDir("empty");
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  const fs::path empty = scratch.path / "empty";
   { dataset::Dataset d(empty.string()); }  // dataset.json and an empty manifest, as a failed capture leaves them
   ASSERT_TRUE(fs::exists(empty));
   dataset::removeDatasetWithoutViews(empty.string());
   EXPECT_FALSE(fs::exists(empty));
-  const fs::path full = freshDir("full");
+  const fs::path full = scratch.path / "full";
   rig::DatasetSimulation s = mugAt(full);
   s.elevations = {30};
   rig::simulateDataset(s);
@@ -149,7 +149,7 @@ TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
   EXPECT_EQ(dataset::Dataset::readManifest(full.string()).size(), 3u);
   fs::remove_all(full);
   // A user's folder with files of its own, or a manifest keyturn did not write, is never removed.
-  const fs::path theirs = freshDir("theirs");
+  const fs::path theirs = scratch.path / "theirs";
   { dataset::Dataset d(theirs.string()); }
   std::ofstream(theirs / "notes.txt") << "mine";
   dataset::removeDatasetWithoutViews(theirs.string());
@@ -162,7 +162,8 @@ TEST(Dataset, AFolderWithoutViewsIsRemovedOneWithViewsKept) {
 }
 
 TEST(AxisCalibrationRun, TooFewViewsAndAnObjectThatIsNoTargetAreRefused) {
-  const fs::path out = freshDir("axis");
+  const keyturn::test::ScratchFolder scratch("rig_sim");
+  const fs::path out = scratch.path / "axis";
   rig::DatasetSimulation s = mugAt(out);
   s.elevations = {30};
   rig::simulateDataset(s);

@@ -22,22 +22,19 @@ using test::errorOf;
 class DeviceFactoryTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    dir_ = test::scratchPath("device_factory");
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
     // What an outside program would use; keyturn must not read it (nor change it).
     ::setenv("MESASR_SIM_CONFIG", (dir_ / "not-there.json").c_str(), 1);
   }
   void TearDown() override {
     ::unsetenv("MESASR_SIM_CONFIG");
-    fs::remove_all(dir_);
   }
   std::string config(const std::string& name, const std::string& json) {
     const fs::path p = dir_ / name;
     std::ofstream(p) << json;
     return p.string();
   }
-  fs::path dir_;
+  const test::ScratchFolder scratch_{"device_factory"};
+  const fs::path& dir_ = scratch_.made();
 };
 
 TEST_F(DeviceFactoryTest, TwoSimulatedCamerasWithTheirOwnConfigurationsInOneProcess) {

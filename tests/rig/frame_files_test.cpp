@@ -36,8 +36,8 @@ drivers::TofFrame frame() {
 }  // namespace
 
 TEST(FrameFiles, ThePcdReadsBackAsTheFrameAndThePngsLieBesideIt) {
-  const fs::path d = keyturn::test::scratchPath("frame_files");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("frame_files");
+  const std::filesystem::path& d = scratch.path;
   const drivers::TofFrame f = frame();
   const auto written = rig::writeFrameFiles((d / "view.pcd").string(), f);
   ASSERT_EQ(written.size(), 4u);
@@ -55,8 +55,8 @@ TEST(FrameFiles, ThePcdReadsBackAsTheFrameAndThePngsLieBesideIt) {
 }
 
 TEST(FrameFiles, AViewNotNamedPcdIsRefused) {
-  const fs::path d = keyturn::test::scratchPath("frame_files_bad");
-  fs::remove_all(d);
+  const keyturn::test::ScratchFolder scratch("frame_files_bad");
+  const std::filesystem::path& d = scratch.path;
   const std::string e = test::errorOf([&] { rig::writeFrameFiles((d / "view.ply").string(), frame()); });
   EXPECT_NE(e.find("view.ply: the view must be written as a .pcd file"), std::string::npos) << e;
 }

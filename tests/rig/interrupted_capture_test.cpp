@@ -10,6 +10,7 @@
 
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/rig/captured_views.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -40,8 +41,8 @@ std::size_t filesIn(const fs::path& dir) {
 }  // namespace
 
 TEST(InterruptedCapture, AResumeRemovesTheLeftoversAndRetakesTheViewCleanly) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_interrupted_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("interrupted");
+  const std::filesystem::path& root = scratch.path;
   const fs::path e30 = root / "mug/builtin/e30";
   {
     dataset::Dataset ds(root.string());
@@ -90,8 +91,8 @@ TEST(InterruptedCapture, AResumeRemovesTheLeftoversAndRetakesTheViewCleanly) {
 }
 
 TEST(InterruptedCapture, LeftoverTemporariesAloneLeaveTheViewsVerified) {
-  const fs::path root = fs::temp_directory_path() / ("keyturn_interrupted_only_" + std::to_string(::getpid()));
-  fs::remove_all(root);
+  const keyturn::test::ScratchFolder scratch("interrupted_only");
+  const std::filesystem::path& root = scratch.path;
   {
     dataset::Dataset d(root.string());
     rig::writeFrameView(d, {"mug", "builtin", "30", 0.0}, dataset::ViewMetadata(), frame(true, 1.f));

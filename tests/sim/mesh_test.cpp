@@ -6,6 +6,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -13,12 +14,6 @@ using namespace keyturn;
 namespace {
 const float kV[8][3] = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}, {0, 0, 2}, {1, 0, 2}, {1, 1, 2}, {0, 1, 2}};
 const int kQuads[6][4] = {{0, 3, 2, 1}, {4, 5, 6, 7}, {0, 1, 5, 4}, {1, 2, 6, 5}, {2, 3, 7, 6}, {3, 0, 4, 7}};
-
-fs::path dir() {
-  const fs::path d = fs::temp_directory_path() / ("keyturn_mesh_" + std::to_string(::getpid()));
-  fs::create_directories(d);
-  return d;
-}
 
 void expectBox(const sim::Mesh& m) {
   EXPECT_EQ(m.triangles.size(), 12u);
@@ -37,7 +32,8 @@ std::string errorOf(const std::string& path) {
 }  // namespace
 
 TEST(Mesh, ObjWithQuadFaces) {
-  const auto p = (dir() / "box.obj").string();
+  const keyturn::test::ScratchFolder scratch("mesh");
+  const auto p = (scratch.made() / "box.obj").string();
   std::ofstream f(p);
   for (auto& v : kV) f << "v " << v[0] << ' ' << v[1] << ' ' << v[2] << "\n";
   for (auto& q : kQuads) f << "f " << q[0] + 1 << ' ' << q[1] + 1 << ' ' << q[2] + 1 << ' ' << q[3] + 1 << "\n";
@@ -46,7 +42,8 @@ TEST(Mesh, ObjWithQuadFaces) {
 }
 
 TEST(Mesh, AsciiStl) {
-  const auto p = (dir() / "box.stl").string();
+  const keyturn::test::ScratchFolder scratch("mesh");
+  const auto p = (scratch.made() / "box.stl").string();
   std::ofstream f(p);
   f << "solid box\n";
   for (auto& q : kQuads)
@@ -62,7 +59,8 @@ TEST(Mesh, AsciiStl) {
 }
 
 TEST(Mesh, BinaryStl) {
-  const auto p = (dir() / "box_bin.stl").string();
+  const keyturn::test::ScratchFolder scratch("mesh");
+  const auto p = (scratch.made() / "box_bin.stl").string();
   std::string bytes(80, ' ');
   const std::uint32_t n = 12;
   bytes.append(reinterpret_cast<const char*>(&n), 4);
@@ -83,7 +81,8 @@ TEST(Mesh, BinaryStl) {
 }
 
 TEST(Mesh, OffWithComments) {
-  const auto p = (dir() / "box.off").string();
+  const keyturn::test::ScratchFolder scratch("mesh");
+  const auto p = (scratch.made() / "box.off").string();
   std::ofstream f(p);
   f << "OFF\n# a 1 x 1 x 2 box\n8 6 0\n";
   for (auto& v : kV) f << v[0] << ' ' << v[1] << ' ' << v[2] << "\n";
@@ -101,16 +100,17 @@ TEST(Mesh, ShippedPlyLoads) {
 }
 
 TEST(Mesh, BadFilesAreNamedErrors) {
-  const auto off = (dir() / "bad.off").string();
+  const keyturn::test::ScratchFolder scratch("mesh");
+  const auto off = (scratch.made() / "bad.off").string();
   std::ofstream(off) << "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 7\n";
   EXPECT_NE(errorOf(off).find("OFF face 0 refers to a missing vertex"), std::string::npos);
-  const auto huge = (dir() / "huge.off").string();
+  const auto huge = (scratch.made() / "huge.off").string();
   std::ofstream(huge) << "OFF\n2000000000 1 0\n";
   EXPECT_NE(errorOf(huge).find("more than the file can hold"), std::string::npos);
-  const auto txt = (dir() / "mesh.3ds").string();
+  const auto txt = (scratch.made() / "mesh.3ds").string();
   std::ofstream(txt) << "x";
   EXPECT_NE(errorOf(txt).find("unsupported mesh format '.3ds'"), std::string::npos);
-  const auto empty = (dir() / "empty.stl").string();
+  const auto empty = (scratch.made() / "empty.stl").string();
   std::ofstream(empty).close();
   EXPECT_NE(errorOf(empty).find("empty file"), std::string::npos);
 }

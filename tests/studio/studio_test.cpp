@@ -16,7 +16,6 @@
 #include <QScrollArea>
 #include <QScrollBar>
 #include <QSet>
-#include <QTemporaryDir>
 #include <QtTest>
 
 #include <algorithm>
@@ -29,6 +28,7 @@
 #include "keyturn/dataset/sidecars.h"
 #include "keyturn/studio/studio_window.h"
 #include "keyturn/studio/studio_rig_factory.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 
@@ -114,8 +114,14 @@ class StudioTest : public QObject {
   Q_OBJECT
 
  private:
+  // First: removed after the factory and the windows, which write into it, are gone.
+  const keyturn::test::ScratchFolder scratch_{"studio_test"};
   std::unique_ptr<StudioRigFactory> factory_;
-  QTemporaryDir dir_;
+
+  // NAME in the test's scratch folder.
+  QString file(const QString& name) const {
+    return QString::fromStdString((scratch_.made() / name.toStdString()).string());
+  }
 
   // A small recording of the power drill (12 views at 30°, every 30°), made on the simulated rig.
   QString recording_;
@@ -124,7 +130,7 @@ class StudioTest : public QObject {
     StudioOptions o;
     o.playback = {recording_.toStdString(), rate_fps, true};
     o.model = std::string(KEYTURN_DATA_DIR) + "/models/sim-objects";
-    o.settings_file = dir_.filePath("playback.ini").toStdString();
+    o.settings_file = file("playback.ini").toStdString();
     return o;
   }
 
@@ -140,13 +146,13 @@ class StudioTest : public QObject {
     o.simulated = true;
     o.sim_object = object;
     o.model = std::string(KEYTURN_DATA_DIR) + "/models/sim-objects";
-    o.settings_file = dir_.filePath("studio.ini").toStdString();
+    o.settings_file = file("studio.ini").toStdString();
     return o;
   }
 
  private slots:
   void initTestCase() {
-    recording_ = dir_.filePath("recording");
+    recording_ = file("recording");
     rig::DatasetSimulation sim;
     sim.out = recording_.toStdString();
     sim.objects = {{"drill", "ycb_035_power_drill", std::string(KEYTURN_DATA_DIR) + "/objects/drill__ycb_035_power_drill.ply"}};
@@ -267,7 +273,7 @@ class StudioTest : public QObject {
   }
 
   void capturesAShortSequenceThatVerifies() {
-    const QString dataset = dir_.filePath("captured");
+    const QString dataset = file("captured");
     StudioOptions o = simulated("ycb_025_mug");
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
@@ -296,7 +302,7 @@ class StudioTest : public QObject {
   }
 
   void anAxisCalibrationGoesIntoEveryViewAndTheDataset() {
-    const QString dataset = dir_.filePath("calibrated");
+    const QString dataset = file("calibrated");
     StudioOptions o = simulated("ycb_025_mug");
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
@@ -308,7 +314,7 @@ class StudioTest : public QObject {
     auto* start = w.findChild<QPushButton*>("captureStart");
     auto* eta = w.findChild<QLabel*>("captureEta");
     // A file that is not a calibration: refused, named, nothing captured.
-    const QString bad = dir_.filePath("bad.json");
+    const QString bad = file("bad.json");
     QFile(bad).open(QIODevice::WriteOnly);
     calibration->setText(bad);
     QTest::mouseClick(start, Qt::LeftButton);
@@ -317,7 +323,7 @@ class StudioTest : public QObject {
     QVERIFY(!QFile::exists(dataset + "/manifest.csv"));
     // A measured axis: camera 0.8 m in front of the table, turned; every view gets it composed
     // with its turntable angle.
-    const QString good = dir_.filePath("axis.json");
+    const QString good = file("axis.json");
     QFile f(good);
     QVERIFY(f.open(QIODevice::WriteOnly));
     f.write(R"({"format": "keyturn-axis-calibration", "version": 1,
@@ -337,7 +343,7 @@ class StudioTest : public QObject {
   }
 
   void pauseFreezesTheLiveViewAndSnapshotSavesTheFrame() {
-    const QString dataset = dir_.filePath("snap");
+    const QString dataset = file("snap");
     ObservedFactory observed(*factory_);
     StudioOptions o = playback(50);
     o.dataset = dataset.toStdString();
@@ -366,7 +372,7 @@ class StudioTest : public QObject {
   }
 
   void aPausedCaptureResumesWithTheMissingViewsOnly() {
-    const QString dataset = dir_.filePath("paused");
+    const QString dataset = file("paused");
     StudioOptions o = simulated("ycb_025_mug");
     o.dataset = dataset.toStdString();
     StudioWindow w(*factory_, o);
@@ -418,7 +424,7 @@ class StudioTest : public QObject {
 
   void aCameraThatCannotBeOpenedIsNamedInTheBanner() {
     StudioOptions o;
-    o.settings_file = dir_.filePath("eth.ini").toStdString();
+    o.settings_file = file("eth.ini").toStdString();
     StudioWindow w(*factory_, o);
     w.show();
     w.findChild<QComboBox*>("cameraKind")->setCurrentIndex(2);  // Ethernet
@@ -446,7 +452,7 @@ class StudioTest : public QObject {
   void theUsbListFollowsCamerasPluggedInAndOut() {
     ObservedFactory usb(*factory_);
     StudioOptions o;
-    o.settings_file = dir_.filePath("usb.ini").toStdString();
+    o.settings_file = file("usb.ini").toStdString();
     StudioWindow w(usb, o);
     w.show();
     auto* list = w.findChild<QComboBox*>("usbCameras");
@@ -531,7 +537,7 @@ class StudioTest : public QObject {
   }
 
   void settingsPersistAcrossSessions() {
-    const std::string ini = dir_.filePath("persist.ini").toStdString();
+    const std::string ini = file("persist.ini").toStdString();
     {
       StudioOptions o;
       o.settings_file = ini;

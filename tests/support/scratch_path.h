@@ -1,6 +1,8 @@
 #pragma once
 // A path under the temporary folder for one test: named by the test and this process, so suites
 // of two builds running at once on one machine never share (and delete) each other's files.
+// Every test's scratch goes through ScratchFolder (tests/structure/scratch_in_one_place.sh): ctest
+// gives the tests TMPDIR=BUILD/test-tmp and scratch.tmpdir_left_empty fails on what is left there.
 #include <unistd.h>
 
 #include <filesystem>
@@ -21,6 +23,11 @@ struct ScratchFolder {
   ~ScratchFolder() {
     std::error_code ignored;
     std::filesystem::remove_all(path, ignored);
+  }
+  // The folder, made (with its parents) when it is not there yet.
+  const std::filesystem::path& made() const {
+    std::filesystem::create_directories(path);
+    return path;
   }
   ScratchFolder(const ScratchFolder&) = delete;
   ScratchFolder& operator=(const ScratchFolder&) = delete;

@@ -10,6 +10,7 @@
 
 #include "keyturn/core/error.h"
 #include "support/error_of.h"
+#include "support/scratch_path.h"
 
 namespace fs = std::filesystem;
 using namespace keyturn;
@@ -32,8 +33,8 @@ std::pair<unsigned, unsigned> pngSize(const fs::path& p) {
 }  // namespace
 
 TEST(ReportPlots, EachPlotIsAPngOfItsSizeInItsSubFolder) {
-  const fs::path dir = fs::temp_directory_path() / ("keyturn_ui_plots_" + std::to_string(::getpid()));
-  fs::remove_all(dir);
+  const keyturn::test::ScratchFolder scratch("ui_plots");
+  const std::filesystem::path& dir = scratch.path;
   ReportPlots plots;
   CurvePlot curve;
   curve.file = "pdfs/a.png";
