@@ -13,6 +13,7 @@
 #include "keyturn/reconstruction/reconstruction.h"
 #include "keyturn/sim/mesh.h"
 #include "keyturn/sim/tof_view.h"
+#include "support/scratch_path.h"
 
 using namespace keyturn;
 using namespace keyturn::reconstruction;
@@ -44,8 +45,9 @@ const SimulatedTurn& turn() {
     SimulatedTurn s;
     s.mesh = sim::loadMesh(std::string(KEYTURN_DATA_DIR) + "/objects/drill__ycb_035_power_drill.ply");
     sim::TofViewRenderer renderer(s.mesh);
-    const std::string dir = (fs::temp_directory_path() / ("keyturn_reconstruction_test_" + std::to_string(::getpid()))).string();
-    fs::create_directories(dir);
+    // The suite's views, removed when the process ends.
+    static const keyturn::test::ScratchFolder folder("reconstruction_test");
+    const std::string dir = folder.made().string();
     Eigen::Matrix4d miss = Eigen::Matrix4d::Identity();
     miss.topLeftCorner<3, 3>() = Eigen::AngleAxisd(2 * M_PI / 180, Eigen::Vector3d(1, 1, 0).normalized()).toRotationMatrix();
     miss.topRightCorner<3, 1>() = Eigen::Vector3d(0.003, -0.004, 0);  // 5 mm
@@ -151,7 +153,8 @@ TEST(Reconstruction, WritesWhatReadPosesReadsBack) {
   o.registration.refine = false;
   o.poisson.depth = 6;
   const auto r = reconstruct(turn().views, o);
-  const std::string dir = (fs::temp_directory_path() / ("keyturn_reconstruction_out_" + std::to_string(::getpid()))).string();
+  const keyturn::test::ScratchFolder out("reconstruction_out");
+  const std::string dir = out.path.string();
   writeReconstruction(dir, r, "test");
   for (const char* f : {"cloud.ply", "mesh.ply", "poses.txt", "report.json"}) EXPECT_GT(fs::file_size(dir + "/" + f), 100u) << f;
   const auto back = readPoses(dir + "/poses.txt");
@@ -160,7 +163,6 @@ TEST(Reconstruction, WritesWhatReadPosesReadsBack) {
     EXPECT_EQ(back[i].file, r.views[i].file);
     EXPECT_LT((back[i].world_from_view - r.views[i].world_from_view).norm(), 1e-6);
   }
-  fs::remove_all(dir);
 }
 
 TEST(Reconstruction, ImpliedAxisOfATurn) {
