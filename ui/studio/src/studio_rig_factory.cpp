@@ -1,7 +1,5 @@
 #include "keyturn/studio/studio_rig_factory.h"
 
-#include <unistd.h>
-
 #include <filesystem>
 #include <fstream>
 
@@ -26,17 +24,13 @@ StudioRigFactory::StudioRigFactory(std::string objects_csv) {
     // Without the object list the simulated camera still has its built-in mug.
   }
   if (objects_.empty()) objects_.push_back({"mug", "builtin", "builtin:mug"});
-  files_.dir = (fs::temp_directory_path() / ("keyturn-studio-" + std::to_string(::getpid()))).string();
-  fs::create_directories(files_.dir);
+  files_.dir = folder_.path();
   sim::TurntableServerOptions table;  // the table's real-time motion
   table.world_file = files_.world();
   devices_ = std::make_unique<rig::DeviceFactory>(table);
 }
 
-StudioRigFactory::~StudioRigFactory() {
-  std::error_code ec;
-  fs::remove_all(files_.dir, ec);
-}
+StudioRigFactory::~StudioRigFactory() = default;  // the devices close before folder_ goes
 
 std::unique_ptr<drivers::TofCamera> StudioRigFactory::openCamera(const rig::CameraSpec& spec, Log log) {
   return devices_->openCamera(spec, std::move(log));

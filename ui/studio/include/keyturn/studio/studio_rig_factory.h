@@ -2,7 +2,7 @@
 // The studio's devices, opened by rig's device factory (rig/device_factory.h) as
 // the CLI opens them. What is the studio's own: the simulated rig's files in a
 // private runtime folder (the world the simulated camera and turntable share,
-// the camera's configuration, its unplug flag), the simulated objects to choose
+// the camera's configuration, its unplug flag: studio_runtime_folder.h), the simulated objects to choose
 // from, and USB and OpenNI2 discovery for the Devices panel.
 #include <mutex>
 
@@ -10,6 +10,7 @@
 #include "keyturn/rig/device_factory.h"
 #include "keyturn/rig/simulated_rig.h"
 #include "keyturn/studio/rig_factory.h"
+#include "keyturn/studio/studio_runtime_folder.h"
 
 namespace keyturn::studio {
 
@@ -31,6 +32,7 @@ class StudioRigFactory final : public RigFactory {
   const std::string& runtimeDir() const { return files_.dir; }
 
  private:
+  StudioRuntimeFolder folder_;  // first made, last removed: the simulated devices write into it
   std::vector<SimObject> objects_;
   rig::SimulatedRigFiles files_;
   std::unique_ptr<rig::DeviceFactory> devices_;  // its simulated turntable writes files_.world()
