@@ -13,7 +13,8 @@
 #                 to HEAD and run only `bash scripts/test.sh` (to finish a run that
 #                 was stopped during test.sh, without an hour of set-up again)
 #   --hardening-only  as --test-only, but only test.sh's second half,
-#                 `bash scripts/test-hardening.sh` (after a run whose first half passed)
+#                 `bash scripts/test-hardening.sh` (after a run whose first half passed),
+#                 preceded by install-deps as in test.sh
 #   WORK_DIR      where the root and the logs go (default /var/tmp/keyturn-fresh);
 #                 its old root is deleted first
 # It tests the committed HEAD, not uncommitted changes.
@@ -154,7 +155,8 @@ if [ "$setup_only" -eq 1 ]; then
   timed install-deps "bash scripts/install-deps.sh"
   say "packages installed in the root: $(chroot "$root" dpkg-query -W -f='${Status}\n' | grep -c 'install ok installed')"
 elif [ "$hardening_only" -eq 1 ]; then
-  timed test-hardening "bash scripts/test-hardening.sh"
+  # install-deps first, as test.sh does: the clone's HEAD may ask for packages the root lacks
+  timed test-hardening "bash scripts/install-deps.sh && bash scripts/test-hardening.sh"
 elif [ "$test_only" -eq 1 ]; then
   timed test "bash scripts/test.sh"
 else

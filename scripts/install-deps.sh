@@ -15,6 +15,9 @@ packages=(
   # llvm-symbolizer: LeakSanitizer's suppressions (tests/sanitizers/lsan.supp) match function
   # names, which only a symbolizer gives; without it the suppressed system leaks fail the run
   llvm-$KEYTURN_CLANG_VERSION
+  # Clang's OpenMP (libomp): the reconstruction plugin's find_package(OpenMP) fails without it
+  # under Clang (GCC brings its own libgomp), so a bare machine's hardening build did not configure
+  libomp-$KEYTURN_CLANG_VERSION-dev
   # point clouds (PCL pulls in Eigen, FLANN, Boost and VTK)
   libpcl-dev libeigen3-dev
   # ray casting for the simulated SR4000 views
@@ -80,6 +83,11 @@ check_commands() {
   done
   if [ ${#absent[@]} -ne 0 ]; then
     echo "install-deps: commands the scripts call are not on PATH: ${absent[*]}" >&2
+    exit 1
+  fi
+  # A compiler can be there and still lack a runtime the build asks for (libomp for Clang).
+  if ! printf 'int main(void) { return 0; }\n' | "$KEYTURN_CC" -fopenmp -x c - -o /dev/null 2> /dev/null; then
+    echo "install-deps: $KEYTURN_CC cannot build an OpenMP program (libomp-$KEYTURN_CLANG_VERSION-dev missing?)" >&2
     exit 1
   fi
 }
