@@ -1,6 +1,7 @@
 #!/usr/bin/env python3
 """The docs test on documents made for it: an unmarked example that needs hardware fails with its
 file and line; marked, it is listed as skipped with its reason; reduced, it runs the reduced form."""
+import os
 import subprocess
 import sys
 import tempfile
@@ -9,7 +10,7 @@ from pathlib import Path
 HERE = Path(__file__).resolve().parent
 
 
-def run(build, readme, docs=None):
+def run(build, readme, docs=None, setup=None, ci=False):
     with tempfile.TemporaryDirectory() as tmp:
         src = Path(tmp) / "src"
         (src / "docs").mkdir(parents=True)
@@ -17,8 +18,14 @@ def run(build, readme, docs=None):
         (src / "README.md").write_text(readme)
         for name, text in (docs or {}).items():
             (src / "docs" / name).write_text(text)
+        if setup is not None:  # the repository's scripts/install-deps.sh
+            (src / "scripts").mkdir()
+            (src / "scripts" / "install-deps.sh").write_text(setup)
+        env = {k: v for k, v in os.environ.items() if k != "CI"}
+        if ci:
+            env["CI"] = "true"
         p = subprocess.run([sys.executable, str(HERE / "run_examples.py"), "--source", str(src), "--build", build,
-                            "--work", str(Path(tmp) / "work"), "--no-checks"], capture_output=True, text=True)
+                            "--work", str(Path(tmp) / "work"), "--no-checks"], capture_output=True, text=True, env=env)
         return p.returncode, p.stdout + p.stderr
 
 
@@ -59,6 +66,17 @@ def main():
     expect(rc == 0 and "skipped (no Python module no_such_module_kt: optional)" in out and "README.md:6: ok" in out,
            "a block that needs an absent Python module is skipped, one whose module is there runs", out)
 
+    setup = "packages=(\n  python3-no_such_module_kt\n)\n"
+    rc, out = run(build, needs, setup=setup, ci=True)
+    expect(rc == 1 and "README.md:2: needs Python module no_such_module_kt, which scripts/install-deps.sh installs" in out,
+           "under CI=true, a block that needs a module the set-up installs fails when it cannot be imported", out)
+    rc, out = run(build, needs, setup=setup)
+    expect(rc == 0 and "skipped (no Python module no_such_module_kt: optional)" in out,
+           "outside CI the same block is skipped with its reason", out)
+    rc, out = run(build, needs, setup="packages=(\n  python3-no_such_module_kt_other\n)\n", ci=True)
+    expect(rc == 0 and "skipped (no Python module no_such_module_kt: optional)" in out,
+           "under CI=true a module the set-up does not install is still skipped", out)
+
     output = ("<!-- docs-test: setup echo set-up -->\n```sh\nprintf 'a\\nb\\nc\\nd\\n'\necho to-stderr >&2\n```\n\n"
               "<!-- docs-test: output -->\n```text\na\n…\nd\n```\n")
     rc, out = run(build, output)
@@ -70,7 +88,7 @@ def main():
 
     for f in failures:
         print("FAILED:", f)
-    print(f"{8 - len(failures)} passed, {len(failures)} failed")
+    print(f"{11 - len(failures)} passed, {len(failures)} failed")
     return 1 if failures else 0
 
 
