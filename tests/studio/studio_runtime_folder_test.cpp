@@ -66,8 +66,8 @@ TEST(StudioRuntimeFolder, AStudioKilledWithSigkillLeavesAFolderTheNextStudioRemo
 
 TEST(StudioRuntimeFolder, IsTheStudiosOwnWhileItRunsAndGoneAfter) {
   test::ScratchFolder temp("studio_runtime_folder_own");
-  const char* old_tmpdir = std::getenv("TMPDIR");
-  const std::string restore = old_tmpdir ? old_tmpdir : "";
+  // The studio makes its folder in the temporary folder: this test's scratch, for the test's length
+  // (the scratch's parent is the temporary folder the test started with).
   ::setenv("TMPDIR", temp.made().c_str(), 1);
   test::writeText(temp.path / "keyturn-studio-104" / "world.json", "{}\n");  // a killed studio's
   fs::path path;
@@ -81,8 +81,7 @@ TEST(StudioRuntimeFolder, IsTheStudiosOwnWhileItRunsAndGoneAfter) {
     EXPECT_TRUE(fs::is_directory(path));
   }
   EXPECT_FALSE(fs::exists(path));
-  if (old_tmpdir) ::setenv("TMPDIR", restore.c_str(), 1);
-  else ::unsetenv("TMPDIR");
+  ::setenv("TMPDIR", temp.path.parent_path().c_str(), 1);
 }
 
 }  // namespace
