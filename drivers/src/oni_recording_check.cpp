@@ -10,7 +10,6 @@
 // (the recorder leaves zeros there) is never read.
 #include "keyturn/drivers/oni_recording_check.h"
 
-#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <cstring>
@@ -143,6 +142,7 @@ struct Node {
   std::uint32_t type = 0, codec = 0, frames = 0;
   std::uint64_t seek_table = 0;
   bool ready = false, removed = false;
+  bool counted_at_data_begin = false;  // format 1.0.0.4: the frame count is in the data-begin record
   // The properties frames are sized by, as last recorded.
   std::uint32_t width = 0, height = 0;
   std::uint64_t pixel_format = 0, pixel_format_1 = 0, frame_bytes = 0, mode_count = 0;
@@ -235,7 +235,6 @@ class Walk {
     const std::uint64_t payload_at = at + fields_bytes;
     records_[start] = type;
     at += std::uint64_t(fields_bytes) + payload_bytes;
-    ++count_;
 
     switch (type) {
       case kNodeAdded1004:
@@ -258,7 +257,8 @@ class Walk {
       case kNodeDataBegin: {
         Node& n = live(node_id, rec, start);
         if (!generator(n)) throw Fail{"data begins for node '" + n.name + "', which makes no frames", start};
-        (void)f.get<std::uint32_t>("frame count");
+        const auto frames = f.get<std::uint32_t>("frame count");
+        if (n.counted_at_data_begin) n.frames = frames;  // as libOniFile reads such a node
         (void)f.get<std::uint64_t>("largest timestamp");
         data_begun_ = true;
         expectPayload(rec, payload_bytes, 0, start);
@@ -335,6 +335,7 @@ class Walk {
     n.name = f.name("node name");
     n.type = f.get<std::uint32_t>("node type");
     n.codec = f.get<std::uint32_t>("codec");
+    n.counted_at_data_begin = type == kNodeAdded1004;
     if (type != kNodeAdded1004) {
       n.frames = f.get<std::uint32_t>("frame count");
       (void)f.get<std::uint64_t>("first timestamp");
@@ -521,7 +522,7 @@ class Walk {
   std::vector<std::uint8_t> fields_;
   std::map<std::uint32_t, Node> nodes_;
   std::map<std::uint64_t, std::uint32_t> records_;  // every record's start and type
-  long count_ = 0, frames_ = 0;
+  long frames_ = 0;
 };
 
 }  // namespace
