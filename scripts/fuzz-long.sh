@@ -23,7 +23,7 @@ size() { find "$1" -type f -printf '%s\n' | awk '{ n++; s += $1 } END { printf "
 
 echo "fuzz-long: $seconds s per harness, seed $seed, commit $(git rev-parse --short HEAD), work $work"
 failed=0
-for target in ${FUZZ_TARGETS:-point_cloud mesh dataset configs learning chain model}; do
+for target in ${FUZZ_TARGETS:-point_cloud mesh dataset configs learning chain model oni}; do
   before=$(size "$corpus/$target")
   rc=0
   FUZZ_SECONDS=$seconds FUZZ_SEED=$seed FUZZ_TARGETS=$target FUZZ_WORK=$work \

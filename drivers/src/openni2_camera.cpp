@@ -14,6 +14,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/retry.h"
+#include "keyturn/drivers/oni_recording_check.h"
 
 namespace keyturn::drivers {
 namespace {
@@ -248,6 +249,8 @@ void OpenNi2Camera::open() {
   auto s = std::make_unique<Streams>();
   if (!options_.oni_file.empty()) {
     if (!std::ifstream(options_.oni_file).good()) throw Error(options_.oni_file + ": no such .oni recording");
+    // libOniFile trusts the file and crashes on a corrupt one: walked and checked first.
+    checkOniRecording(options_.oni_file);
     if (s->device.open(options_.oni_file.c_str()) != openni::STATUS_OK)
       throw Error(options_.oni_file + ": not a readable .oni recording (OpenNI2: " +
                   openNiError() + ")");

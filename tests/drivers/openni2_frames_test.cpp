@@ -89,8 +89,8 @@ TEST(OpenNi2Recordings, AMissingOrCorruptOniFileIsOneLineNamingIt) {
   o.oni_file = (dir / "corrupt.oni").string();
   std::ofstream(o.oni_file) << "not a recording, only words\n";
   const std::string corrupt = errorOf([&] { drivers::OpenNi2Camera camera(o); });
-  EXPECT_EQ(corrupt.rfind(o.oni_file + ": not a readable .oni recording (OpenNI2: ", 0), 0u) << corrupt;
-  EXPECT_EQ(corrupt.find('\n'), std::string::npos) << corrupt;
+  // Refused by keyturn's check of the container (drivers/oni_recording_check.h) before OpenNI2 reads it.
+  EXPECT_EQ(corrupt, o.oni_file + ": not a readable .oni recording (at byte 0: no NI10 file header)");
   std::filesystem::remove_all(dir);
 }
 

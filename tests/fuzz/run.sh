@@ -7,11 +7,12 @@
 # usage: tests/fuzz/run.sh BUILD_DIR [RUNS]
 #   RUNS          runs per harness (default 4000; unlimited when FUZZ_SECONDS is set); fuzz_chain
 #                 and fuzz_model run a quarter of it (each run describes or classifies a view:
-#                 10–20 ms under ASan, against well under 1 ms for a loader)
+#                 10–20 ms under ASan, against well under 1 ms for a loader), fuzz_oni a tenth
+#                 (a recording the check passes is played by OpenNI2: ~30 runs/s)
 #   FUZZ_SECONDS  time budget per harness, s (libFuzzer stops at RUNS or this, first)
 #   FUZZ_SEED     libFuzzer seed (default 1)
 #   FUZZ_MAX_LEN  longest input, bytes (default 16384)
-#   FUZZ_TARGETS  harnesses to run (default: all seven)
+#   FUZZ_TARGETS  harnesses to run (default: all eight)
 #   FUZZ_WORK     keep the work folder here (the corpus each run grew, logs, crashes)
 set -u
 build=$(cd "${1:?hardening build folder}" && pwd)
@@ -19,6 +20,9 @@ build=$(cd "${1:?hardening build folder}" && pwd)
 export KEYTURN_PLUGIN_PATH="$build/lib/keyturn"
 if [ -n "${FUZZ_SECONDS:-}" ]; then runs=${2:--1}; else runs=${2:-4000}; fi
 here=$(cd "$(dirname "$0")" && pwd)
+# System libraries' memory kept to exit (fuzz_oni: OpenNI2's libOniFile) is suppressed by name, as in
+# scripts/test-hardening.sh, when this runs on its own.
+export LSAN_OPTIONS=${LSAN_OPTIONS:-suppressions=$here/../sanitizers/lsan.supp}
 if [ -n "${FUZZ_WORK:-}" ]; then out=$FUZZ_WORK; mkdir -p "$out"; else out=$(mktemp -d); fi
 out=$(cd "$out" && pwd)
 # The harnesses' own scratch (fuzz_file.h) goes to the work folder too: after a crash it stays with the input.
@@ -30,13 +34,16 @@ trap 'keep_work || rm -rf "$out"' EXIT
 budget=()
 if [ -n "${FUZZ_SECONDS:-}" ]; then budget=(-max_total_time="$FUZZ_SECONDS"); fi
 pass=0; fail=0
-for target in ${FUZZ_TARGETS:-point_cloud mesh dataset configs learning chain model}; do
+for target in ${FUZZ_TARGETS:-point_cloud mesh dataset configs learning chain model oni}; do
   bin="$build/tests/fuzz/fuzz_$target"
   corpus="$out/$target"
   mkdir -p "$corpus"
   cp "$here/corpus/$target"/* "$corpus/"
   target_runs=$runs
-  case $target in chain|model) [ "$runs" -gt 0 ] && target_runs=$(( (runs + 3) / 4 )) ;; esac
+  case $target in
+    chain|model) [ "$runs" -gt 0 ] && target_runs=$(( (runs + 3) / 4 )) ;;
+    oni) [ "$runs" -gt 0 ] && target_runs=$(( (runs + 9) / 10 )) ;;
+  esac
   if (cd "$out" && "$bin" -seed="${FUZZ_SEED:-1}" -runs="$target_runs" "${budget[@]}" -max_len="${FUZZ_MAX_LEN:-16384}" \
         -rss_limit_mb=2048 -timeout=20 -print_final_stats=1 -artifact_prefix="$out/$target-" "$corpus" \
         > "$out/$target.log" 2>&1); then
