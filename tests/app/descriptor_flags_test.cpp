@@ -72,7 +72,7 @@ TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
   EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--pdf-smoothing", "--extent", "--no-filter", "--no-plane",
                                           "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
                                           "--graph-radius", "--gkpd1-sources", "--curvature-floor", "--samples-across", "--voxel-grid", "--voxel-points",
-                                          "--max-keypoints", "--budget-taper", "--refine-keypoints", "--osada-samples", "--seed",
+                                          "--max-keypoints", "--budget-taper", "--refine-keypoints", "--keypoint-placement", "--osada-samples", "--seed",
                                           "--low-keypoints"}));
 }
 
