@@ -10,9 +10,12 @@ natively and at ISS's keypoint count, once per ISS suppression radius given. The
 exactly by the pose list, so only the detectors' response to resampling and rotation is measured
 (not a second exposure's noise).
 
-Usage: scripts/real-surface-repeatability.py KEYTURN CROP_DIR OUT_DIR NMS [NMS ...]
+Usage: scripts/real-surface-repeatability.py [--detectors LIST] [--keypoints K] [--eps LIST]
+           KEYTURN CROP_DIR OUT_DIR NMS [NMS ...]
 Prints one Markdown table: the mean over objects of each detector's keypoints and relative
-repeatability at 1, 2 and 3 x resolution, native and at an equal budget.
+repeatability at each ε (default 1, 2 and 3 x resolution), native and at an equal budget (ISS's
+count, or K). --detectors defaults to iss,harris3d,sift3d,uniform (issue 49 adds iss-chain,
+iss-refined, iss-salient: the chain's keypoints as describe places them).
 """
 import importlib.util
 import json
@@ -56,6 +59,20 @@ def write_pair(crop, folder):
 
 
 def main(argv):
+    global DETECTORS
+    argv, eps, extra = list(argv), "1,2,3", []
+    while len(argv) > 1 and argv[1].startswith("--"):
+        flag, value = argv[1], argv[2]
+        del argv[1:3]
+        if flag == "--detectors":
+            DETECTORS = tuple(value.split(","))
+        elif flag == "--eps":
+            eps = value
+        elif flag == "--keypoints":
+            extra = ["--keypoints", value]
+        else:
+            raise SystemExit("unknown option " + flag)
+    n_eps = len(eps.split(","))
     if len(argv) < 5:
         raise SystemExit("usage: scripts/real-surface-repeatability.py KEYTURN CROP_DIR OUT_DIR NMS [NMS ...]")
     keyturn, crops, out, nms_values = argv[1], argv[2], argv[3], argv[4:]
@@ -66,7 +83,8 @@ def main(argv):
         write_pair(os.path.join(crops, name), folder)
         for nms in nms_values:
             run = subprocess.run([keyturn, "repeatability", os.path.join(folder, "poses.txt"), "--iss-nms", nms,
-                                  "--eps", "1,2,3", "--out", os.path.join(folder, "nms" + nms), "--json"],
+                                  "--detectors", ",".join(DETECTORS), "--eps", eps, *extra,
+                                  "--out", os.path.join(folder, "nms" + nms), "--json"],
                                  capture_output=True, text=True)
             if run.returncode != 0:
                 raise SystemExit("%s: keyturn repeatability failed: %s" % (name, run.stderr.strip()))
@@ -74,15 +92,17 @@ def main(argv):
         print("[%d/%d] %s" % (i + 1, len(names), name), file=sys.stderr, flush=True)
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(results, f)
-    print("| r_nms | detector | keypoints | rel@1 | rel@2 | rel@3 | rel@1 at ISS's K | rel@2 at ISS's K | rel@3 at ISS's K |")
-    print("|---|---|---|---|---|---|---|---|---|")
+    head = eps.split(",")
+    print("| r_nms | detector | keypoints | " + " | ".join("rel@" + e for e in head) + " | " +
+          " | ".join("rel@%s at equal K" % e for e in head) + " |")
+    print("|---|---|---|" + "---|" * (2 * n_eps))
     for nms in nms_values:
         runs = results[nms]
         for det in DETECTORS:
             d = [r["detectors"][det] for r in runs]
             k = statistics.mean(x["keypoints"] for x in d)
-            rel = [statistics.mean(x["relative"][e] for x in d) for e in range(3)]
-            eq = [statistics.mean(x["equal_k"]["relative"][e] for x in d) for e in range(3)]
+            rel = [statistics.mean(x["relative"][e] for x in d) for e in range(n_eps)]
+            eq = [statistics.mean(x["equal_k"]["relative"][e] for x in d) for e in range(n_eps)]
             print("| %s | %s | %.1f | %s | %s |" % (nms, det, k, " | ".join("%.3f" % v for v in rel),
                                                  " | ".join("%.3f" % v for v in eq)))
     overlap = statistics.median(r["overlap"]["median"] for r in results[nms_values[0]])

@@ -57,7 +57,8 @@ PreparedView prepareView(const Cloud& input, const DescriptorOptions& o) {
   PreparedView v;
   v.input_points = input.validCount();
   if (v.input_points == 0) throw EmptyViewError("no valid points (all NaN, infinite or beyond 1e+18 m of the origin)");
-  const bool keep_measured = o.refine.enabled && o.working.enabled;
+  const bool keep_measured =
+      (o.refine.enabled || o.placement.placement != KeypointPlacement::VoxelMeans) && o.working.enabled;
   Cloud measured;
   Cloud cloud = o.filter ? filterCloud(input, o.filter_options, &v.filter, &o.working, &v.working,
                                        keep_measured ? &measured : nullptr)
@@ -125,6 +126,8 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
     out.keypoint_index = keypoints;
     if (o.refine.enabled && measured && measured->size() >= 2)
       out.keypoints = refineKeypointsOnMeasuredPoints(*measured, out.keypoints, out.resolution, o.iss, o.refine);
+    else if (measured && measured->size() >= 2)
+      out.keypoints = placeKeypoints(*measured, out.keypoints, out.resolution, o.iss, o.placement);
     out.times.iss = clock.lap();
     if (out.keypointCount() < o.min_keypoints)
       throw EmptyViewError("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +

@@ -227,6 +227,16 @@ std::vector<DescriptorParameter> makeTable() {
                "0"};
   refine.written_when_set = true;
   t.push_back(refine);
+  DescriptorParameter placement{
+      "keypoint_placement",
+      "Where each keypoint is placed: means (the voxel mean ISS found it at), nearest (the measured point nearest "
+      "it) or salient (the most salient measured point near it, coarse to fine from cube moments; issue 49)",
+      Kind::Choice,
+      [](const DescriptorOptions& o) -> std::string { return keypointPlacementName(o.placement.placement); },
+      [](DescriptorOptions& o, const std::string& t) { o.placement.placement = parseKeypointPlacement(t); },
+      "means"};
+  placement.written_when_set = true;
+  t.push_back(placement);
   t.push_back(whole("osada_samples", "Samples per Osada shape distribution",
                     [](auto& o) -> auto& { return o.osada.samples; }, 1));
   t.push_back(whole("seed", "Seed of Osada's random sampling (and of the random keypoints and ESF)",

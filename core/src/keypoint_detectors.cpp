@@ -27,7 +27,10 @@ Detector parseDetector(const std::string& n) {
   if (n == "uniform") return Detector::Uniform;
   if (n == "iss-chain") return Detector::IssChain;
   if (n == "iss-refined") return Detector::IssRefined;
-  throw Error("unknown detector '" + n + "' (expected iss, harris3d, sift3d, uniform, iss-chain, iss-refined)");
+  if (n == "iss-nearest") return Detector::IssNearest;
+  if (n == "iss-salient") return Detector::IssSalient;
+  throw Error("unknown detector '" + n +
+              "' (expected iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient)");
 }
 
 std::string detectorName(Detector d) {
@@ -38,6 +41,8 @@ std::string detectorName(Detector d) {
     case Detector::Uniform: return "uniform";
     case Detector::IssChain: return "iss-chain";
     case Detector::IssRefined: return "iss-refined";
+    case Detector::IssNearest: return "iss-nearest";
+    case Detector::IssSalient: return "iss-salient";
   }
   return "?";
 }
@@ -114,7 +119,9 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
   switch (d) {
     case Detector::Iss:
     case Detector::IssChain:
-    case Detector::IssRefined: {
+    case Detector::IssRefined:
+    case Detector::IssNearest:
+    case Detector::IssSalient: {
       const RadiusSearch search(set);
       for (int i : detectIssKeypoints(set, search, res, o.iss).keypoints) out.push_back(set.points[i]);
       break;
@@ -157,7 +164,7 @@ std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet&
   }
   std::vector<double> score;
   double radius = 0;  // the detector's suppression radius, metres
-  if (d == Detector::Iss || d == Detector::IssChain || d == Detector::IssRefined) {
+  if (isIssOnSomeView(d)) {
     const RadiusSearch search(set);
     score = detectIssKeypoints(set, search, res, uncapped.iss).saliency;
     radius = o.iss.nms_radius * res;

@@ -11,6 +11,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
+#include "keyturn/core/keypoint_placement.h"
 #include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/string_format.h"
@@ -87,6 +88,7 @@ struct Loaded {
   double res = 0;
   PointSet working_set;  // the view at describe's working resolution (iss-chain only)
   double working_res = 0;
+  bool subsampled = false;  // describe keeps (and places keypoints on) the measured view only then
   int budget = 0;
   std::map<Detector, std::vector<Eigen::Vector3f>> native, equal;
   std::map<Detector, double> ms;
@@ -138,8 +140,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     data[i].set = PointSet::fromCloud(c);
     if (data[i].set.size() < 2) throw Error(views[i].file + ": fewer than 2 points left to detect keypoints on");
     data[i].res = cloudResolution(data[i].set);
-    const auto wants = [&](Detector d) { return std::find(o.detectors.begin(), o.detectors.end(), d) != o.detectors.end(); };
-    if (wants(Detector::IssChain) || wants(Detector::IssRefined)) {
+    if (std::any_of(o.detectors.begin(), o.detectors.end(), isChainDetector)) {
       // As describe prepares a view (prepareView): the filtered view at the working resolution,
       // its radii in multiples of the working spacing at least.
       WorkingResolutionReport w;
@@ -147,6 +148,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
       data[i].working_set = PointSet::fromCloud(c);
       if (w.off_pixel_rays) data[i].working_set.forgetPixels();
       data[i].working_res = std::max(cloudResolution(data[i].working_set), w.subsampled ? w.spacing : 0.0);
+      data[i].subsampled = w.subsampled;
     }
     st.mean_resolution_m += data[i].res / views.size();
     progress.step();
@@ -174,15 +176,23 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
     v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
     for (Detector d : o.detectors) {
-      const bool chain = d == Detector::IssChain || d == Detector::IssRefined;
+      const bool chain = isChainDetector(d);
       const PointSet& set = chain ? v.working_set : v.set;
       const double res = chain ? v.working_res : v.res;
-      // iss-refined: the chain's keypoints moved onto the measured points, as describe places them.
+      // The chain's keypoints placed on the measured points as describe places them: iss-chain with
+      // describe's default placement, iss-refined with --refine-keypoints, iss-nearest and
+      // iss-salient with --keypoint-placement.
       auto refined = [&](std::vector<Eigen::Vector3f> kp) {
-        if (d != Detector::IssRefined) return kp;
-        KeypointRefinementOptions r;
-        r.enabled = true;
-        return refineKeypointsOnMeasuredPoints(v.set, kp, v.working_res, o.detector.iss, r);
+        if (!chain || !v.subsampled) return kp;
+        if (d == Detector::IssRefined) {
+          KeypointRefinementOptions r;
+          r.enabled = true;
+          return refineKeypointsOnMeasuredPoints(v.set, kp, v.working_res, o.detector.iss, r);
+        }
+        KeypointPlacementOptions p = d == Detector::IssChain ? KeypointPlacementOptions() : o.placement;
+        if (d == Detector::IssNearest) p.placement = KeypointPlacement::Nearest;
+        if (d == Detector::IssSalient) p.placement = KeypointPlacement::Salient;
+        return placeKeypoints(v.set, kp, v.working_res, o.detector.iss, p);
       };
       const auto t0 = std::chrono::steady_clock::now();
       v.native[d] = refined(detectKeypoints(d, set, res, o.detector));

@@ -8,6 +8,9 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
+#include <algorithm>
+#include <ctime>
+#include <filesystem>
 #include <string>
 
 #include "keyturn/core/cloud_io.h"
@@ -19,6 +22,8 @@
 #include "keyturn/core/histogram.h"
 #include "keyturn/core/iss.h"
 #include "keyturn/core/keypoint_functions.h"
+#include "keyturn/core/keypoint_placement.h"
+#include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/learning/live_fusion.h"
@@ -220,6 +225,64 @@ static void BM_DescribeView(benchmark::State& s) {
   for (auto _ : s) benchmark::DoNotOptimize(describeView(fx().raw, o));
 }
 BENCHMARK(BM_DescribeView)->Unit(benchmark::kMillisecond);
+
+// Keypoint placement on the 38 real mOSD crops (issue 49's cost target: ≤ 2 ms a real view, median,
+// one thread): each view prepared and its chain keypoints found once; each run places them.
+// Arg: 0 nearest, 1 salient, 2 the refinement (--refine-keypoints 0.5). median_ms: the median over
+// views of each view's thread CPU time.
+struct PreparedCrop {
+  PreparedView view;
+  std::vector<Eigen::Vector3f> keypoints;
+  double resolution = 0;
+};
+static const std::vector<PreparedCrop>& realCrops() {
+  static const std::vector<PreparedCrop> crops = [] {
+    std::vector<std::string> files;
+    for (const auto& e : std::filesystem::directory_iterator(std::string(KEYTURN_REAL_DATA) + "/crop"))
+      if (e.path().extension() == ".pcd") files.push_back(e.path().string());
+    std::sort(files.begin(), files.end());
+    std::vector<PreparedCrop> out;
+    DescriptorOptions o;
+    o.placement.placement = KeypointPlacement::Salient;  // keeps the measured view
+    o.features = {Feature::KPD2};
+    for (const auto& f : files) {
+      PreparedCrop c;
+      c.view = prepareView(loadCloud(f), o);
+      const ViewDescriptor d = describeFilteredPoints(c.view.points, o, c.view.resolutionFloor());
+      for (int i : d.keypoint_index) c.keypoints.push_back(c.view.points.points[i]);
+      c.resolution = d.resolution;
+      if (c.view.measured.size() >= 2) out.push_back(std::move(c));
+    }
+    return out;
+  }();
+  return crops;
+}
+static double threadCpuMs() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return t.tv_sec * 1e3 + t.tv_nsec * 1e-6;
+}
+static void BM_KeypointPlacement(benchmark::State& s) {
+  const auto& crops = realCrops();
+  const IssOptions iss;
+  KeypointPlacementOptions p;
+  p.placement = s.range(0) == 0 ? KeypointPlacement::Nearest : KeypointPlacement::Salient;
+  KeypointRefinementOptions r;
+  r.enabled = true;
+  std::vector<double> each;
+  for (auto _ : s)
+    for (const auto& c : crops) {
+      const double t0 = threadCpuMs();
+      benchmark::DoNotOptimize(s.range(0) == 2
+                                   ? refineKeypointsOnMeasuredPoints(c.view.measured, c.keypoints, c.resolution, iss, r)
+                                   : placeKeypoints(c.view.measured, c.keypoints, c.resolution, iss, p));
+      each.push_back(threadCpuMs() - t0);
+    }
+  std::nth_element(each.begin(), each.begin() + static_cast<long>(each.size() / 2), each.end());
+  s.counters["median_ms"] = each.empty() ? 0.0 : each[each.size() / 2];
+  s.counters["views"] = static_cast<double>(crops.size());
+}
+BENCHMARK(BM_KeypointPlacement)->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond);
 
 // One simulated SR4000 frame (176 × 144, rays through the 177 × 145 pixel corners) of a
 // 10k-triangle YCB mesh on the turntable.

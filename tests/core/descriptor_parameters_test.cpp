@@ -21,6 +21,7 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
       if (p.name == "binning") return now == "hard" ? "linear" : "hard";
       if (p.name == "working_grid") return now == "object" ? "camera" : "object";
       if (p.name == "working_points") return now == "means" ? "thinned" : "means";
+      if (p.name == "keypoint_placement") return now == "means" ? "salient" : "means";
       ADD_FAILURE() << "no other value known for " << p.name;
       return now;
     }

@@ -10,6 +10,7 @@
 #include "keyturn/core/filter.h"
 #include "keyturn/core/geodesic.h"
 #include "keyturn/core/iss.h"
+#include "keyturn/core/keypoint_placement.h"
 #include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/shape_distributions.h"
 #include "keyturn/core/view_size.h"
@@ -23,6 +24,7 @@ struct DescriptorOptions {
   WorkingResolutionOptions working;  // applies with or without the filter
   IssOptions iss;
   KeypointRefinementOptions refine;  // keypoints moved onto the measured points (off by default)
+  KeypointPlacementOptions placement;  // keypoints placed on the measured points (voxel means by default)
   GraphOptions graph;
   OsadaOptions osada;
   HistogramOptions histogram;
@@ -49,7 +51,7 @@ struct StageTimes {
 // working resolution. The one path from a cloud to the points every tool describes.
 struct PreparedView {
   PointSet points;
-  PointSet measured;             // the filtered view before the working resolution: kept for refine only
+  PointSet measured;             // the filtered view before the working resolution: kept for refine and placement only
   std::size_t input_points = 0;  // valid points of the input
   FilterReport filter;           // steps empty when the filter was off
   WorkingResolutionReport working;
@@ -103,7 +105,7 @@ ViewDescriptor describeView(const Cloud& cloud, const DescriptorOptions& options
 // with_geodesic_paths: also hand back geodesic_paths (the graph is built for them when no
 // geodesic feature is asked for).
 // measured: the view before the working resolution (PreparedView::measured), where options.refine
-// places the keypoints; without it (or when empty) they stay on the prepared points.
+// and options.placement place the keypoints; without it (or when empty) they stay on the prepared points.
 ViewDescriptor describeFilteredPoints(const PointSet& filtered, const DescriptorOptions& options,
                                       double min_resolution = 0.0, bool with_geodesic_paths = false,
                                       const PointSet* measured = nullptr);

@@ -15,11 +15,18 @@ namespace keyturn {
 // (working_resolution.h), its radii in multiples of that view's resolution. The detectors here
 // treat it as Iss; the repeatability study hands it the working-resolution view. IssRefined is
 // IssChain's keypoints moved onto the measured points (keypoint_refinement.h), as the chain places
-// them when DescriptorOptions::refine is on.
-enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined };
+// them when DescriptorOptions::refine is on; IssNearest and IssSalient IssChain's keypoints placed
+// as DescriptorOptions::placement places them (keypoint_placement.h: nearest, salient). IssChain
+// itself is placed as describe's default placement does, so that it is what describe outputs.
+enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined, IssNearest, IssSalient };
 
-Detector parseDetector(const std::string& name);  // iss, harris3d, sift3d, uniform, iss-chain, iss-refined; throws keyturn::Error
+// iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient; throws keyturn::Error
+Detector parseDetector(const std::string& name);
 std::string detectorName(Detector d);
+// ISS, on the raw view or on the chain's (every detector but Harris3d, SIFT and uniform sampling).
+inline bool isIssOnSomeView(Detector d) { return d != Detector::Harris3d && d != Detector::Sift3d && d != Detector::Uniform; }
+// ISS on describe's working-resolution view, whatever its placement.
+inline bool isChainDetector(Detector d) { return isIssOnSomeView(d) && d != Detector::Iss; }
 
 struct DetectorOptions {
   IssOptions iss;             // radii in multiples of the resolution

@@ -17,6 +17,7 @@
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/keypoint_detectors.h"
+#include "keyturn/core/keypoint_placement.h"
 #include "keyturn/core/repeatability.h"
 #include "keyturn/core/working_resolution.h"
 
@@ -50,6 +51,7 @@ struct StudyOptions {
   bool force = false;                    // score even when the poses give no overlap
   DepthImageOptions depth;               // how depth-image views are read
   WorkingResolutionOptions working;      // the working resolution iss-chain detects on (describe's)
+  KeypointPlacementOptions placement;    // iss-nearest's and iss-salient's settings (placement aside)
 };
 
 // Index pairs (model, scene) within each group; datasets' views sorted by angle.
