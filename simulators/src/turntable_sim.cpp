@@ -139,7 +139,7 @@ std::string TurntableServer::endpoint() const {
 
 void TurntableServer::syncRegisters() {
   auto* map = static_cast<modbus_mapping_t*>(mapping_);
-  const auto s = model_.state(TurntableModel::Clock::now());
+  const auto s = model_.state(o_.clock ? o_.clock() : TurntableModel::Clock::now());
   const auto counts = static_cast<std::uint32_t>(std::llround(s.angle_deg / 360.0 * kCountsPerRev)) %
                       static_cast<std::uint32_t>(kCountsPerRev);
   map->tab_registers[kRegPosition] = static_cast<std::uint16_t>(counts >> 16);
@@ -155,7 +155,7 @@ void TurntableServer::applyCommands() {
   auto* map = static_cast<modbus_mapping_t*>(mapping_);
   const std::uint16_t cmd = map->tab_registers[kRegCommand];
   if (cmd == 0) return;
-  const auto now = TurntableModel::Clock::now();
+  const auto now = o_.clock ? o_.clock() : TurntableModel::Clock::now();
   const std::uint32_t target = (std::uint32_t(map->tab_registers[kRegTarget]) << 16) | map->tab_registers[kRegTarget + 1];
   if (cmd == 1) model_.moveTo(target / kCountsPerRev * 360.0, now);
   else if (cmd == 2) model_.home(now);

@@ -134,10 +134,15 @@ if [ -x "$studio" ] && command -v xvfb-run > /dev/null; then
   env -u LD_LIBRARY_PATH xvfb-run -a -s "-screen 0 1600x1000x24" "$studio" --camera openni2 --model "$data/models/sim-objects" \
     --settings "$work/studio.ini" --measure 3 --screenshot "$work/studio.png" > "$work/studio.json" 2> "$work/studio.err"
   check "studio --camera openni2 exits 0" test $? -eq 0
-  fps=$(python3 -c "import json,sys; print(int(json.load(open(sys.argv[1]))['camera_fps']))" "$work/studio.json" 2>/dev/null)
-  check "studio: the OpenNI2 camera live (${fps:-0} frames/s)" test "${fps:-0}" -ge 2
+  # Frames arrived and were recognised during the 3 s measured. How many a second is the machine's
+  # load (5 frames/s was loosened to 2 after flakes, issue 51): a rate, measured in the benchmarks
+  # (keyturn-studio --measure, docs/benchmarks.md), not asserted here.
+  rates=$(python3 -c "import json,sys; d=json.load(open(sys.argv[1])); print(d['camera_fps'], d['recognition_fps'])" \
+    "$work/studio.json" 2>/dev/null)
+  check "studio: the OpenNI2 camera live, its frames recognised (${rates:-none} frames/s)" \
+    python3 -c "import sys; c, r = map(float, sys.argv[1:3]); sys.exit(not (c > 0 and r > 0))" ${rates:-0 0}
   check "studio: screenshot written" test -s "$work/studio.png"
 else
-  echo "SKIPPED: the studio under Xvfb (keyturn-studio or xvfb-run missing)"
+  skip yes "the studio under Xvfb (keyturn-studio or xvfb-run missing)"
 fi
 finish

@@ -128,11 +128,13 @@ if [ -n "$STUDIO" ]; then
   check "studio: Ctrl-C during start-up exits 0 (rc $rc)" test "$rc" -eq 0
   check "studio: settings saved on Ctrl-C" grep -q "geometry" "$work/studio.ini"
   # From the close (the settings written) to the exit: devices closed, workers joined (the recognition
-  # workers finish the frame they hold). Not a speed target (about 0.2 s idle, 4.4 s at load 11, 12.7 s
-  # at load 29 on 2 cores): a bound that only a studio waiting on a worker that never returns can exceed.
+  # workers finish the frame they hold, so the time is the machine's load: about 0.2 s idle, 4.4 s at
+  # load 11, 12.7 s at load 29 on 2 cores). Issue 51: a 3 s bound, loosened to 20 s after flakes, only
+  # measured that load; a studio waiting on a worker that never returns never exits, and the wait above
+  # then ends at ctest's time limit, a failure. The time is shown, not asserted.
   ms=$(python3 -c 'import os, sys; print(int((float(sys.argv[2]) - os.stat(sys.argv[1]).st_mtime) * 1000))' \
     "$work/studio.ini" "$exited" 2> /dev/null)
-  check "studio: exits after closing its window, not hanging (${ms:-?} ms)" test "${ms:-20000}" -lt 20000
+  check "studio: exited after closing its window (${ms:-?} ms from the close)" test -n "$exited" -a -n "$ms"
   check "studio: its temporary folder is gone" test ! -e "${TMPDIR:-/tmp}/keyturn-studio-$pid"
 fi
 

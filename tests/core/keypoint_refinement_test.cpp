@@ -115,12 +115,15 @@ TEST(KeypointRefinement, ARigidMotionMovesTheRefinedKeypointsWithTheView) {
   const auto [on_means, k_plain] = same(plain);
   EXPECT_EQ(k, k_plain);
   // A voxel mean moves a little when a point crosses a face under the float rounding of the moved
-  // coordinates (the chain's own rigid-motion residue, docs/descriptors.md): refinement adds none
-  // (on this crop 58 of 63 either way).
+  // coordinates (the chain's own rigid-motion residue, docs/descriptors.md): refinement adds none.
+  // Issue 51: the bound was k - 6, written against one measurement. This move keeps 58 of 64 on every
+  // run (the chain is deterministic); 8 moves of this size (0-7 mm per axis, 2026-12-06) keep 56, 58,
+  // 58, 58, 58, 59, 61, 61 of 64 on the means, and refinement the same number each time. The bar is
+  // this move's own count, not a share of k.
   RecordProperty("moved_with_view", refined);
   RecordProperty("on_means", on_means);
   EXPECT_GE(refined, on_means) << refined << " of " << k << " moved with the view (on the means: " << on_means << ")";
-  EXPECT_GE(refined, k - 6);
+  EXPECT_GE(on_means, 58) << on_means << " of " << k;
 }
 
 TEST(KeypointRefinement, TheRepeatabilityStudyNamesItsDetector) {

@@ -2,6 +2,7 @@
 // libmodbus TCP on loopback and RTU on a pseudo-terminal.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
 #include <cmath>
 #include <filesystem>
@@ -134,22 +135,41 @@ TEST(ModbusEndpoint, ParsesTcpAndRtu) {
   EXPECT_THROW(ModbusEndpoint::parse("can:can0"), Error);
 }
 
+// The move on the simulator's clock, set by the test: each read reports the instant the test chose,
+// however late the machine answers (a read right after moveTo on the steady clock could come after the
+// whole 0.37 s move on a loaded machine).
 TEST(ModbusTurntable, MovesOverTcpWithARealisticProfile) {
-  sim::TurntableServer server(fastTable());
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<long> at_us{0};
+  sim::TurntableServerOptions o = fastTable();
+  o.clock = [&] { return start + std::chrono::microseconds(at_us.load()); };
+  sim::TurntableServer server(o);
   auto table = connectTo(server);
   EXPECT_NEAR(table->read().turntable_deg, 0.0, 1e-9);
-  const auto t0 = Clock::now();
   table->moveTo(90.0);
-  const Pose mid = table->read();
-  EXPECT_TRUE(mid.moving);
-  EXPECT_FALSE(mid.in_position);
-  const Pose end = waitInPosition(*table);
-  const double took = std::chrono::duration<double>(Clock::now() - t0).count();
+  // 360°/s, 3600°/s²: 0.1 s ramps (18° each) and 0.15 s at full speed, arriving at 0.35 s; then 0.02 s
+  // of settling jitter (±0.01°).
+  const Pose begun = table->read();
+  EXPECT_TRUE(begun.moving);
+  EXPECT_FALSE(begun.in_position);
+  EXPECT_NEAR(begun.turntable_deg, 0.0, 1e-9);
+  const auto readAt = [&](double s) {
+    at_us = std::lround(s * 1e6);
+    return table->read();
+  };
+  const Pose ramp = readAt(0.05);  // half the ramp: 0.5 · 3600 · 0.05² = 4.5°
+  EXPECT_TRUE(ramp.moving);
+  EXPECT_NEAR(ramp.turntable_deg, 4.5, 0.01);
+  const Pose cruise = readAt(0.2);  // 18° + 360 · 0.1 = 54°
+  EXPECT_TRUE(cruise.moving);
+  EXPECT_NEAR(cruise.turntable_deg, 54.0, 0.01);
+  const Pose settling = readAt(0.36);
+  EXPECT_FALSE(settling.moving);
+  EXPECT_FALSE(settling.in_position);
+  EXPECT_NEAR(settling.turntable_deg, 90.0, 0.011);
+  const Pose end = readAt(0.38);
   EXPECT_TRUE(end.in_position);
   EXPECT_NEAR(end.turntable_deg, 90.0, 0.011);
-  // 360°/s, 3600°/s²: 0.1 s ramps and 0.15 s at full speed, plus 0.02 s settling. No upper bound:
-  // a loaded machine may poll late; arriving at all is end.in_position (within waitInPosition's 3 s).
-  EXPECT_GT(took, 0.33);
 }
 
 TEST(ModbusTurntable, InPositionIsNeverPairedWithAStaleAngle) {

@@ -15,7 +15,6 @@ import os
 import re
 import subprocess
 import sys
-import time
 
 
 def write_world(path, degrees):
@@ -29,7 +28,7 @@ def main():
     ap = argparse.ArgumentParser()
     ap.add_argument("program")
     ap.add_argument("--work", required=True)
-    ap.add_argument("--seconds", type=float, default=6.0)
+    ap.add_argument("--frames", type=int, default=40, help="depth frames before the turn, and after it")
     ap.add_argument("--angles", type=float, nargs=2, default=[0.0, 270.0])
     ap.add_argument("--colour", action="store_true", help="expect colour lines too")
     args = ap.parse_args()
@@ -42,17 +41,32 @@ def main():
         json.dump({"mesh": "builtin:mug", "distance": 0.7, "world": "world.json", "seed": 5}, f)
     env = dict(os.environ, KEYTURN_OPENNI2_SIM_CONFIG=config)
 
-    proc = subprocess.Popen([os.path.abspath(args.program)], stdin=subprocess.PIPE, stdout=subprocess.PIPE,
-                            stderr=subprocess.STDOUT, env=env, cwd=args.work)
-    time.sleep(args.seconds / 2)
+    # Line-buffered (stdbuf), so the frames are counted as the sample prints them: the world turns
+    # after so many depth frames, and the key is pressed after so many more (no sleep guessing how
+    # many a loaded machine delivered by then).
+    proc = subprocess.Popen(["stdbuf", "-oL", os.path.abspath(args.program)], stdin=subprocess.PIPE,
+                            stdout=subprocess.PIPE, stderr=subprocess.STDOUT, env=env, cwd=args.work)
+    printed = []
+    depth_line = re.compile(rb"^\[(\d+)\]\s+(\d+)\s*$")
+
+    def read_depth_frames(n):
+        seen = 0
+        while seen < n:
+            line = proc.stdout.readline()
+            if not line:
+                return  # the sample ended: what it printed is judged below
+            printed.append(line)
+            seen += bool(depth_line.match(line))
+
+    read_depth_frames(args.frames)
     write_world(world, args.angles[1])
-    switched = time.monotonic()
-    time.sleep(args.seconds / 2)
+    read_depth_frames(args.frames)
     try:
         out, _ = proc.communicate(b"q", timeout=30)
     except subprocess.TimeoutExpired:
         proc.kill()
         sys.exit("FAIL: %s did not stop after a key press" % args.program)
+    out = b"".join(printed) + out
     text = out.decode(errors="replace")
     if proc.returncode != 0:
         sys.exit("FAIL: %s exited %d:\n%s" % (args.program, proc.returncode, text[-2000:]))

@@ -14,6 +14,7 @@
 #include <QLineEdit>
 #include <QPushButton>
 #include <QScrollArea>
+#include <QScopeGuard>
 #include <QScrollBar>
 #include <QSet>
 #include <QtTest>
@@ -21,9 +22,15 @@
 #include <algorithm>
 #include <cmath>
 #include <atomic>
+#include <condition_variable>
+#include <limits>
+#include <map>
+#include <mutex>
 #include <utility>
 
 #include "keyturn/dataset/dataset.h"
+#include "keyturn/learning/recognizer.h"
+#include "keyturn/rig/dataset_playback.h"
 #include "keyturn/rig/dataset_simulation.h"
 #include "keyturn/dataset/sidecars.h"
 #include "keyturn/studio/studio_window.h"
@@ -43,14 +50,38 @@ int waitMs(int ms) {
 using namespace keyturn::studio;
 
 namespace {
+// How many frames a camera may acquire: a test that needs every frame recognised lets the next one
+// through only after the last one's result arrived (no frame dropped, whatever the machine's load).
+class FrameGate {
+ public:
+  void allow(long frames) {
+    {
+      std::lock_guard<std::mutex> l(mutex_);
+      allowed_ = frames;
+    }
+    opened_.notify_all();
+  }
+  void open() { allow(std::numeric_limits<long>::max()); }
+  void waitToAcquire(long acquired) {
+    std::unique_lock<std::mutex> l(mutex_);
+    opened_.wait(l, [&] { return acquired < allowed_; });
+  }
+
+ private:
+  std::mutex mutex_;
+  std::condition_variable opened_;
+  long allowed_ = std::numeric_limits<long>::max();
+};
+
 // Counts the frames a camera delivers, so a test waits on frames rather than on the clock.
 class CountedCamera final : public drivers::TofCamera {
  public:
-  CountedCamera(std::unique_ptr<drivers::TofCamera> camera, std::atomic<long>& acquired)
-      : camera_(std::move(camera)), acquired_(acquired) {}
+  CountedCamera(std::unique_ptr<drivers::TofCamera> camera, std::atomic<long>& acquired, FrameGate& gate)
+      : camera_(std::move(camera)), acquired_(acquired), gate_(gate) {}
   void configure(const drivers::TofSettings& s) override { camera_->configure(s); }
   drivers::TofSettings settings() const override { return camera_->settings(); }
   drivers::TofFrame acquire() override {
+    gate_.waitToAcquire(acquired_);
     drivers::TofFrame f = camera_->acquire();
     ++acquired_;
     return f;
@@ -61,6 +92,7 @@ class CountedCamera final : public drivers::TofCamera {
  private:
   std::unique_ptr<drivers::TofCamera> camera_;
   std::atomic<long>& acquired_;
+  FrameGate& gate_;
 };
 
 // The studio's own devices, observed: frames acquired and camera opens counted, and the USB bus
@@ -75,10 +107,11 @@ class ObservedFactory final : public RigFactory {
   }
   int scans = 0, polls = 0;
   std::atomic<long> acquired{0}, opens{0};
+  FrameGate gate;  // open unless a test closes it
 
   std::unique_ptr<drivers::TofCamera> openCamera(const rig::CameraSpec& r, Log log) override {
     ++opens;
-    return std::make_unique<CountedCamera>(real_.openCamera(r, std::move(log)), acquired);
+    return std::make_unique<CountedCamera>(real_.openCamera(r, std::move(log)), acquired, gate);
   }
   std::unique_ptr<drivers::PoseSource> openPose(const rig::PoseSpec& r, Log log) override {
     return real_.openPose(r, std::move(log));
@@ -480,12 +513,8 @@ class StudioTest : public QObject {
     StudioWindow w(observed, playback(25));
     w.show();
     QTRY_COMPARE_WITH_TIMEOUT(w.recognisedClass(), QString("ycb_035_power_drill"), waitMs(20000));
-    QTRY_VERIFY_WITH_TIMEOUT(w.rates().results >= 20, waitMs(20000));
-    // The built-in model names 10 of the recording's 12 views (120° and 270° not: `keyturn classify`),
-    // so 20 consecutive results agree 0.80–0.85 when no frame is dropped; which frames a slow machine
-    // drops decides which views are recognised (0.75 seen on a fresh machine, 0.65 under ASan there).
-    // The bar is a majority: the drill wins most results, far above chance (1/15).
-    QVERIFY2(w.recognisedAgreement() > 0.5, qPrintable(QString::number(w.recognisedAgreement())));
+    // Live, frames are dropped as the machine's load decides, so the agreement here is not asserted:
+    // recognisesEveryRecordedViewAsTheModelDoes feeds every frame and asserts it.
     QVERIFY2(w.bannerText().isEmpty(), qPrintable(w.bannerText()));
     // More frames than the recording holds: it loops.
     QTRY_VERIFY_WITH_TIMEOUT(observed.acquired > 12, waitMs(10000));
@@ -512,6 +541,48 @@ class StudioTest : public QObject {
     const long acquired = observed.acquired;
     QTRY_VERIFY_WITH_TIMEOUT(framesDelivered(observed, acquired, 15), waitMs(10000));
     QVERIFY2(std::abs(angle->text().chopped(1).toDouble() - 90) < 0.2, qPrintable(angle->text()));
+  }
+
+  // Issue 51: the agreement of live playback depended on which frames a loaded machine dropped (a bar
+  // loosened 0.8 -> 0.7 -> > 0.5). Here the camera takes the next frame only after the last one's
+  // result arrived, so the studio recognises every view in order, and its answers and agreement are
+  // the model's own per-view answers, computed here by the recogniser outside the studio.
+  void recognisesEveryRecordedViewAsTheModelDoes() {
+    const std::string model = std::string(KEYTURN_DATA_DIR) + "/models/sim-objects";
+    const learning::Recognizer recognizer = learning::Recognizer::load(model);
+    const auto& classes = recognizer.info().classes;
+    rig::Recording recording(recording_.toStdString(), {1000, true});
+    std::vector<QString> answers;  // per recorded view, as the studio names a stable class
+    for (std::size_t v = 0; v < recording.views().size(); ++v) {
+      const learning::Recognition r = recognizer.recognize(recording.next().cloud);
+      answers.push_back(r.answer == learning::Answer::Unknown ? QString("unknown")
+                                                              : QString::fromStdString(classes.at(static_cast<std::size_t>(r.best))));
+    }
+    QCOMPARE(answers.size(), std::size_t(12));
+    const auto drill = static_cast<int>(std::count(answers.begin(), answers.end(), QString("ycb_035_power_drill")));
+    // `keyturn classify` on this recording: 10 of 12 views are the drill (120° and 270° not).
+    QVERIFY2(drill == 10, qPrintable(QString("%1 of 12 views the drill").arg(drill)));
+
+    ObservedFactory observed(*factory_);
+    observed.gate.allow(1);
+    StudioWindow w(observed, playback(25));
+    const auto open = qScopeGuard([&] { observed.gate.open(); });  // before the window closes its camera
+    w.show();
+    // 32 frames, one at a time: the last 20 results are views 0-11 and 0-7 (120° twice, 270° once).
+    const long frames = 32;
+    for (long n = 1; n <= frames; ++n) {
+      QTRY_VERIFY2_WITH_TIMEOUT(w.rates().results == n, qPrintable(QString("frame %1: %2 results").arg(n).arg(w.rates().results)),
+                                waitMs(20000));
+      if (n < frames) observed.gate.allow(n + 1);
+    }
+    QCOMPARE(w.rates().dropped, 0L);
+    QCOMPARE(w.rates().frames, frames);
+    std::map<QString, int> last20;
+    for (long n = frames - 20; n < frames; ++n) ++last20[answers[static_cast<std::size_t>(n % 12)]];
+    const auto mode = std::max_element(last20.begin(), last20.end(), [](auto& a, auto& b) { return a.second < b.second; });
+    QCOMPARE(w.recognisedClass(), mode->first);
+    QCOMPARE(w.recognisedAgreement(), mode->second / 20.0);
+    QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));  // 17 of 20
   }
 
   void aRecordingPlayedOnceEndsAfterItsViewsWithoutABanner() {

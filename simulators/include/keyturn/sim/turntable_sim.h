@@ -6,6 +6,7 @@
 // the shared world file so the simulated camera sees the object turned.
 #include <atomic>
 #include <chrono>
+#include <functional>
 #include <memory>
 #include <mutex>
 #include <random>
@@ -65,6 +66,9 @@ struct TurntableServerOptions {
   TurntableMotion motion;
   TurntableFaults faults;
   std::uint64_t seed = 1;
+  // The motion's clock; empty: the steady clock. A test gives one it advances, so what a read
+  // reports during a move depends on the time it set, not on how fast the machine answers.
+  std::function<std::chrono::steady_clock::time_point()> clock;
 };
 
 class TurntableServer {
