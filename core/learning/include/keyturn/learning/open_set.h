@@ -90,7 +90,7 @@ void checkOpenSetScale(const std::string& scale_by);
 // scale_by "camera" (knn-relative) fits a factor per camera of `cameras` (one per row; rows of ""
 // count for no camera); without cameras it is the pooled scale. class_scale_power (knn-relative, within
 // [0, 1]): each class's scale s_c becomes s_c^p · median^(1-p), the median over the classes' scales
-// (1: its own; 0: one scale for all, the knn score over a constant); the camera factors are taken
+// (the upper middle of an even count; 1: its own; 0: one scale for all, the knn score over a constant); the camera factors are taken
 // against those scales. Throws keyturn::Error for a power outside [0, 1].
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1,
                          const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr,
