@@ -48,6 +48,12 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                    "each camera told by its organized grid) or pooled (the class's scale alone, whatever the camera)")
         ->check(CLI::IsMember(learning::openSetScales()))
         ->capture_default_str();
+  if (method)
+    cmd.add_option("--open-set-class-scale", o.class_scale_power,
+                   "knn-relative: each class's scale drawn toward the median class's, its own to this power times "
+                   "the median's to 1 minus it (1: each class's own spread; 0: one scale for all)")
+        ->check(CLI::Range(0.0, 1.0))
+        ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,
                  "Open-set: the rate of unknown views given a class that the threshold is calibrated for")
       ->check(CLI::Range(0.0, 0.99))

@@ -92,6 +92,9 @@ int runTrain(const TrainArgs& a) {
                 << " views of left-out categories, " << os.calibration_groups << " trainings)";
     for (const auto& [camera, f] : os.camera_scale)
       std::cerr << "; camera " << camera << " × " << std::setprecision(3) << f;
+    if (os.class_scale_power != 1)
+      std::cerr << "; class scales drawn toward their median (power " << std::setprecision(2) << os.class_scale_power
+                << ")";
     if (std::isfinite(os.turn_threshold))
       std::cerr << ", a turn's " << std::setprecision(4) << os.turn_threshold << " (" << os.calibration_turns
                 << " turns of " << learning::kTurnViews << " views)";

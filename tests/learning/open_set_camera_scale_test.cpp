@@ -1,11 +1,15 @@
 // knn-relative's camera scale (issue 47): a view's distance over its class's scale times its
 // camera's factor, so a camera whose views are noisier than the pool's (the SR4000's few keypoints
 // against the OpenNI2's) is not judged by the other camera's spread; the factors survive the model
-// file, and a model without them keeps the pooled scale.
+// file, and a model without them keeps the pooled scale. The class scale power (issue 47): a class
+// whose own views lie far apart (the screwdriver's) no longer lends that spread to the unknown views
+// it is chosen for.
 #include <gtest/gtest.h>
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
+#include <iostream>
 #include <filesystem>
 #include <random>
 
@@ -214,4 +218,88 @@ TEST(OpenSetCameraScale, CameraOfTellsAnOrganizedGridFromACrop) {
   crop.width = 500;
   crop.points.assign(500, Eigen::Vector3f(0, 0, 1));
   EXPECT_EQ(cameraOf(crop), "");
+}
+
+namespace {
+
+// Five tidy categories (spread 1) and a spread-out one, category 5 (spread 3), through one camera.
+FeatureTable spreadTraining() {
+  FeatureTable t = emptyTable();
+  addViews(t, 0, 5, 40, 1.f, "640x480", 31);
+  addViews(t, 5, 1, 40, 3.f, "640x480", 32);
+  return t;
+}
+
+// Views of an object the model never saw that lies beside the spread-out category: 8 · e_5 + 5 · e_6.
+FeatureTable besideTheSpreadClass(int per, std::uint64_t seed) {
+  FeatureTable t = emptyTable();
+  addViews(t, 6, 1, per, 1.f, "640x480", seed);
+  for (auto& row : t.rows) row.values[5] += 8.f, row.values[6] -= 3.f, row.cls = "beside", row.instance = "beside_i";
+  return t;
+}
+
+Model trainWithPower(const FeatureTable& t, double power) {
+  OpenSetOptions o;
+  o.methods = {"knn-relative"};
+  o.false_accept = 0.05;
+  o.class_scale_power = power;
+  return trainModel(t, {"kpd2"}, LabelKind::Category, fastXgboost(), nullptr, o);
+}
+
+}  // namespace
+
+TEST(OpenSetClassScale, ThePowerDrawsEachClassScaleTowardTheMedianClasss) {
+  const Rows r = rowsOf(spreadTraining());
+  const OpenSet own = fitOpenSetScorer("knn-relative", r.x, r.y, 1, "pooled", nullptr, 1.0);
+  const OpenSet one = fitOpenSetScorer("knn-relative", r.x, r.y, 1, "pooled", nullptr, 0.0);
+  const OpenSet half = fitOpenSetScorer("knn-relative", r.x, r.y, 1, "pooled", nullptr, 0.5);
+  ASSERT_EQ(own.class_scale.size(), 6u);
+  std::vector<float> sorted = own.class_scale;
+  std::sort(sorted.begin(), sorted.end());
+  const double median = sorted[3];  // detail::medianOf: the upper middle of an even count
+  // The spread-out class's own scale is about 3 × the tidy ones' (its noise is).
+  EXPECT_GT(own.class_scale[5], 2.f * sorted[2]);
+  for (std::size_t c = 0; c < 6; ++c) {
+    EXPECT_NEAR(one.class_scale[c], median, 1e-4 * median);
+    EXPECT_NEAR(half.class_scale[c], std::sqrt(own.class_scale[c] * median), 1e-4 * median);
+  }
+  EXPECT_EQ(half.class_scale_power, 0.5);
+  EXPECT_EQ(errorOf([&] { fitOpenSetScorer("knn-relative", r.x, r.y, 1, "pooled", nullptr, 1.5); }),
+            "open-set class scale power must be within [0, 1], not 1.500000");
+}
+
+TEST(OpenSetClassScale, AnUnknownObjectBesideASpreadOutClassIsTurnedAwayMoreOftenAndMoreKnownViewsAreNamed) {
+  const FeatureTable train = spreadTraining();
+  const Model own = trainWithPower(train, 1.0), drawn = trainWithPower(train, 0.5);
+  const FeatureTable beside = besideTheSpreadClass(60, 41);
+  FeatureTable known = emptyTable();
+  addViews(known, 0, 5, 20, 1.f, "640x480", 42);
+  addViews(known, 5, 1, 20, 3.f, "640x480", 43);
+  const double own_beside = accepted(own, beside, "640x480"), drawn_beside = accepted(drawn, beside, "640x480");
+  const double own_known = accepted(own, known, "640x480"), drawn_known = accepted(drawn, known, "640x480");
+  std::cout << "beside the spread class accepted: power 1 " << own_beside << ", power 0.5 " << drawn_beside
+            << "; known named: " << own_known << ", " << drawn_known << "\n";
+  // At the same stated rate, drawing the scales toward the median turns more of the object beside the
+  // spread-out class away and names more of the known views (measured 2026-12-06: beside 0.80 -> 0.68,
+  // known 0.33 -> 0.80; the spread-out class's loose scale made the calibration strict for every class).
+  EXPECT_LT(drawn_beside, own_beside - 0.05);
+  EXPECT_GT(drawn_known, own_known + 0.25);
+}
+
+TEST(OpenSetClassScale, ThePowerSurvivesTheModelFileAndABadOneIsNamed) {
+  const Model m = trainWithPower(spreadTraining(), 0.5);
+  const fs::path dir = keyturn::test::scratchPath("class_scale_power_model");
+  saveModel(dir.string(), m);
+  const Model back = loadModel(dir.string());
+  EXPECT_EQ(back.info.open_set.class_scale_power, 0.5);
+  EXPECT_EQ(back.info.open_set.class_scale, m.info.open_set.class_scale);
+  nlohmann::json sidecar = nlohmann::json::parse(keyturn::test::readText(dir / "model.json"));
+  sidecar["open_set"].erase("class_scale_power");  // a model from before: each class's own scale
+  keyturn::test::writeText(dir / "model.json", sidecar.dump());
+  EXPECT_EQ(loadModel(dir.string()).info.open_set.class_scale_power, 1.0);
+  sidecar["open_set"]["class_scale_power"] = -0.5;
+  keyturn::test::writeText(dir / "model.json", sidecar.dump());
+  EXPECT_EQ(errorOf([&] { loadModel(dir.string()); }),
+            (dir / "model.json").string() + ": open_set: class_scale_power must be within [0, 1]");
+  fs::remove_all(dir);
 }

@@ -132,6 +132,7 @@ Enrollment enrollObject(const Model& m, const FeatureTable& views, const std::ve
   o.false_accept = info.open_set.false_accept;
   o.neighbours = info.open_set.neighbours;
   o.scale_by = info.open_set.scale_by;  // a model calibrated with the pooled scale stays pooled
+  o.class_scale_power = info.open_set.class_scale_power;
   o.groups = info.training_views.open_set_groups;
   o.seed = info.training_views.open_set_seed;
   o.required = true;

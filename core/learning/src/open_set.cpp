@@ -77,6 +77,13 @@ std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y, st
   return scale;
 }
 
+// The classes' scales drawn toward their median: s_c^p · median^(1-p) (p = 1 leaves them as they are).
+void drawTowardMedian(std::vector<float>& scale, double p) {
+  if (p == 1 || scale.empty()) return;
+  const double median = detail::medianOf(std::vector<double>(scale.begin(), scale.end()));
+  for (float& v : scale) v = static_cast<float>(std::pow(static_cast<double>(v), p) * std::pow(median, 1 - p));
+}
+
 // Each camera's factor: the median over its rows of (distance to the nearest other view of the class) /
 // (the class's pooled scale). A camera whose views are sparser or noisier than the pool's (the SR4000's
 // against the OpenNI2's) gets a factor above 1, so its known views are not judged by the other's spread.
@@ -94,9 +101,12 @@ std::map<std::string, float> cameraScales(const std::vector<std::string>& camera
 }  // namespace
 
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours,
-                         const std::string& scale_by, const std::vector<std::string>* cameras) {
+                         const std::string& scale_by, const std::vector<std::string>* cameras,
+                         double class_scale_power) {
   checkOpenSetMethod(method);
   checkOpenSetScale(scale_by);
+  if (!(class_scale_power >= 0 && class_scale_power <= 1))
+    throw Error("open-set class scale power must be within [0, 1], not " + std::to_string(class_scale_power));
   if (cameras && cameras->size() != y.size())
     throw Error("open-set scales: " + std::to_string(y.size()) + " rows but " + std::to_string(cameras->size()) + " cameras");
   OpenSet s;
@@ -111,6 +121,8 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   if (method != "knn-relative") return s;
   std::vector<double> nearest;
   s.class_scale = classScales(s.references, y, &nearest);
+  drawTowardMedian(s.class_scale, class_scale_power);
+  s.class_scale_power = class_scale_power;
   s.scale_by = scale_by;
   if (scale_by == "camera" && cameras) s.camera_scale = cameraScales(*cameras, y, nearest, s.class_scale);
   return s;

@@ -98,7 +98,8 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     }
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
       const OpenSet scorer =
-          fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours, o.scale_by, cameras ? &camtrain : nullptr);
+          fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours, o.scale_by, cameras ? &camtrain : nullptr,
+                           o.class_scale_power);
       const std::vector<double> s = openSetScores(scorer, xheld, p, cameras ? &camheld : nullptr);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
       for (const auto& seq : held_turns) {
@@ -110,7 +111,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   }
   std::vector<OpenSet> out;
   for (std::size_t m = 0; m < o.methods.size(); ++m) {
-    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras);
+    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras, o.class_scale_power);
     s.threshold = thresholdForFalseAccept(unknown[m], o.false_accept);
     s.false_accept = o.false_accept;
     s.calibration_views = static_cast<int>(unknown[m].size());

@@ -25,6 +25,8 @@ json openSetJson(const OpenSet& s) {
   }
   if (!keepsReferences(s.method)) return j;
   if (s.method == "knn-relative") j["class_scale"] = s.class_scale;
+  if (s.method == "knn-relative" && s.class_scale_power != 1)  // absent: each class's own scale
+    j["class_scale_power"] = s.class_scale_power;
   if (s.method == "knn-relative" && s.scale_by != "pooled") {  // absent: the pooled scale (models before issue 47's)
     j["scale_by"] = s.scale_by;
     j["camera_scale"] = s.camera_scale;
@@ -74,6 +76,11 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
         throw Error(where + ": knn-relative needs class_scale of " + std::to_string(classes) + " values");
       for (float v : s.class_scale)
         if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": class_scale values must be positive");
+      if (j.contains("class_scale_power")) {
+        s.class_scale_power = j.at("class_scale_power").get<double>();
+        if (!(s.class_scale_power >= 0 && s.class_scale_power <= 1))
+          throw Error(where + ": class_scale_power must be within [0, 1]");
+      }
       if (j.contains("scale_by")) {
         s.scale_by = j.at("scale_by").get<std::string>();
         try {

@@ -12,7 +12,10 @@
 //   train since issue 47), d is also divided by the view's camera's own factor: how far that camera's
 //   training views lie from their nearest neighbour, relative to their class's scale (the SR4000's
 //   sparser, noisier views lie farther than the OpenNI2's). docs/results.md, "Beyond the training
-//   conditions", measures it against the one pooled scale and other levers.
+//   conditions", measures it against the one pooled scale and other levers. With class_scale_power
+//   p < 1, each class's scale is drawn toward the median class's (s_c^p · median^(1-p)): a class whose
+//   own views lie far apart (the thin screwdriver's, 4 × the median's) otherwise lends that spread to
+//   every unknown view it is chosen for.
 // Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
@@ -60,6 +63,8 @@ struct OpenSet {
   Matrix references;
   std::vector<int> reference_class;
   std::vector<float> class_scale;  // knn-relative: per class, the distance d is divided by
+  // knn-relative: the power p the class scales were drawn toward their median by (1: each class's own).
+  double class_scale_power = 1;
   // knn-relative: "pooled" (the class scale alone) or "camera" (times the view's camera's factor).
   std::string scale_by = "pooled";
   // scale_by "camera": per camera (cameraOf, feature_cache.h: the organized grid "WxH"), the median over
@@ -83,9 +88,13 @@ void checkOpenSetScale(const std::string& scale_by);
 // A scorer for `method` fitted on training rows x (labels y: class indices): knn keeps the
 // standardised rows; max-probability keeps nothing. threshold and calibration are left at 0.
 // scale_by "camera" (knn-relative) fits a factor per camera of `cameras` (one per row; rows of ""
-// count for no camera); without cameras it is the pooled scale.
+// count for no camera); without cameras it is the pooled scale. class_scale_power (knn-relative, within
+// [0, 1]): each class's scale s_c becomes s_c^p · median^(1-p), the median over the classes' scales
+// (the upper middle of an even count; 1: its own; 0: one scale for all, the knn score over a constant); the camera factors are taken
+// against those scales. Throws keyturn::Error for a power outside [0, 1].
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1,
-                         const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr);
+                         const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr,
+                         double class_scale_power = 1);
 
 // One score per row of x (probabilities: the classifier's rows for x; cameras: each row's camera, or
 // none: every view at the pooled scale). A row whose score cannot be computed (non-finite

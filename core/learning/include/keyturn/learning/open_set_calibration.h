@@ -25,6 +25,9 @@ struct OpenSetOptions {
   // knn-relative: the distance over the class's pooled scale, or also over the view's camera's factor
   // (open_set.h; docs/results.md, "Beyond the training conditions"). Rows without a camera: pooled.
   std::string scale_by = "camera";
+  // knn-relative: each class's scale drawn toward the median class's, s_c^p · median^(1-p) (open_set.h;
+  // 1: its own scale). docs/results.md, "Beyond the training conditions", measures p.
+  double class_scale_power = 1;
   std::uint64_t seed = 7;                      // the categories' shuffle
   // false: data of fewer than three categories (nothing to leave out) gives a closed-set model
   // instead of an error (trainModel).
