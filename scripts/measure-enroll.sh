@@ -6,7 +6,7 @@
 # - the model's other objects before and after, on scripts/beyond-training.sh's views (the 27 objects of
 #   data/objects/objects-27.csv at 30/40/45/60 degrees every 45 degrees, seed 2, both cameras; made in
 #   BEYOND when absent; the old model's answers kept there too): its own objects named right, the others answered unknown.
-# ENROLL_ARGS (environment) is passed to enroll (e.g. "--step 10"). About 10 minutes on 2 cores with the
+# ENROLL_ARGS (environment) is passed to enroll (e.g. "--step 10"); NEW_ELEVATIONS (default 40,50) sets the new views' elevations. About 10 minutes on 2 cores with the
 # beyond-training views already made.
 # usage: scripts/measure-enroll.sh INPUT TRUE_MESH CLASS INSTANCE [MODEL] [OUT] [BEYOND]
 set -euo pipefail
@@ -26,7 +26,7 @@ cat "$out/time.txt"
 tail -1 "$out/enroll.log"
 printf 'class,instance,mesh\n%s,%s,%s\n' "$cls" "$instance" "$true_mesh" > "$out/object.csv"
 for camera in sr4000 openni2; do
-  "$KT" simulate --camera $camera --objects "$out/object.csv" --elevations 40,50 --step 10 --seed 2 -q \
+  "$KT" simulate --camera $camera --objects "$out/object.csv" --elevations "${NEW_ELEVATIONS:-40,50}" --step 10 --seed 2 -q \
     --out "$out/new-$camera"
   "$KT" classify "$out/model" "$out/new-$camera" --json -q > "$out/new-$camera.json"
   [ -d "$beyond/views-$camera" ] || "$KT" simulate --camera $camera --objects "$root/data/objects/objects-27.csv" \

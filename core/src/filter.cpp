@@ -148,7 +148,7 @@ std::size_t detail::countPlaneInliers(const std::vector<float>& x, const std::ve
 }
 
 bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vector4f* plane,
-                         std::string* decision) {
+                         std::string* decision, float* removed_band) {
   auto say = [&](const std::string& why) {
     if (decision) *decision = why;
     return false;
@@ -185,6 +185,16 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
 
   // Label every point: on the plane, in front of it (camera side) or behind it.
   const float band = options.plane_distance;
+  float fine_band = band;  // plane_band_sigmas: the frame's own noise band (regrowBand uses it)
+  if (options.plane_band_sigmas > 0.f && !inliers.empty()) {
+    std::vector<float> d;
+    d.reserve(inliers.size());
+    for (const auto i : inliers) d.push_back(std::abs(pl.head<3>().dot((*sample)[i].getVector3fMap()) + pl[3]));
+    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
+    const float sigma = 1.4826f * d[d.size() / 2];
+    fine_band = std::clamp(options.plane_band_sigmas * sigma, std::min(options.plane_min_band, options.plane_distance),
+                           options.plane_distance);
+  }
   std::size_t on = 0, front = 0, behind = 0;
   std::vector<signed char> side(index.size());
   for (std::size_t k = 0; k < index.size(); ++k) {
@@ -219,6 +229,7 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
   for (std::size_t k = 0; k < index.size(); ++k)
     if (side[k] <= 0) cloud.points[index[k]] = kNaN;
   if (plane) *plane = pl;
+  if (removed_band) *removed_band = fine_band;
   if (decision) *decision = found + ": a support, removed with what lies behind it";
   return true;
 }
@@ -380,6 +391,58 @@ std::string FilterReport::flaggedSummary() const {
   return out;
 }
 
+namespace {
+
+// The points of `before` within [band, plane_distance) above the support that connect to the kept
+// object (`cloud`) through points closer than `tolerance` to each other, put back. The support's
+// decision and the object's cluster are made with the fixed band (a frame's far table is noisier
+// than its near table, and a noise band alone leaves it in pieces); only the object's foot returns.
+std::size_t regrowBand(Cloud& cloud, const Cloud& before, const Eigen::Vector4f& plane, float band, float top,
+                       float tolerance) {
+  const double inv = 1.0 / tolerance;
+  auto key = [&](const Eigen::Vector3f& p, int dx, int dy, int dz) {
+    return detail::voxelKey(detail::voxelCell(p.x(), inv) + dx, detail::voxelCell(p.y(), inv) + dy,
+                            detail::voxelCell(p.z(), inv) + dz);
+  };
+  std::unordered_map<std::uint64_t, std::vector<int>> candidates;
+  for (std::size_t i = 0; i < before.points.size(); ++i) {
+    const Eigen::Vector3f& p = before.points[i];
+    if (!Cloud::isValid(p) || Cloud::isValid(cloud.points[i])) continue;
+    const float d = plane.head<3>().dot(p) + plane[3];
+    if (d >= band && d < top) candidates[key(p, 0, 0, 0)].push_back(int(i));
+  }
+  std::vector<int> queue;
+  for (std::size_t i = 0; i < cloud.points.size(); ++i)
+    if (Cloud::isValid(cloud.points[i])) queue.push_back(int(i));
+  std::size_t added = 0;
+  const float t2 = tolerance * tolerance;
+  while (!queue.empty()) {
+    const Eigen::Vector3f p = cloud.points[queue.back()];
+    queue.pop_back();
+    for (int dx = -1; dx <= 1; ++dx)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dz = -1; dz <= 1; ++dz) {
+          auto it = candidates.find(key(p, dx, dy, dz));
+          if (it == candidates.end()) continue;
+          auto& list = it->second;
+          for (std::size_t k = 0; k < list.size();) {
+            if ((before.points[list[k]] - p).squaredNorm() <= t2) {
+              cloud.points[list[k]] = before.points[list[k]];
+              queue.push_back(list[k]);
+              ++added;
+              list[k] = list.back();
+              list.pop_back();
+            } else {
+              ++k;
+            }
+          }
+        }
+  }
+  return added;
+}
+
+}  // namespace
+
 Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* report,
                   const WorkingResolutionOptions* working, WorkingResolutionReport* working_report,
                   Cloud* before_working) {
@@ -420,11 +483,19 @@ Cloud filterCloud(const Cloud& input, const FilterOptions& o, FilterReport* repo
   step("jump-edges", cloud.organized() && o.jump_edge, cloud.organized() ? "off" : "not organized",
        [&](FilterStep&) { removeJumpEdges(cloud, o.jump_edge_angle_deg); });
   r.after_jump_edge = count;
+  const Cloud before_plane = o.plane_band_sigmas > 0.f ? cloud : Cloud();
   step("support-plane", o.remove_plane, "off", [&](FilterStep& s) {
-    r.plane_found = removeDominantPlane(cloud, o, &r.plane, &s.note);
+    r.plane_found = removeDominantPlane(cloud, o, &r.plane, &s.note, &r.plane_band);
   });
   r.after_plane = count;
   step("cluster", o.largest_cluster, "off", [&](FilterStep&) { keepLargestCluster(cloud, o.cluster_tolerance); });
+  if (r.plane_found && o.plane_band_sigmas > 0.f && r.plane_band < o.plane_distance)
+    step("support-band", true, "", [&](FilterStep& s) {
+      const std::size_t added = regrowBand(cloud, before_plane, r.plane, r.plane_band, o.plane_distance, o.plane_regrow);
+      s.note = std::to_string(added) + " points of the object's foot within " +
+               std::to_string(int(std::lround(r.plane_band * 1000))) + "–" +
+               std::to_string(int(std::lround(o.plane_distance * 1000))) + " mm of the support put back";
+    });
   r.after_cluster = count;
   if (working)
     step("working-resolution", working->enabled, "off", [&](FilterStep&) {

@@ -105,6 +105,25 @@ std::string poissonEntry(const OrientedPoints& cloud, const PoissonOptions& opti
       for (std::size_t i = 0; i < density.size(); ++i) remove[i] = density[i] < sorted[q];
       mesh->RemoveVerticesByMask(remove);
     }
+    if (options.max_distance_m > 0 || options.floor) {
+      const o3g::KDTreeFlann tree(pc);
+      std::vector<bool> remove(mesh->vertices_.size(), false);
+      std::vector<int> idx(1);
+      std::vector<double> d2(1);
+      const double reach2 = options.max_distance_m * options.max_distance_m;
+      for (std::size_t i = 0; i < mesh->vertices_.size(); ++i) {
+        const Eigen::Vector3d& v = mesh->vertices_[i];
+        if (options.floor && options.floor->head<3>().dot(v) + (*options.floor)[3] < -options.floor_tolerance_m)
+          remove[i] = true;
+        else if (options.max_distance_m > 0 && (tree.SearchKNN(v, 1, idx, d2) < 1 || d2[0] > reach2))
+          remove[i] = true;
+      }
+      mesh->RemoveVerticesByMask(remove);
+    }
+    if (options.max_triangles > 0 && mesh->triangles_.size() > options.max_triangles) {
+      mesh = mesh->SimplifyQuadricDecimation(int(options.max_triangles), std::numeric_limits<double>::infinity(), 1.0);
+      mesh->RemoveUnreferencedVertices();
+    }
     if (mesh->triangles_.empty()) return "Poisson reconstruction gave no surface";
     out = fromOpen3d(*mesh);
     return "";

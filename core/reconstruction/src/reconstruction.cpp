@@ -15,6 +15,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/string_format.h"
+#include "keyturn/reconstruction/support.h"
 
 namespace keyturn::reconstruction {
 
@@ -82,10 +83,11 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
 
   // Views: read and filtered as describe filters them (a frame's support plane and background go).
   std::vector<std::vector<Eigen::Vector3f>> points(views.size());
+  std::vector<FilterReport> filtered(views.size());
   progress.stages.begin("reading views", views.size());
   parallelFor(views.size(), 0, [&](std::size_t i) {
     Cloud c = loadCloud(views[i].file);
-    if (options.filter) c = filterCloud(c, options.filter_options);
+    if (options.filter) c = filterCloud(c, options.filter_options, &filtered[i]);
     points[i] = validPoints(c);
     if (points[i].size() < 100)
       throw Error(views[i].file + ": " + std::to_string(points[i].size()) +
@@ -161,8 +163,27 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
 
   const double fuse_voxel = options.fuse_voxel_m > 0 ? options.fuse_voxel_m : reg.voxel_m / 2;
   r.cloud = fuse(points, reg.world_from_view, fuse_voxel);
-  clock.done("fusion", std::to_string(r.cloud.points.size()) + " points at " + formatNumber(fuse_voxel * 1000, 3) + " mm");
-  r.mesh = poissonSurface(r.cloud, options.poisson);
+  PoissonOptions poisson = options.poisson;
+  if (options.surface_reach_voxels > 0 && poisson.max_distance_m <= 0)
+    poisson.max_distance_m = options.surface_reach_voxels * reg.voxel_m;
+  OrientedPoints surface_points = r.cloud;
+  if (options.close_on_support) {
+    std::vector<SupportView> sv;
+    for (std::size_t i = 0; i < views.size(); ++i)
+      sv.push_back({filtered[i].plane_found, filtered[i].plane, filtered[i].plane_band, reg.world_from_view[i]});
+    if (const auto support = commonSupport(sv)) {
+      r.support = support->plane;
+      r.support_band_m = support->band_m;
+      const auto foot = footOnSupport(r.cloud, *support, 2 * fuse_voxel);
+      r.support_points = foot.points.size();
+      surface_points.points.insert(surface_points.points.end(), foot.points.begin(), foot.points.end());
+      surface_points.normals.insert(surface_points.normals.end(), foot.normals.begin(), foot.normals.end());
+      poisson.floor = support->plane;
+    }
+  }
+  clock.done("fusion", std::to_string(r.cloud.points.size()) + " points at " + formatNumber(fuse_voxel * 1000, 3) +
+                           " mm" + (r.support ? ", " + std::to_string(r.support_points) + " closing the foot on the support" : ""));
+  r.mesh = poissonSurface(surface_points, poisson);
   clock.done("surface", "Poisson depth " + std::to_string(options.poisson.depth) + ", " +
                             std::to_string(r.mesh.vertices.size()) + " vertices, " +
                             std::to_string(r.mesh.triangles.size()) + " triangles");
@@ -225,6 +246,10 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
                          {"calibrated", {{"direction", vec(a.initial.direction)}, {"point_m", vec(a.initial.point)}}},
                          {"refined", {{"direction", vec(a.refined.direction)}, {"point_m", vec(a.refined.point)}}},
                          {"angle_between_deg", std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI}});
+  if (r.support)
+    j["support"] = {{"plane", {(*r.support)[0], (*r.support)[1], (*r.support)[2], (*r.support)[3]}},
+                    {"band_m", r.support_band_m},
+                    {"foot_points", r.support_points}};
   j["cloud_points"] = r.cloud.points.size();
   j["mesh"] = {{"vertices", r.mesh.vertices.size()}, {"triangles", r.mesh.triangles.size()}};
   if (r.cloud_distance_after_m) {

@@ -15,13 +15,29 @@ namespace keyturn::reconstruction {
 
 enum class ModelChoice { Auto, Free, Turntable };  // Auto: Turntable when every view is a turntable view
 
+// describe's filter, but the band removed with the support is 3 σ of each frame's own table noise
+// (within 1–8 mm) instead of a fixed 8 mm: a thin object keeps its lower half.
+inline FilterOptions reconstructionFilterOptions() {
+  FilterOptions f;
+  f.plane_band_sigmas = 3.f;
+  return f;
+}
+
 struct ReconstructionOptions {
   RegistrationOptions registration;
   ModelChoice model = ModelChoice::Auto;
   bool filter = true;
-  FilterOptions filter_options;
+  FilterOptions filter_options = reconstructionFilterOptions();
   double fuse_voxel_m = 0;  // 0: half the registration voxel
-  PoissonOptions poisson;
+  PoissonOptions poisson = [] {
+    PoissonOptions p;
+    p.max_triangles = 50000;  // enough for 1 mm detail on a 25 cm object; the simulated cameras render it quickly
+    return p;
+  }();
+  double surface_reach_voxels = 4;  // the surface's vertices kept within this many registration voxels of the points
+  // When most views stood on a support (the filter found and removed it): the object's foot is closed
+  // on it (points on the support under the lowest fused points, facing down) and nothing is kept below it.
+  bool close_on_support = true;
   // Evaluation against known truth (docs/reconstruction.md's tables), all optional.
   std::vector<Eigen::Matrix4d> reference_poses;  // one per view, the true world_from_view (compared through the reference view)
   std::optional<Mesh> reference_surface;
@@ -52,6 +68,9 @@ struct Reconstruction {
   double voxel_m = 0;
   OrientedPoints cloud;
   Mesh mesh;
+  std::optional<Eigen::Vector4d> support;  // the support plane in the common frame (median of the views'), when found
+  double support_band_m = 0;               // the height above it the filter removed (median over views)
+  std::size_t support_points = 0;          // points added on it to close the object's foot
   // Against the reference surface, when given: the fused points' distances (initial and refined
   // poses) and the mesh's F-score.
   std::optional<double> cloud_distance_before_m, cloud_distance_after_m;
