@@ -5,9 +5,13 @@
 #include <algorithm>
 #include <cstdio>
 #include <cstring>
+#include <exception>
+#include <iomanip>
+#include <sstream>
 
 #include "keyturn/core/fnv1a.h"
 #include "keyturn/sim/mesh.h"
+#include "sim_properties.h"
 #include "sim_stream.h"
 
 namespace keyturn::sim::openni2 {
@@ -32,11 +36,21 @@ OniStatus putString(void* data, int* size, const std::string& s) {
 }
 }  // namespace
 
-SimDevice::SimDevice(const MesaSrSimConfig& config) : config_(config), opened_(std::chrono::steady_clock::now()) {
-  const Mesh mesh = scaledMesh(loadMeshOrBuiltin(config_.mesh), config_.scale);
-  renderer_ = std::make_unique<StructuredLightRenderer>(mesh);
-  distance_ = config_.distance > 0 ? config_.distance
-                                   : structuredLightOperatorDistance(mesh, intrinsics(), renderer_->model());
+std::string sceneKey(const MesaSrSimConfig& config) {
+  std::ostringstream key;
+  key << config.mesh << '\n' << std::setprecision(17) << config.scale;
+  struct stat st;
+  if (config.mesh.rfind("builtin:", 0) != 0 && ::stat(config.mesh.c_str(), &st) == 0)
+    key << '\n' << st.st_size << '\n' << st.st_mtim.tv_sec << '.' << st.st_mtim.tv_nsec;
+  return key.str();
+}
+
+SimDevice::SimDevice(const MesaSrSimConfig& config, StructuredLightScenes& scenes)
+    : config_(config), scenes_(scenes), opened_(std::chrono::steady_clock::now()) {
+  renderer_ = scenes_.take(sceneKey(config_), [this] {
+    return std::make_unique<StructuredLightRenderer>(scaledMesh(loadMeshOrBuiltin(config_.mesh), config_.scale));
+  });
+  distance_ = config_.distance > 0 ? config_.distance : renderer_->operatorDistance();
   const int w = intrinsics().width, h = intrinsics().height;
   depth_modes_ = {{ONI_PIXEL_FORMAT_DEPTH_1_MM, w, h, kFps}, {ONI_PIXEL_FORMAT_DEPTH_100_UM, w, h, kFps}};
   color_modes_ = {{ONI_PIXEL_FORMAT_RGB888, w, h, kFps}};
@@ -44,7 +58,21 @@ SimDevice::SimDevice(const MesaSrSimConfig& config) : config_(config), opened_(s
   sensors_ = {{ONI_SENSOR_DEPTH, static_cast<int>(depth_modes_.size()), depth_modes_.data()},
               {ONI_SENSOR_COLOR, static_cast<int>(color_modes_.size()), color_modes_.data()},
               {ONI_SENSOR_IR, static_cast<int>(ir_modes_.size()), ir_modes_.data()}};
+  // The scene is cast by the open, not the first frame: opening may take its time, a frame may not.
+  // It is cast on the frame thread, waited for here: Embree's task scheduler (TBB) then works on a
+  // thread that ends with the device. Cast on the application's thread, TBB's workers outlived the
+  // driver's unloading at OpenNI::shutdown and crashed there (ASan: SEGV in unmapped code).
   thread_ = std::thread([this] { run(); });
+  std::exception_ptr failed;
+  {
+    std::unique_lock<std::mutex> lock(mutex_);
+    wake_.wait(lock, [this] { return prepared_; });
+    failed = prepare_failed_;
+  }
+  if (failed) {
+    thread_.join();
+    std::rethrow_exception(failed);
+  }
 }
 
 SimDevice::~SimDevice() {
@@ -100,6 +128,8 @@ OniBool SimDevice::isPropertySupported(int id) {
     case ONI_DEVICE_PROPERTY_HARDWARE_VERSION:
     case ONI_DEVICE_PROPERTY_SERIAL_NUMBER:
     case ONI_DEVICE_PROPERTY_IMAGE_REGISTRATION:
+    case kScenesBuiltProperty:
+    case kSceneCastsProperty:
       return TRUE;
     default:
       return FALSE;
@@ -118,6 +148,12 @@ OniStatus SimDevice::getProperty(int id, void* data, int* size) {
       return putString(data, size, std::to_string(config_.serial));
     case ONI_DEVICE_PROPERTY_IMAGE_REGISTRATION:
       return putValue(data, size, registration_);
+    case kScenesBuiltProperty:
+      return putValue(data, size, static_cast<int>(scenes_.built()));
+    case kSceneCastsProperty: {
+      std::lock_guard<std::mutex> lock(mutex_);  // the frame thread casts with mutex_ released: see run()
+      return putValue(data, size, casts_);
+    }
     default:
       return ONI_STATUS_NOT_SUPPORTED;
   }
@@ -139,13 +175,18 @@ bool unplugged(const MesaSrSimConfig& config) {
   return !config.unplug_file.empty() && ::stat(config.unplug_file.c_str(), &st) == 0;
 }
 
-StructuredLightFrame SimDevice::renderFrame() {
+SceneView SimDevice::view() const {
   SceneView v;
   v.distance = distance_;
   v.elevation_deg = config_.elevation;
   v.roll_deg = config_.roll;
   v.turntable_deg =
       config_.world.empty() ? config_.turntable_deg : readWorldTurntable(config_.world, config_.turntable_deg);
+  return v;
+}
+
+StructuredLightFrame SimDevice::renderFrame() {
+  SceneView v = view();
   if (config_.noise_per_pose) {  // one noise draw per angle, whichever frame a capture takes
     std::string bits(sizeof(v.turntable_deg), '\0');
     std::memcpy(bits.data(), &v.turntable_deg, bits.size());
@@ -160,8 +201,19 @@ void SimDevice::run() {
   const double rate = config_.frame_rate > 0 ? config_.frame_rate : kFps;
   const auto period = std::chrono::duration_cast<std::chrono::steady_clock::duration>(
       std::chrono::duration<double>(1.0 / rate));
-  auto next = std::chrono::steady_clock::now();
+  std::exception_ptr failed;
+  try {
+    renderer_->prepare(view());
+  } catch (...) {
+    failed = std::current_exception();
+  }
   std::unique_lock<std::mutex> lock(mutex_);
+  prepared_ = true;
+  prepare_failed_ = failed;
+  casts_ = static_cast<int>(renderer_->casts());
+  wake_.notify_all();
+  if (failed) return;  // the constructor rethrows it
+  auto next = std::chrono::steady_clock::now();
   while (!stop_) {
     if (active_.empty()) {
       wake_.wait(lock, [this] { return stop_ || !active_.empty(); });
@@ -194,6 +246,7 @@ void SimDevice::run() {
     const auto timestamp =
         static_cast<std::uint64_t>(std::chrono::duration_cast<std::chrono::microseconds>(slot - opened_).count());
     lock.lock();
+    casts_ = static_cast<int>(renderer_->casts());  // read here, by the thread that casts
     if (!rendered) continue;
     ++frames_;
     for (SimStream* s : active_) s->deliver(frame, frames_, timestamp);

@@ -52,7 +52,7 @@ class SimDriver : public oni::driver::DriverBase {
       if (config.faults.open_fail) throw Error(std::string(uri) + ": simulated open failure (faults.open_fail)");
       if (unplugged(config))
         throw Error(std::string(uri) + ": unplugged (" + config.unplug_file + " exists)");
-      return new SimDevice(config);
+      return new SimDevice(config, scenes_);
     } catch (const std::exception& e) {
       getServices().errorLoggerAppend("%s", e.what());
       return nullptr;
@@ -88,6 +88,8 @@ class SimDriver : public oni::driver::DriverBase {
 
   std::set<std::string> announced_;
   std::list<OniDeviceInfo> infos_;
+  // Scenes kept between opens: a reopened or replugged device's first frame needs no new cast.
+  StructuredLightScenes scenes_;
 };
 
 }  // namespace keyturn::sim::openni2

@@ -88,6 +88,7 @@ void StructuredLightRenderer::cast(const SceneView& view) const {
   surfaces_ = std::move(next);
   cast_view_ = view;
   cast_ = true;
+  ++casts_;
 }
 
 namespace {
@@ -120,9 +121,14 @@ struct FastNormal {
 };
 }  // namespace
 
+void StructuredLightRenderer::prepare(const SceneView& view) const {
+  (void)normalTable();  // the noise table, built once per process
+  if (!cast_ || !sameGeometry(view, cast_view_)) cast(view);
+}
+
 StructuredLightFrame StructuredLightRenderer::render(const SceneView& view) const {
   const Intrinsics& k = renderer_.intrinsics();
-  if (!cast_ || !sameGeometry(view, cast_view_)) cast(view);
+  prepare(view);
   const int w = k.width, h = k.height;
   StructuredLightFrame f;
   f.width = w;

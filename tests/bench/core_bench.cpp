@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <ctime>
 #include <filesystem>
+#include <memory>
 #include <string>
 
 #include "keyturn/core/cloud_io.h"
@@ -321,6 +322,52 @@ static void BM_RenderStructuredLightStill(benchmark::State& s) {
   }
 }
 BENCHMARK(BM_RenderStructuredLightStill)->Unit(benchmark::kMillisecond);
+
+// The simulated OpenNI2 device's open (issue 51): a fresh scene built (Embree BVH) and cast for the
+// view (the table's pixels, each pixel's noise model), which until then its first frame did.
+static void BM_OpenStructuredLightScene(benchmark::State& s) {
+  const sim::Mesh mug = sim::loadMesh(KEYTURN_DATA_DIR "/objects/mug__ycb_025_mug.ply");
+  sim::SceneView v;
+  for (auto _ : s) {
+    sim::StructuredLightRenderer r(mug);
+    r.prepare(v);
+    benchmark::DoNotOptimize(r.casts());
+  }
+}
+BENCHMARK(BM_OpenStructuredLightScene)->Unit(benchmark::kMillisecond);
+
+// The first frame of a device whose scene its open prepared: noise only, as a still frame.
+static void BM_FirstFrameOfAPreparedScene(benchmark::State& s) {
+  const sim::Mesh mug = sim::loadMesh(KEYTURN_DATA_DIR "/objects/mug__ycb_025_mug.ply");
+  sim::SceneView v;
+  for (auto _ : s) {
+    s.PauseTiming();
+    auto r = std::make_unique<sim::StructuredLightRenderer>(mug);
+    r->prepare(v);
+    s.ResumeTiming();
+    benchmark::DoNotOptimize(r->render(v));
+    s.PauseTiming();
+    r.reset();
+    s.ResumeTiming();
+  }
+}
+BENCHMARK(BM_FirstFrameOfAPreparedScene)->Unit(benchmark::kMillisecond);
+
+// The same first frame with nothing prepared, as the device gave it before: the whole cast in it.
+static void BM_FirstFrameOfAnUnpreparedScene(benchmark::State& s) {
+  const sim::Mesh mug = sim::loadMesh(KEYTURN_DATA_DIR "/objects/mug__ycb_025_mug.ply");
+  sim::SceneView v;
+  for (auto _ : s) {
+    s.PauseTiming();
+    auto r = std::make_unique<sim::StructuredLightRenderer>(mug);
+    s.ResumeTiming();
+    benchmark::DoNotOptimize(r->render(v));
+    s.PauseTiming();
+    r.reset();
+    s.ResumeTiming();
+  }
+}
+BENCHMARK(BM_FirstFrameOfAnUnpreparedScene)->Unit(benchmark::kMillisecond);
 
 // Live recognition as the studio runs it: the built-in model (KPD2 + KPA3, XGBoost)
 // on one simulated SR4000 frame of the drill — filter, describe, classify.

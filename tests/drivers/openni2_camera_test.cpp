@@ -107,20 +107,38 @@ TEST(OpenNi2CameraDeathTest, TheSystemsDriversAreThereAndTheirDeviceComesFirst) 
   EXPECT_EXIT(firstIsTheRealDevice(), ::testing::ExitedWithCode(0), "");
 }
 
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define KEYTURN_UNDER_ASAN 1
+#endif
+#endif
+
+// How long the reopen test waits for a frame. The simulated device casts its scene when it is opened
+// and keeps it across the replug (issue 51), so a fresh device's first frame costs what later ones do;
+// the bar is the device's 400 ms (12 frame periods). Under ASan with coverage every frame's noise pass
+// is several times slower: at load 14-16 on 2 cores (two other ASan test processes) first frames took
+// 71-505 ms and later ones up to 555 ms, and 3 of 5 runs at 400 ms failed on a later frame, so the
+// sanitizer build waits 1000 ms (docs/reliability.md).
+#ifdef KEYTURN_UNDER_ASAN
+constexpr int kFrameTimeoutMs = 1000;
+#else
+constexpr int kFrameTimeoutMs = 400;
+#endif
+
 TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
   const keyturn::test::ScratchFolder dir("openni2");
   dir.made();
   const std::string unplug = (dir.path / "unplugged").string();
   drivers::OpenNi2Options o;
   o.uri = "keyturn-sim://" + writeConfig(dir.path, unplug);
-  o.timeout_ms = 1500;  // the first frame of a fresh device renders the whole scene: slow on a loaded machine
+  o.timeout_ms = kFrameTimeoutMs;
   o.reconnect_attempts = 2;
   o.backoff_initial_ms = 10;
   std::vector<std::string> log;
   o.log = [&](const std::string& line) { log.push_back(line); };
   drivers::OpenNi2Camera camera(o);
   EXPECT_GT(camera.acquire().cloud.validCount(), 0u);
-  log.clear();  // a first frame slow on a loaded machine may already have been waited for again
+  log.clear();  // at a heavy load one frame (any, not only the first) may come late and be waited for again
 
   std::ofstream(unplug) << "cable out\n";  // frames stop; reopening fails while it is out
   // A frame delivered before the cable came out may still be read; the next one is not coming.
@@ -128,7 +146,10 @@ TEST(OpenNi2Camera, ReopensADeviceThatStoppedAnsweringAndGivesUpInOneLine) {
   for (int i = 0; i < 3 && lost.empty(); ++i) lost = errorOf([&] { camera.acquire(); });
   EXPECT_EQ(lost.rfind("OpenNI2 device " + o.uri + ": giving up after 2 reopen attempts: ", 0), 0u) << lost;
   ASSERT_EQ(log.size(), 2u);
-  EXPECT_NE(log[0].find("no depth frame within 1500 ms; reopening in 10 ms (attempt 1 of 2)"), std::string::npos) << log[0];
+  EXPECT_NE(log[0].find("no depth frame within " + std::to_string(kFrameTimeoutMs) +
+                        " ms; reopening in 10 ms (attempt 1 of 2)"),
+            std::string::npos)
+      << log[0];
 
   fs::remove(unplug);  // plugged in again: the next acquire reopens it
   EXPECT_GT(camera.acquire().cloud.validCount(), 0u);

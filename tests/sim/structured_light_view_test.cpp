@@ -176,3 +176,27 @@ TEST(StructuredLight, TheTableFoundWithoutEmbreeIsTheTableEmbreeFinds) {
     }
   }
 }
+
+// A camera opened prepares its view (the simulated OpenNI2 device does, issue 51): the first frame
+// then casts nothing, draws only noise, and is the frame an unprepared renderer gives for the view.
+TEST(StructuredLight, APreparedViewRendersWithoutCastingAgain) {
+  const sim::Mesh mug = sim::makeMugMesh();
+  sim::StructuredLightRenderer prepared(mug), cold(mug);
+  sim::SceneView v = still(0.9);
+  v.noise = true;
+  v.seed = 11;
+  EXPECT_EQ(prepared.casts(), 0u);
+  prepared.prepare(v);
+  EXPECT_EQ(prepared.casts(), 1u);
+  const auto first = prepared.render(v);
+  EXPECT_EQ(prepared.casts(), 1u);
+  EXPECT_EQ(first.depth, cold.render(v).depth);
+  EXPECT_EQ(first.rgb, cold.render(v).rgb);
+  v.seed = 12;  // another frame of the still scene: noise only
+  prepared.render(v);
+  prepared.prepare(v);
+  EXPECT_EQ(prepared.casts(), 1u);
+  v.turntable_deg = 10;  // the table turned: cast again
+  prepared.render(v);
+  EXPECT_EQ(prepared.casts(), 2u);
+}

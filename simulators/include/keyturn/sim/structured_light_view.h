@@ -63,8 +63,18 @@ class StructuredLightRenderer {
   // view.noise and view.seed choose the noise; the geometry is cast again only when
   // the turntable angle changes, so a still scene renders at the camera's rate.
   StructuredLightFrame render(const SceneView& view) const;
+  // Casts the view's geometry now (the mesh's BVH, the table's pixels, each pixel's noise model) so
+  // that the next render of it only draws noise: a fresh camera's first frame then costs what its
+  // later ones do (the simulated OpenNI2 device prepares its scene when it is opened).
+  void prepare(const SceneView& view) const;
+  // Geometry casts so far, whole or incremental (prepare and render count alike).
+  std::size_t casts() const { return casts_; }
   const Intrinsics& intrinsics() const { return renderer_.intrinsics(); }
   const StructuredLightModel& model() const { return model_; }
+  // structuredLightOperatorDistance of this renderer's object, camera and model.
+  double operatorDistance() const {
+    return structuredLightOperatorDistance(renderer_.object(), renderer_.intrinsics(), model_);
+  }
 
  private:
   TofViewRenderer renderer_;
@@ -78,6 +88,7 @@ class StructuredLightRenderer {
   mutable std::vector<std::uint16_t> ir_;
   mutable SceneView cast_view_;
   mutable bool cast_ = false;
+  mutable std::size_t casts_ = 0;
 };
 
 }  // namespace keyturn::sim

@@ -72,6 +72,7 @@ class TofViewRenderer {
   std::vector<SurfacePixel> castPixelCentres(const SceneView& view, const Eigen::Vector3f& light_cam,
                                              bool every_ray_to_embree = false) const;
   const Intrinsics& intrinsics() const { return k_; }
+  const Mesh& object() const { return object_; }
 
  private:
   struct Scene;
