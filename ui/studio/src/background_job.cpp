@@ -8,7 +8,9 @@ namespace keyturn::studio {
 BackgroundJob::BackgroundJob(QObject* parent) : QObject(parent) {}
 
 BackgroundJob::~BackgroundJob() {
-  if (thread_) thread_->wait();
+  if (!thread_) return;
+  thread_->wait();
+  delete thread_;
 }
 
 bool BackgroundJob::running() const { return thread_ && !thread_->isFinished(); }
