@@ -1,26 +1,20 @@
 // keyturn enroll: a new object added to a trained model from its mesh (a mesh file, or the folder
-// keyturn reconstruct writes, holding mesh.ply): its training views rendered through the simulated
-// cameras by the built-in model's recipe (rig/object_simulation.h), described with the model's
-// parameters, and the model retrained with them (learning/model_enrollment.h).
-#include <chrono>
-#include <filesystem>
+// keyturn reconstruct writes, holding mesh.ply). The work is rig::enrollObject's
+// (rig/object_enrollment.h, which the studio's Enroll… calls too); this parses, calls and prints.
+#include <cmath>
 #include <iomanip>
 #include <iostream>
+#include <memory>
 
 #include "commands.h"
 #include "dataset_features.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/string_format.h"
-#include "keyturn/dataset/view_poses.h"
-#include "keyturn/learning/model_enrollment.h"
-#include "keyturn/learning/model_predictions.h"
-#include "keyturn/rig/object_simulation.h"
+#include "keyturn/rig/object_enrollment.h"
 #include "progress.h"
 
 namespace keyturn::app {
 namespace {
-
-namespace fs = std::filesystem;
 
 struct EnrollArgs {
   std::string mesh, cls, instance, model, out, views;
@@ -31,91 +25,50 @@ struct EnrollArgs {
   bool quiet = false;
 };
 
-// A mesh file, or a reconstruction folder's mesh.ply.
-std::string meshOf(const std::string& input) {
-  std::error_code ec;
-  if (fs::is_directory(input, ec)) {
-    const fs::path mesh = fs::path(input) / "mesh.ply";
-    if (!fs::is_regular_file(mesh, ec))
-      throw Error(input + ": a folder without mesh.ply (give a mesh file, or the folder keyturn reconstruct wrote)");
-    return mesh.string();
-  }
-  if (!fs::exists(input, ec)) throw Error(input + ": no such mesh file or reconstruction folder");
-  return input;
-}
-
-std::vector<rig::SimulatedCamera> camerasOf(const std::string& list) {
-  std::vector<rig::SimulatedCamera> out;
-  std::size_t at = 0;
-  while (at <= list.size()) {
-    const std::size_t comma = std::min(list.find(',', at), list.size());
-    out.push_back(rig::parseSimulatedCamera(list.substr(at, comma - at)));
-    at = comma + 1;
-  }
-  return out;
-}
-
-double secondsSince(std::chrono::steady_clock::time_point t0) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-}
-
 int runEnroll(const EnrollArgs& a) {
-  const auto t0 = std::chrono::steady_clock::now();
-  rig::ObjectSimulation sim;
-  sim.object = {a.cls, a.instance, meshOf(a.mesh)};
-  sim.cameras = camerasOf(a.cameras);
+  rig::ObjectEnrollment request;
+  rig::ObjectSimulation& sim = request.simulation;
+  sim.object = {a.cls, a.instance, rig::enrollmentMesh(a.mesh)};
+  sim.cameras = rig::parseSimulatedCameras(a.cameras);
   sim.elevations = parseNumberList(a.elevations, "--elevations");
   sim.step_deg = a.step;
   sim.seed = a.seed;
-  // Everything that can refuse is checked before the minutes of rendering.
-  const learning::Model model = learning::loadModel(a.model);
-  const std::string label = learning::enrolledClass(model, a.cls, a.instance, a.model);
-  sim.checkMesh();
-  const bool keep = !a.views.empty();
-  sim.dir = keep ? a.views : a.out + ".views";
+  sim.dir = a.views;
+  request.keep_views = !a.views.empty();
+  request.model = a.model;
+  request.out = a.out;
+  request.jobs = a.jobs;
 
-  Progress render("render", sim.views(), !a.quiet);
-  if (!a.quiet)
-    std::cerr << "keyturn enroll: rendering " << sim.views() << " views of " << label << " (" << a.cameras << "; "
-              << a.elevations << "°, every " << a.step << "°) → " << sim.dir << "\n";
-  rig::simulateObject(sim, [&] { render.advance(); });
-  render.finish();
-  const double render_s = secondsSince(t0);
-
-  const auto t1 = std::chrono::steady_clock::now();
-  learning::FeatureTable views = learning::modelLayout(model, a.model);
-  std::vector<double> azimuths;
-  for (rig::SimulatedCamera c : sim.cameras) {
-    const std::string dataset = sim.datasetOf(c);
-    DescribeProgressLine progress(a.quiet);
-    const learning::FeatureTable t = learning::describeForModel(model, datasetViews(dataset), a.jobs, &progress, a.model);
-    const auto poses = dataset::datasetAzimuths(dataset);
-    for (const auto& row : t.rows) {
-      const auto it = poses.find(row.id);
-      azimuths.push_back(it == poses.end() ? std::nan("") : it->second);
-    }
-    learning::appendRows(views, t, dataset);
-  }
-  const double describe_s = secondsSince(t1);
-
-  const auto t2 = std::chrono::steady_clock::now();
-  if (!a.quiet)
-    std::cerr << "keyturn enroll: retraining on the model's " << model.info.training_views.views.size() << " views and "
-              << views.rows.size() << " new ones (" << model.info.params.kind << ", open set " << model.info.open_set.method
-              << " re-calibrated for " << 100 * model.info.open_set.false_accept << " % false accepts)\n";
-  const learning::Enrollment e = learning::enrollObject(model, views, azimuths, a.model);
-  learning::saveModel(a.out, e.model);
-  const double train_s = secondsSince(t2);
-  if (!keep) fs::remove_all(sim.dir);
+  std::unique_ptr<Progress> render;
+  DescribeProgressLine describe(a.quiet);
+  rig::EnrollmentProgress progress;
+  progress.rendering = [&](std::size_t views, const std::string& label, const std::string& dir) {
+    render = std::make_unique<Progress>("render", views, !a.quiet);
+    if (!a.quiet)
+      std::cerr << "keyturn enroll: rendering " << views << " views of " << label << " (" << a.cameras << "; "
+                << a.elevations << "°, every " << a.step << "°) → " << dir << "\n";
+  };
+  progress.view_rendered = [&] { render->advance(); };
+  progress.rendered = [&] { render->finish(); };
+  progress.describe = &describe;
+  progress.retraining = [&](const learning::Model& model, std::size_t new_views) {
+    if (!a.quiet)
+      std::cerr << "keyturn enroll: retraining on the model's " << model.info.training_views.views.size() << " views and "
+                << new_views << " new ones (" << model.info.params.kind << ", open set " << model.info.open_set.method
+                << " re-calibrated for " << 100 * model.info.open_set.false_accept << " % false accepts)\n";
+  };
+  const rig::EnrolledObject r = rig::enrollObject(request, progress);
   if (!a.quiet) {
+    const learning::Enrollment& e = r.enrollment;
+    const learning::OpenSet& before = r.before.info.open_set;
     const learning::OpenSet& os = e.model.info.open_set;
-    std::cerr << std::fixed << std::setprecision(4) << "keyturn enroll: " << label << " added: "
+    std::cerr << std::fixed << std::setprecision(4) << "keyturn enroll: " << r.label << " added: "
               << e.model.info.classes.size() << " classes, " << e.new_views << " new views";
     if (e.skipped) std::cerr << " (" << e.skipped << " not described, left out)";
-    std::cerr << "; threshold " << model.info.open_set.threshold << " → " << os.threshold;
-    if (std::isfinite(os.turn_threshold)) std::cerr << ", a turn's " << model.info.open_set.turn_threshold << " → " << os.turn_threshold;
-    std::cerr << std::setprecision(1) << "; render " << formatDuration(render_s) << ", describe "
-              << formatDuration(describe_s) << ", retrain " << formatDuration(train_s) << " → " << a.out << "\n";
+    std::cerr << "; threshold " << before.threshold << " → " << os.threshold;
+    if (std::isfinite(os.turn_threshold)) std::cerr << ", a turn's " << before.turn_threshold << " → " << os.turn_threshold;
+    std::cerr << std::setprecision(1) << "; render " << formatDuration(r.render_s) << ", describe "
+              << formatDuration(r.describe_s) << ", retrain " << formatDuration(r.train_s) << " → " << a.out << "\n";
   }
   return 0;
 }

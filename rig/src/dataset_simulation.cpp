@@ -1,5 +1,6 @@
 #include "keyturn/rig/dataset_simulation.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -148,6 +149,17 @@ SimulatedCamera parseSimulatedCamera(const std::string& name) {
   if (name == "sr4000") return SimulatedCamera::Sr4000;
   if (name == "openni2") return SimulatedCamera::OpenNi2;
   throw Error("simulated camera '" + name + "': expected sr4000 (time of flight) or openni2 (Kinect-class structured light)");
+}
+
+std::vector<SimulatedCamera> parseSimulatedCameras(const std::string& list) {
+  std::vector<SimulatedCamera> out;
+  std::size_t at = 0;
+  while (at <= list.size()) {
+    const std::size_t comma = std::min(list.find(',', at), list.size());
+    out.push_back(parseSimulatedCamera(list.substr(at, comma - at)));
+    at = comma + 1;
+  }
+  return out;
 }
 
 const char* simulatedCameraName(SimulatedCamera camera) {

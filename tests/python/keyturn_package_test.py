@@ -313,6 +313,84 @@ class DatasetReads(unittest.TestCase):
             keyturn.features_of(paths, ["a"])
 
 
+class Reconstruct(unittest.TestCase):
+    """keyturn.reconstruct (issue 50) against keyturn reconstruct on one simulated turn of the table:
+    the same model, numpy arrays Open3D takes, the CLI's folder when asked, the CLI's one-line errors."""
+
+    @classmethod
+    def setUpClass(cls):
+        cls.ds = WORK / "turn"
+        shutil.rmtree(cls.ds, ignore_errors=True)
+        cli("capture", "--class", "mug", "--instance", "sim", "--step", "45", "--range", "360", "--settle", "0.005",
+            "-q", "--out", cls.ds)
+        cli("reconstruct", cls.ds, "--poisson-depth", "7", "-q", "--out", WORK / "cli-rec")
+        cls.r = keyturn.reconstruct(cls.ds, poisson_depth=7, out=WORK / "py-rec")
+
+    @staticmethod
+    def ply_counts(path):
+        header = Path(path).read_bytes().split(b"end_header", 1)[0].decode()
+        return {l.split()[1]: int(l.split()[2]) for l in header.splitlines() if l.startswith("element")}
+
+    def test_arrays(self):
+        r = self.r
+        self.assertEqual(r.vertices.dtype, np.float32)
+        self.assertEqual(r.vertices.shape[1], 3)
+        self.assertEqual(r.triangles.dtype, np.int32)
+        self.assertEqual(r.triangles.shape[1], 3)
+        self.assertGreater(len(r.triangles), 1000)
+        self.assertTrue(0 <= r.triangles.min() and r.triangles.max() < len(r.vertices))
+        self.assertEqual(r.points.shape, r.normals.shape)
+        np.testing.assert_allclose(np.linalg.norm(r.normals, axis=1), 1, atol=1e-3)
+        self.assertEqual(r.poses.shape, (8, 4, 4))
+        for pose in r.poses:
+            np.testing.assert_allclose(pose[:3, :3].T @ pose[:3, :3], np.eye(3), atol=1e-6)
+        self.assertEqual(len(r.views), 8)
+        self.assertEqual(r.model, "turntable")
+        self.assertTrue(r.report["refined"])
+        # The built-in mug is 117 × 93 × 81 mm (its mesh); its model, seen from 30°, of that order.
+        extent = r.vertices.max(axis=0) - r.vertices.min(axis=0)
+        self.assertTrue(((extent > 0.05) & (extent < 0.2)).all(), extent)
+
+    def test_as_the_cli(self):
+        ours, theirs = self.ply_counts(WORK / "py-rec/mesh.ply"), self.ply_counts(WORK / "cli-rec/mesh.ply")
+        self.assertEqual(ours, {"vertex": len(self.r.vertices), "face": len(self.r.triangles)})
+        self.assertEqual(self.ply_counts(WORK / "py-rec/cloud.ply")["vertex"], len(self.r.points))
+        # The same library on the same views: the same model up to OpenMP's order of sums.
+        self.assertAlmostEqual(ours["vertex"] / theirs["vertex"], 1, delta=0.02)
+        cli_report = json.loads((WORK / "cli-rec/report.json").read_text())
+        self.assertEqual(self.r.report["model"], cli_report["model"])
+        self.assertAlmostEqual(self.r.report["residual_median_after_m"], cli_report["residual_median_after_m"], delta=2e-5)
+        self.r.save(WORK / "py-rec-again")
+        self.assertEqual(self.ply_counts(WORK / "py-rec-again/mesh.ply"), ours)
+        self.assertIn("turntable poses refined", self.r.summary)
+
+    def test_options(self):
+        kept = keyturn.reconstruct(self.ds, refine=False, poisson_depth=6, elevations=[30])
+        self.assertFalse(kept.report["refined"])
+        self.assertEqual(len(kept.views), 8)
+        with self.assertRaisesRegex(keyturn.Error, "no views|elevation"):
+            keyturn.reconstruct(self.ds, elevations=[45])
+
+    def test_errors(self):
+        (WORK / "plain").mkdir(exist_ok=True)
+        with self.assertRaisesRegex(keyturn.Error, "no poses"):
+            keyturn.reconstruct(WORK / "plain")
+        with self.assertRaises(FileNotFoundError):
+            keyturn.reconstruct(WORK / "nothing-here")
+        with self.assertRaises(ValueError):
+            keyturn.reconstruct(self.ds, poisson_depth=3)
+
+    @needs_open3d
+    def test_open3d(self):
+        mesh = keyturn.to_open3d(self.r)
+        self.assertEqual(len(mesh.vertices), len(self.r.vertices))
+        self.assertEqual(len(mesh.triangles), len(self.r.triangles))
+        self.assertTrue(mesh.has_vertex_normals())
+        t = keyturn.to_open3d(self.r, tensor=True)
+        self.assertEqual(t.vertex["positions"].shape[0], len(self.r.vertices))
+        self.assertEqual(len(keyturn.to_open3d(self.r.points).points), len(self.r.points))
+
+
 class Stubs(unittest.TestCase):
     """keyturn/__init__.pyi against the module: the same public names, members and keywords."""
 

@@ -51,5 +51,7 @@ void bindDataset(py::module_& m);
 // A model trained in Python as a keyturn.Model (`source` names it in messages until saved).
 py::object wrapModel(learning::Model model, const std::string& source);
 void bindModel(py::module_& m);
+// --- reconstruct.cpp: keyturn.reconstruct and keyturn.Reconstruction --------------------------
+void bindReconstruct(py::module_& m);
 
 }  // namespace keyturn::python

@@ -14,4 +14,5 @@ PYBIND11_MODULE(_keyturn, m) {
   keyturn::python::bindDescribe(m);
   keyturn::python::bindDataset(m);
   keyturn::python::bindModel(m);
+  keyturn::python::bindReconstruct(m);
 }

@@ -1,9 +1,10 @@
-"""keyturn clouds as Open3D point clouds (Open3D is imported only when asked for)."""
+"""keyturn clouds as Open3D point clouds, a reconstruction as an Open3D triangle mesh (Open3D is
+imported only when asked for)."""
 from typing import Any
 
 import numpy as np
 
-from ._keyturn import Cloud
+from ._keyturn import Cloud, Reconstruction
 
 
 def to_open3d(cloud: Any, *, tensor: bool = False) -> Any:
@@ -13,8 +14,22 @@ def to_open3d(cloud: Any, *, tensor: bool = False) -> Any:
     o3d.t.geometry.PointCloud (float32 "positions", and the cloud's "amplitude" and
     "confidence", N × 1, when it has them). Open3D keeps no pixel grid: NaN points (a frame's
     holes) are left out; keyturn.describe(..., shape=(H, W)) needs the grid back, so keep the
-    keyturn.Cloud of a frame you mean to describe."""
+    keyturn.Cloud of a frame you mean to describe.
+
+    A keyturn.Reconstruction gives its surface: an o3d.geometry.TriangleMesh (float64 vertices,
+    vertex normals computed), or with tensor=True an o3d.t.geometry.TriangleMesh (float32
+    "positions", int32 "indices"). Its fused cloud is to_open3d(reconstruction.points)."""
     import open3d as o3d  # an optional dependency: python3-open3d
+
+    if isinstance(cloud, Reconstruction):
+        vertices, triangles = cloud.vertices, cloud.triangles
+        if tensor:
+            return o3d.t.geometry.TriangleMesh(o3d.core.Tensor(np.ascontiguousarray(vertices, dtype=np.float32)),
+                                               o3d.core.Tensor(np.ascontiguousarray(triangles, dtype=np.int32)))
+        mesh = o3d.geometry.TriangleMesh(o3d.utility.Vector3dVector(vertices.astype(np.float64)),
+                                         o3d.utility.Vector3iVector(triangles.astype(np.int32)))
+        mesh.compute_vertex_normals()
+        return mesh
 
     if isinstance(cloud, Cloud):
         points = np.asarray(cloud).reshape(-1, 3)

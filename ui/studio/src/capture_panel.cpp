@@ -118,7 +118,20 @@ CapturePanel::CapturePanel(QWidget* parent) : QWidget(parent) {
   thumbnails_->setIconSize(QSize(88, 72));
   thumbnails_->setMinimumHeight(110);
   rl->addWidget(thumbnails_);
+  // Beside Start / Pause / Stop, not in a row of their own: the capture dock's height is the window's
+  // (theWindowFitsA1600By1000Screen).
+  reconstruct_ = new QPushButton(tr("Reconstruct"));
+  reconstruct_->setObjectName("captureReconstruct");
+  reconstruct_->setToolTip(tr("Join the captured object's views into its model and show its mesh (keyturn reconstruct)"));
+  enroll_ = new QPushButton(tr("Enroll…"));
+  enroll_->setObjectName("captureEnroll");
+  enroll_->setToolTip(tr("Add the reconstructed object to the model and recognise with the new model (keyturn enroll)"));
+  buttons->addSpacing(12);
+  buttons->addWidget(reconstruct_);
+  buttons->addWidget(enroll_);
   layout->addWidget(run, 1);
+  connect(reconstruct_, &QPushButton::clicked, this, &CapturePanel::reconstruct);
+  connect(enroll_, &QPushButton::clicked, this, &CapturePanel::enroll);
 
   connect(browse, &QPushButton::clicked, this, [this] {
     const QString d = QFileDialog::getExistingDirectory(this, tr("Dataset folder"), folder_->text());
@@ -157,6 +170,8 @@ void CapturePanel::setState(State s) {
   start_->setText(s == State::Paused ? tr("Resume") : tr("Start capture"));
   pause_->setEnabled(s == State::Running);
   stop_->setEnabled(s != State::Idle);
+  reconstruct_->setEnabled(s == State::Idle);
+  enroll_->setEnabled(s == State::Idle);
   for (QWidget* w : std::initializer_list<QWidget*>{folder_, cls_, instance_, elevation_label_, elevation_, step_,
                                                     start_deg_, range_, calibration_})
     w->setEnabled(s == State::Idle);

@@ -1,7 +1,7 @@
 #pragma once
 // Capture: where (dataset folder), what (class, instance), how (elevation,
 // step, range); start / pause / resume / stop; progress with ETA and a
-// thumbnail of every view written.
+// thumbnail of every view written; then Reconstruct and Enroll… of the captured object.
 #include <QElapsedTimer>
 #include <QWidget>
 
@@ -42,6 +42,8 @@ class CapturePanel : public QWidget {
   void pause();
   void resume();
   void stop();
+  void reconstruct();  // the captured object's views joined into its model
+  void enroll();       // the reconstructed object added to the model
 
  private:
   enum class State { Idle, Running, Pausing, Paused, Stopping } state_ = State::Idle;
@@ -49,7 +51,7 @@ class CapturePanel : public QWidget {
 
   QLineEdit *folder_, *cls_, *instance_, *elevation_label_, *calibration_;
   QDoubleSpinBox *elevation_, *step_, *start_deg_, *range_;
-  QPushButton *start_, *pause_, *stop_;
+  QPushButton *start_, *pause_, *stop_, *reconstruct_, *enroll_;
   QProgressBar* bar_;
   QLabel* eta_;
   QListWidget* thumbnails_;

@@ -58,7 +58,8 @@ CloudView::CloudView(QWidget* parent) : QWidget(parent) {
   window_->AddRenderer(renderer_);
 
   cloud_ = vtkSmartPointer<vtkPolyData>::New();
-  auto cloud_actor = actorFor(cloud_, &cloud_mapper_);
+  cloud_actor_ = actorFor(cloud_, &cloud_mapper_);
+  auto& cloud_actor = cloud_actor_;
   auto lut = vtkSmartPointer<vtkLookupTable>::New();
   lut->SetHueRange(0.6, 0.0);  // near blue → far red, as the distance image's turbo map runs
   lut->Build();
@@ -68,17 +69,26 @@ CloudView::CloudView(QWidget* parent) : QWidget(parent) {
   renderer_->AddActor(cloud_actor);
 
   keypoints_ = vtkSmartPointer<vtkPolyData>::New();
-  auto kp_actor = actorFor(keypoints_);
+  keypoints_actor_ = actorFor(keypoints_);
+  auto& kp_actor = keypoints_actor_;
   kp_actor->GetProperty()->SetColor(1.0, 0.15, 0.15);
   kp_actor->GetProperty()->SetPointSize(11);
   kp_actor->GetProperty()->SetRenderPointsAsSpheres(true);
   renderer_->AddActor(kp_actor);
 
   paths_ = vtkSmartPointer<vtkPolyData>::New();
-  auto path_actor = actorFor(paths_);
+  paths_actor_ = actorFor(paths_);
+  auto& path_actor = paths_actor_;
   path_actor->GetProperty()->SetColor(1.0, 0.85, 0.1);
   path_actor->GetProperty()->SetLineWidth(2.5);
   renderer_->AddActor(path_actor);
+
+  model_ = vtkSmartPointer<vtkPolyData>::New();
+  model_actor_ = actorFor(model_);
+  model_actor_->GetProperty()->SetColor(0.80, 0.78, 0.70);
+  model_actor_->GetProperty()->SetSpecular(0.2);
+  model_actor_->VisibilityOff();
+  renderer_->AddActor(model_actor_);
 }
 
 CloudView::~CloudView() = default;
@@ -115,7 +125,57 @@ void CloudView::show(const std::vector<Eigen::Vector3f>& points, const std::vect
   window_->Render();
 }
 
+void CloudView::setModel(const std::vector<Eigen::Vector3f>& vertices, const std::vector<Eigen::Vector3i>& triangles) {
+  auto points = vtkSmartPointer<vtkPoints>::New();
+  points->SetDataTypeToFloat();
+  points->SetNumberOfPoints(static_cast<vtkIdType>(vertices.size()));
+  for (std::size_t i = 0; i < vertices.size(); ++i)
+    points->SetPoint(static_cast<vtkIdType>(i), vertices[i].x(), vertices[i].y(), vertices[i].z());
+  auto polys = vtkSmartPointer<vtkCellArray>::New();
+  for (const auto& t : triangles) {
+    const vtkIdType ids[3] = {t[0], t[1], t[2]};
+    polys->InsertNextCell(3, ids);
+  }
+  model_->SetPoints(points);
+  model_->SetPolys(polys);
+  model_->Modified();
+  setModelShown(true);
+}
+
+void CloudView::setModelShown(bool shown) {
+  model_shown_ = shown;
+  model_actor_->SetVisibility(shown);
+  for (vtkActor* a : {cloud_actor_.Get(), keypoints_actor_.Get(), paths_actor_.Get()}) a->SetVisibility(!shown);
+  if (shown) lookAtModel();
+  else resetCamera();
+}
+
+int CloudView::modelVertices() const { return static_cast<int>(model_->GetNumberOfPoints()); }
+int CloudView::modelTriangles() const { return static_cast<int>(model_->GetNumberOfPolys()); }
+
+std::array<double, 6> CloudView::modelBounds() const {
+  std::array<double, 6> b{};
+  model_->GetBounds(b.data());
+  return b;
+}
+
+void CloudView::lookAtModel() {
+  // The model's frame has z up: look at it from its side, 35° above, as the rig's camera does.
+  const auto b = modelBounds();
+  const double cx = (b[0] + b[1]) / 2, cy = (b[2] + b[3]) / 2, cz = (b[4] + b[5]) / 2;
+  vtkCamera* cam = renderer_->GetActiveCamera();
+  cam->SetFocalPoint(cx, cy, cz);
+  cam->SetPosition(cx, cy - 0.82, cz + 0.57);
+  cam->SetViewUp(0, 0, 1);
+  renderer_->ResetCamera();
+  window_->Render();
+}
+
 void CloudView::resetCamera() {
+  if (model_shown_) {
+    lookAtModel();
+    return;
+  }
   // The camera's own viewpoint: optical frame, looking along +z with +y down.
   vtkCamera* cam = renderer_->GetActiveCamera();
   cam->SetPosition(0, 0, 0);

@@ -1,5 +1,5 @@
-// The window: lays out the panels, docks and toolbar, and connects the three
-// controllers (devices, live view, capture) to them and to each other.
+// The window: lays out the panels, docks and toolbar, and connects the controllers (devices, live
+// view, capture, and reconstruct and enroll on one background job) to them and to each other.
 #include "keyturn/studio/studio_window.h"
 
 #include <QCloseEvent>
@@ -17,13 +17,17 @@
 #include <QToolBar>
 #include <QVBoxLayout>
 
+#include "background_job.h"
 #include "capture_controller.h"
 #include "capture_panel.h"
 #include "cloud_view.h"
 #include "device_controller.h"
 #include "devices_panel.h"
+#include "enroll_controller.h"
 #include "image_panel.h"
+#include "job_status.h"
 #include "live_view.h"
+#include "reconstruct_controller.h"
 #include "recognition_panel.h"
 
 namespace keyturn::studio {
@@ -95,6 +99,7 @@ void StudioWindow::buildLayout(RigFactory& factory, int recognition_threads) {
   auto* image_row = new QWidget;
   image_row->setLayout(images);
   auto* cloud = new CloudView;
+  cloud_ = cloud;
   auto* split = new QSplitter(Qt::Vertical);
   split->addWidget(image_row);
   split->addWidget(cloud);
@@ -135,6 +140,66 @@ void StudioWindow::buildLayout(RigFactory& factory, int recognition_threads) {
   connect(live_.get(), &LiveView::message, statusBar(), &QStatusBar::showMessage);
   connect(capture_.get(), &CaptureController::message, statusBar(), &QStatusBar::showMessage);
   buildToolbar(cloud);
+  buildModelActions(cloud);
+}
+
+// Reconstruct and Enroll… after a capture: one job at a time, its progress and its outcome (or its
+// error, one line) in the status bar; the mesh in the 3D view; recognition on the enrolled model.
+void StudioWindow::buildModelActions(CloudView* cloud) {
+  job_ = std::make_unique<BackgroundJob>();
+  auto* job_status = new JobStatus;
+  statusBar()->addPermanentWidget(job_status);
+  reconstruct_ = std::make_unique<ReconstructController>(capture_panel_, cloud, *job_);
+  reconstruct_->setPoissonDepth(settings_->value("reconstruct/poisson_depth", 0).toInt());
+  enroll_ = std::make_unique<EnrollController>(
+      *job_, this, [this] { return reconstruct_->folder(); }, [this] { return recognition_panel_->modelPath(); },
+      [this] {
+        const auto o = capture_panel_->options();
+        return std::make_pair(QString::fromStdString(o.cls), QString::fromStdString(o.instance));
+      });
+  try {
+    EnrollRecipe recipe;
+    const QSettings& s = *settings_;
+    if (s.contains("enroll/cameras")) recipe.cameras = rig::parseSimulatedCameras(s.value("enroll/cameras").toString().toStdString());
+    if (s.contains("enroll/elevations")) {
+      recipe.elevations.clear();
+      for (const QString& e : s.value("enroll/elevations").toString().split(',')) recipe.elevations.push_back(e.toDouble());
+    }
+    recipe.step_deg = s.value("enroll/step", recipe.step_deg).toDouble();
+    enroll_->setRecipe(recipe);
+  } catch (const std::exception& e) {
+    job_status->fail(tr("settings: enroll/cameras: %1").arg(e.what()));
+  }
+
+  auto* tools = addToolBar(tr("Model"));
+  tools->setObjectName("modelToolbar");
+  show_model_ = tools->addAction(tr("Show model"));
+  show_model_->setObjectName("showModel");
+  show_model_->setCheckable(true);
+  show_model_->setEnabled(false);
+  show_model_->setToolTip(tr("The reconstructed mesh in the 3D view instead of the live cloud (M)"));
+  show_model_->setShortcut(Qt::Key_M);
+  addAction(show_model_);
+  connect(show_model_, &QAction::toggled, cloud, &CloudView::setModelShown);
+
+  connect(capture_panel_, &CapturePanel::reconstruct, reconstruct_.get(), &ReconstructController::reconstruct);
+  connect(capture_panel_, &CapturePanel::enroll, enroll_.get(), &EnrollController::enroll);
+  connect(job_.get(), &BackgroundJob::progressed, job_status, &JobStatus::progress);
+  connect(job_.get(), &BackgroundJob::finished, job_status, [job_status](const QString& name, const QString& error) {
+    if (!error.isEmpty()) job_status->fail(name + ": " + error);
+  });
+  connect(reconstruct_.get(), &ReconstructController::failed, job_status, &JobStatus::fail);
+  connect(enroll_.get(), &EnrollController::failed, job_status, &JobStatus::fail);
+  connect(reconstruct_.get(), &ReconstructController::reconstructed, this, [this, job_status](const QString&, const QString& summary) {
+    job_status->succeeded(summary);
+    show_model_->setEnabled(true);
+    show_model_->setChecked(true);
+  });
+  connect(enroll_.get(), &EnrollController::enrolled, this, [this, job_status](const QString& model, const QString& summary) {
+    live_->loadModel(model);
+    job_status->succeeded(summary);
+    show_model_->setChecked(false);  // back to the live cloud the new model recognises
+  });
 }
 
 void StudioWindow::buildToolbar(CloudView* cloud) {
@@ -237,5 +302,8 @@ double StudioWindow::recognisedAgreement() const { return recognition_panel_->st
 QString StudioWindow::fusedClass() const { return recognition_panel_->fusedClass(); }
 double StudioWindow::fusedBelief() const { return recognition_panel_->fusedBelief(); }
 int StudioWindow::fusedViews() const { return recognition_panel_->fusedViews(); }
+ShownModel StudioWindow::shownModel() const {
+  return {cloud_->modelShown(), cloud_->modelVertices(), cloud_->modelTriangles(), cloud_->modelBounds()};
+}
 
 }  // namespace keyturn::studio

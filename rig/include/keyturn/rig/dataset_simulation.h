@@ -21,6 +21,8 @@ namespace keyturn::rig {
 enum class SimulatedCamera { Sr4000, OpenNi2 };
 // "sr4000" or "openni2"; throws keyturn::Error naming the choices for another name.
 SimulatedCamera parseSimulatedCamera(const std::string& name);
+// A comma-separated list of them ("sr4000,openni2").
+std::vector<SimulatedCamera> parseSimulatedCameras(const std::string& list);
 const char* simulatedCameraName(SimulatedCamera camera);
 
 // Per-view jitter, for a training-side twin of a dataset (evaluate --train-extra): every view

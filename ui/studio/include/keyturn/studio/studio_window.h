@@ -6,11 +6,13 @@
 // devices (worker threads, problem banner), the live view (frames, results,
 // rates, redraw clock, model) and the capture (sequence start, snapshot).
 #include <QMainWindow>
+#include <array>
 #include <memory>
 #include <optional>
 
 #include "keyturn/studio/rig_factory.h"
 
+class QAction;
 class QDockWidget;
 class QSettings;
 
@@ -35,11 +37,21 @@ struct StudioRates {
   long frames = 0, results = 0, dropped = 0;
 };
 
+// The reconstructed model in the 3D view (Reconstruct), for tests.
+struct ShownModel {
+  bool shown = false;  // false: the live cloud is shown
+  int vertices = 0, triangles = 0;
+  std::array<double, 6> bounds{};  // x min, x max, y min, y max, z min, z max (metres)
+};
+
+class BackgroundJob;
 class CaptureController;
 class CapturePanel;
 class CloudView;
 class DeviceController;
 class DevicesPanel;
+class EnrollController;
+class ReconstructController;
 class LiveView;
 class RecognitionPanel;
 
@@ -58,6 +70,7 @@ class StudioWindow : public QMainWindow {
   QString fusedClass() const;
   double fusedBelief() const;
   int fusedViews() const;
+  ShownModel shownModel() const;
 
  protected:
   void closeEvent(QCloseEvent* e) override;
@@ -65,6 +78,7 @@ class StudioWindow : public QMainWindow {
  private:
   void buildLayout(RigFactory& factory, int recognition_threads);
   void buildToolbar(CloudView* cloud);
+  void buildModelActions(CloudView* cloud);
   void placeWindow();
   void connectDevices(RigFactory& factory);  // open what the options name
   void startCaptureWhenReady();
@@ -76,11 +90,17 @@ class StudioWindow : public QMainWindow {
   CapturePanel* capture_panel_ = nullptr;
   RecognitionPanel* recognition_panel_ = nullptr;
   QDockWidget* capture_dock_ = nullptr;
+  QAction* show_model_ = nullptr;
+  CloudView* cloud_ = nullptr;
   // Destroyed in reverse: the capture, then the device threads (a capture ends after its view),
   // then the recognition threads — all before the widgets they draw into.
   std::unique_ptr<LiveView> live_;
   std::unique_ptr<DeviceController> devices_;
   std::unique_ptr<CaptureController> capture_;
+  // Last: a running reconstruction or enrollment is waited for first.
+  std::unique_ptr<BackgroundJob> job_;
+  std::unique_ptr<ReconstructController> reconstruct_;
+  std::unique_ptr<EnrollController> enroll_;
 };
 
 }  // namespace keyturn::studio
