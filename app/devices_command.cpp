@@ -12,6 +12,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/openni2_camera.h"
 #include "keyturn/drivers/usb_discovery.h"
+#include "keyturn/rig/found_camera.h"
 
 namespace keyturn::app {
 namespace {
@@ -43,7 +44,7 @@ nlohmann::json toJson(const drivers::OpenNi2VideoMode& m) {
 nlohmann::json toJson(const drivers::OpenNi2DeviceInfo& d) {
   char id[16];
   std::snprintf(id, sizeof id, "%04x:%04x", d.usb_vendor_id, d.usb_product_id);
-  nlohmann::json j = {{"uri", d.uri}, {"vendor", d.vendor}, {"name", d.name}, {"id", id}, {"spec", "openni2:" + d.uri}};
+  nlohmann::json j = {{"uri", d.uri}, {"vendor", d.vendor}, {"name", d.name}, {"id", id}, {"spec", rig::cameraSpecOf(d).toString()}};
   if (!d.error.empty()) {
     j["error"] = d.error;
     return j;
@@ -61,8 +62,8 @@ nlohmann::json toJson(const drivers::OpenNi2DeviceInfo& d) {
 }
 
 void printOpenNi2(const drivers::OpenNi2DeviceInfo& d) {
-  std::printf("%s %s  %04x:%04x  openni2:%s\n", d.vendor.c_str(), d.name.c_str(), d.usb_vendor_id, d.usb_product_id,
-              d.uri.c_str());
+  std::printf("%s %s  %04x:%04x  %s\n", d.vendor.c_str(), d.name.c_str(), d.usb_vendor_id, d.usb_product_id,
+              rig::cameraSpecOf(d).toString().c_str());
   if (!d.error.empty()) {
     std::printf("  cannot open: %s\n", d.error.c_str());
     return;

@@ -17,12 +17,6 @@
 
 namespace keyturn::pcl_plugin {
 
-pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<Eigen::Vector3f>& points) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
-  c->reserve(points.size());
-  for (const auto& p : points) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  return c;
-}
 pcl::PointCloud<pcl::Normal>::Ptr normalsOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
                                             const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree, double radius) {
   pcl::NormalEstimation<pcl::PointXYZ, pcl::Normal> ne;

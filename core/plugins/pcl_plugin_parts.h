@@ -5,10 +5,11 @@
 #include <pcl/search/kdtree.h>
 
 #include "../src/pcl_features_plugin.h"
+#include "../src/pcl_points.h"
 
 namespace keyturn::pcl_plugin {
 
-pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<Eigen::Vector3f>& points);
+using detail::toPcl;  // ../src/pcl_points.cpp, compiled into the plugin too
 // Normals (and curvature) from a radius search of `radius` metres over `tree`.
 pcl::PointCloud<pcl::Normal>::Ptr normalsOf(const pcl::PointCloud<pcl::PointXYZ>::Ptr& cloud,
                                             const pcl::search::KdTree<pcl::PointXYZ>::Ptr& tree, double radius);

@@ -12,6 +12,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_error.h"
+#include "keyturn/core/json_file.h"
 #include "file_error.h"
 
 namespace fs = std::filesystem;
@@ -127,13 +128,7 @@ std::string jsonText(const nlohmann::json& v) {
 }
 
 DepthImageOptions fromJson(const std::string& path, const std::string& text) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const nlohmann::json::exception& e) {
-    fail(path, "not valid JSON: " + jsonErrorText(e));
-  }
-  if (!j.is_object()) fail(path, "a camera file in JSON is an object ({…}), this is a " + std::string(j.type_name()));
+  const nlohmann::json j = parseJson(text, path, JsonShape::Object);
   if (j.contains("intrinsic_matrix")) {  // Open3D: o3d.io.write_pinhole_camera_intrinsic
     const nlohmann::json& m = j["intrinsic_matrix"];
     if (!m.is_array()) fail(path, "intrinsic_matrix is not a list of 9 numbers");

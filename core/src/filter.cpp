@@ -17,6 +17,7 @@
 
 #include "keyturn/core/nearest_neighbours.h"
 #include "keyturn/core/radius_search.h"
+#include "pcl_points.h"
 #include "quiet_pcl.h"
 #include "voxel_key.h"
 
@@ -24,19 +25,6 @@ namespace keyturn {
 namespace {
 
 const Eigen::Vector3f kNaN = Eigen::Vector3f::Constant(std::nanf(""));
-
-// Valid points as a PCL cloud plus the cloud index of each.
-pcl::PointCloud<pcl::PointXYZ>::Ptr validPoints(const Cloud& cloud, std::vector<int>& index) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr out(new pcl::PointCloud<pcl::PointXYZ>);
-  index.clear();
-  for (std::size_t i = 0; i < cloud.points.size(); ++i) {
-    const auto& p = cloud.points[i];
-    if (!Cloud::isValid(p)) continue;
-    out->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-    index.push_back(static_cast<int>(i));
-  }
-  return out;
-}
 
 }  // namespace
 
@@ -154,7 +142,7 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
     return false;
   };
   std::vector<int> index;
-  auto pts = validPoints(cloud, index);
+  auto pts = detail::toPcl(cloud, &index);  // valid points, with the cloud index of each
   if (pts->size() < 10) return say("too few points for a plane");
   detail::quietPcl();  // "Not enough inliers found to optimize model coefficients" on scattered points
   // RANSAC scores its hypotheses on an even subsample (a full 640 x 480 frame has

@@ -10,6 +10,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/radius_search.h"
 #include "pcl_features_plugin.h"
+#include "pcl_points.h"
 
 #include <algorithm>
 #include <cmath>
@@ -48,18 +49,14 @@ std::string detectorName(Detector d) {
 }
 
 namespace {
-pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const PointSet& set) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const auto& p : set.points) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  return c;
-}
+using detail::toPcl;
 
 // Harris's response at every point (no suppression), in the set's order.
 std::vector<double> harrisResponse(const PointSet& set, double res, const DetectorOptions& o) {
   const auto all = detail::pclFeatures().harris(set, o.harris_radius * res, false);
   std::vector<double> out(set.size(), 0.0);
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
-  tree.setInputCloud(toPcl(set));
+  tree.setInputCloud(toPcl(set.points));
   pcl::Indices idx(1);
   std::vector<float> d2(1);
   for (const auto& [p, response] : all)
@@ -135,7 +132,7 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
                                        o.sift_scales_per_octave, static_cast<float>(o.sift_min_contrast));
       break;
     case Detector::Uniform: {
-      auto cloud = toPcl(set);
+      auto cloud = toPcl(set.points);
       pcl::UniformSampling<pcl::PointXYZ> us;
       us.setInputCloud(cloud);
       us.setRadiusSearch(o.uniform_radius * res);
@@ -176,7 +173,7 @@ std::vector<Eigen::Vector3f> detectKeypointsAtBudget(Detector d, const PointSet&
     radius = 2 * o.sift_min_scale * res;
   }
   // Native keypoints ranked by the score of the point they stand on (or nearest).
-  auto cloud = toPcl(set);
+  auto cloud = toPcl(set.points);
   pcl::KdTreeFLANN<pcl::PointXYZ> tree;
   tree.setInputCloud(cloud);
   pcl::Indices idx(1);

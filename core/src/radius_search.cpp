@@ -20,6 +20,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/nearest_neighbours.h"
+#include "pcl_points.h"
 #include "voxel_key.h"
 
 namespace keyturn {
@@ -35,7 +36,7 @@ namespace {
 
 class KdTreeSearch final : public RadiusSearch::Impl {
  public:
-  explicit KdTreeSearch(const PointSet& set) : set_(set), cloud_(new pcl::PointCloud<pcl::PointXYZ>) {}
+  explicit KdTreeSearch(const PointSet& set) : set_(set) {}
   void radius(int i, float r, std::vector<int>& out) const override {
     build();
     out.clear();
@@ -62,15 +63,13 @@ class KdTreeSearch final : public RadiusSearch::Impl {
   // neighbourhood from the table, so it never needs the tree.
   void build() const {
     std::call_once(built_, [this] {
-      cloud_->resize(set_.size());
-      for (std::size_t i = 0; i < set_.size(); ++i)
-        (*cloud_)[i] = pcl::PointXYZ(set_.points[i].x(), set_.points[i].y(), set_.points[i].z());
+      cloud_ = detail::toPcl(set_.points);
       if (!cloud_->empty()) tree_.setInputCloud(cloud_);
     });
   }
   const PointSet& set_;
   mutable std::once_flag built_;
-  pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
+  mutable pcl::PointCloud<pcl::PointXYZ>::Ptr cloud_;
   mutable pcl::KdTreeFLANN<pcl::PointXYZ> tree_;
   mutable std::once_flag nearest_done_;
   mutable std::vector<float> nearest_d2_;

@@ -8,14 +8,11 @@
 #include <cmath>
 
 #include "pcl_features_plugin.h"
+#include "pcl_points.h"
 
 namespace keyturn {
 namespace {
-pcl::PointCloud<pcl::PointXYZ>::Ptr toPcl(const std::vector<Eigen::Vector3f>& pts) {
-  pcl::PointCloud<pcl::PointXYZ>::Ptr c(new pcl::PointCloud<pcl::PointXYZ>);
-  for (const auto& p : pts) c->push_back(pcl::PointXYZ(p.x(), p.y(), p.z()));
-  return c;
-}
+using detail::toPcl;
 
 double nearest(const pcl::KdTreeFLANN<pcl::PointXYZ>& tree, bool empty, const Eigen::Vector3f& q) {
   if (empty) return std::numeric_limits<double>::infinity();

@@ -5,6 +5,7 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 #include "keyturn/drivers/retry.h"
 
@@ -38,15 +39,8 @@ std::string sdoAbortText(std::uint32_t code) {
 }
 
 std::vector<CanOpenAxis> CanOpenAxis::loadAll(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": no such CANopen axes file");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
-  if (!j.is_array() || j.empty()) throw Error(path + ": expected a non-empty list of axes");
+  const nlohmann::json j = readJsonFile(path, JsonShape::Array);
+  if (j.empty()) throw Error(path + ": expected a non-empty list of axes");
   std::vector<CanOpenAxis> out;
   for (std::size_t i = 0; i < j.size(); ++i) {
     const std::string where = path + ": axis " + std::to_string(i);

@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 
 namespace keyturn::drivers {
@@ -71,12 +72,7 @@ double ModbusTurntableProfile::degreesToCounts(double degrees) const {
 }
 
 ModbusTurntableProfile ModbusTurntableProfile::fromJson(const std::string& text, const std::string& source) {
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(text);
-  } catch (const std::exception& e) {
-    throw Error(source + ": not valid JSON: " + e.what());
-  }
+  const nlohmann::json j = parseJson(text, source, JsonShape::Object);
   ModbusTurntableProfile p;
   try {
     p.name = j.value("name", source);

@@ -9,6 +9,7 @@
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 
 namespace fs = std::filesystem;
@@ -21,14 +22,7 @@ MesaSrSimConfig MesaSrSimConfig::fromEnvironment(const char* variable) {
 }
 
 MesaSrSimConfig MesaSrSimConfig::fromFile(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": cannot open simulator configuration");
-  nlohmann::json j;
-  try {
-    in >> j;
-  } catch (const std::exception& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
+  const nlohmann::json j = readJsonFile(path, JsonShape::Object);
   MesaSrSimConfig c;
   try {
     c.mesh = j.value("mesh", c.mesh);
@@ -85,12 +79,10 @@ void MesaSrSimConfig::save(const std::string& path) const {
 }
 
 double readWorldTurntable(const std::string& path, double fallback) {
-  std::ifstream in(path);
-  if (!in) return fallback;
+  std::error_code ec;
+  if (!std::filesystem::exists(path, ec)) return fallback;
   try {
-    nlohmann::json j;
-    in >> j;
-    return j.value("turntable_deg", fallback);
+    return readJsonFile(path).value("turntable_deg", fallback);
   } catch (const std::exception&) {
     return fallback;  // a writer mid-rename never leaves a torn file; anything else keeps the last pose
   }

@@ -280,7 +280,7 @@ TEST(CameraFile, BadFilesAreOneLineNamingTheFileAndTheProblem) {
            {"ros_fx_text.yaml", "camera_matrix.data[0] is 'fx', not a number"},
            {"prose.txt", "not a camera file: expected JSON or YAML keys"},
            {"broken.yaml", "neither JSON nor valid YAML (line "},
-           {"broken.json", "not valid JSON"},
+           {"broken.json", "not JSON at byte 18 (unexpected end of input; expected '[', '{', or a literal)"},
            {"binary.png", "a binary file, not a camera file"},
            {"opencv12.yaml", "distortion_coefficients holds 12 values: keyturn applies plumb_bob (k1 k2 p1 p2 [k3]) or rational_polynomial (8)"},
            {"empty.yaml", "empty camera file"},

@@ -70,8 +70,9 @@ TEST(ModbusProfile, BuiltInsAndTheirConversions) {
 }
 
 TEST(ModbusProfile, BadFilesAreNamed) {
-  EXPECT_NE(errorOf([] { ModbusTurntableProfile::fromJson("{", "p.json"); }).find("p.json: not valid JSON"),
-            std::string::npos);
+  EXPECT_EQ(errorOf([] { ModbusTurntableProfile::fromJson("{", "p.json"); }),
+            "p.json: not JSON at byte 1 (unexpected end of input; expected string literal)");
+  EXPECT_EQ(errorOf([] { ModbusTurntableProfile::fromJson("[]", "p.json"); }), "p.json: expected a JSON object, found an array");
   EXPECT_NE(errorOf([] {
               ModbusTurntableProfile::fromJson(R"({"position":{"address":0,"bits":24},"counts_per_revolution":1})", "p.json");
             }).find("p.json: position: bits must be 16 or 32"),

@@ -235,18 +235,19 @@ TEST(ModelFile, AMissingKeyOrACutFileIsNamedInWordsNotTheJsonLibrarys) {
     return keyturn::test::errorOf([&] { parseModelSidecar(kSidecar.substr(0, n), "m.json"); });
   };
   for (const std::string& msg : {cutAt(kSidecar.find("\"mlp\"")), cutAt(kSidecar.size() - 1)}) {
-    EXPECT_EQ(msg.rfind("m.json: not valid JSON (parse error at line ", 0), 0u) << msg;
+    EXPECT_EQ(msg.rfind("m.json: not JSON at byte ", 0), 0u) << msg;
     EXPECT_NE(msg.find("unexpected end of input; expected "), std::string::npos) << msg;
     EXPECT_EQ(msg.back(), ')') << msg;
     EXPECT_EQ(msg.find("json.exception"), std::string::npos) << msg;
   }
-  EXPECT_EQ(cutAt(kSidecar.find("xgb.json")), "m.json: not valid JSON (parse error at line 5, column 46: syntax error while parsing "
-                                              "value - invalid string: missing closing quote; last read: '\"model.')");
+  EXPECT_EQ(cutAt(kSidecar.find("xgb.json")),
+            "m.json: not JSON at byte " + std::to_string(kSidecar.find("xgb.json")) +
+                " (invalid string: missing closing quote; last read: '\"model.')");
 }
 
 TEST(ModelFile, CorruptSidecarsAreOneClearLine) {
-  EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{", "m.json"); }).find("m.json: not valid JSON"),
-            std::string::npos);
+  EXPECT_EQ(keyturn::test::errorOf([] { parseModelSidecar("{", "m.json"); }),
+            "m.json: not JSON at byte 1 (unexpected end of input; expected string literal)");
   EXPECT_NE(keyturn::test::errorOf([] { parseModelSidecar("{\"format\":\"x\"}", "m.json"); })
                 .find("not a keyturn model sidecar"),
             std::string::npos);

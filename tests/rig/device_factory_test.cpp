@@ -73,7 +73,7 @@ TEST_F(DeviceFactoryTest, ABadConfigurationOrMeshIsNamedBeforeTheSimulatorOpens)
   const std::string e = errorOf([&] { factory.openCamera(rig::CameraSpec::parse("sim:" + nomesh)); });
   EXPECT_EQ(e.rfind(nomesh + ": mesh: ", 0), 0u) << e;
   EXPECT_EQ(errorOf([&] { factory.openCamera(rig::CameraSpec::parse("sim:" + (dir_ / "none.json").string())); }),
-            (dir_ / "none.json").string() + ": cannot open simulator configuration");
+            (dir_ / "none.json").string() + ": cannot read (No such file or directory)");
 }
 
 TEST_F(DeviceFactoryTest, PoseSourcesThatBelongWithACameraAreRefusedWithoutIt) {

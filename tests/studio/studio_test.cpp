@@ -28,6 +28,7 @@
 #include <mutex>
 #include <utility>
 
+#include "devices_panel.h"
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/rig/dataset_playback.h"
@@ -101,7 +102,7 @@ class CountedCamera final : public drivers::TofCamera {
 class ObservedFactory final : public RigFactory {
  public:
   explicit ObservedFactory(RigFactory& real) : real_(real) {}
-  void plug(std::vector<std::pair<unsigned, std::string>> cameras) {
+  void plug(std::vector<rig::FoundCamera> cameras) {
     cameras_ = std::move(cameras);
     changed_ = true;
   }
@@ -119,7 +120,7 @@ class ObservedFactory final : public RigFactory {
   std::vector<SimObject> simObjects() const override { return real_.simObjects(); }
   rig::CameraSpec simulatedCamera(const std::string& sim_object) override { return real_.simulatedCamera(sim_object); }
   void setSimulatedCameraUnplugged(bool unplugged) override { real_.setSimulatedCameraUnplugged(unplugged); }
-  std::vector<std::pair<unsigned, std::string>> usbCameras() override {
+  std::vector<rig::FoundCamera> usbCameras() override {
     ++scans;
     return cameras_;
   }
@@ -130,7 +131,7 @@ class ObservedFactory final : public RigFactory {
 
  private:
   RigFactory& real_;
-  std::vector<std::pair<unsigned, std::string>> cameras_;
+  std::vector<rig::FoundCamera> cameras_;
   bool changed_ = false;
 };
 
@@ -497,13 +498,25 @@ class StudioTest : public QObject {
     const int polls = usb.polls;
     QTRY_VERIFY_WITH_TIMEOUT(usb.polls >= polls + 2, waitMs(5000));
     QCOMPARE(usb.scans, scans_before);  // the bus polled twice, no change on it: no rescan
-    usb.plug({{4000123u, "SR4000 serial 4000123 (bus 1, port 2)"}, {4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});
+    // Each listed camera opens as the spec rig made of what USB found (rig/found_camera.h).
+    auto sr4000 = [](const std::string& serial, const std::string& port) {
+      drivers::UsbCameraInfo c;
+      c.model = "SR4000";
+      c.serial = serial;
+      c.port_path = port;
+      c.accessible = true;
+      return rig::foundCamera(c);
+    };
+    auto* kind = w.findChild<QComboBox*>("cameraKind");
+    usb.plug({sr4000("4000123", "1-2"), sr4000("4000456", "3-1")});
     QTRY_COMPARE_WITH_TIMEOUT(list->count(), 2, waitMs(3000));
-    QCOMPARE(list->itemData(1).toUInt(), 4000456u);
-    QVERIFY2(list->itemText(0).contains("4000123"), qPrintable(list->itemText(0)));
-    usb.plug({{4000456u, "SR4000 serial 4000456 (bus 3, port 1)"}});  // the first one pulled out
+    QCOMPARE(list->itemText(0), QString("SR4000 4000123 on USB 1-2"));
+    list->setCurrentIndex(1);
+    QCOMPARE(kind->currentIndex(), 1);
+    QCOMPARE(QString::fromStdString(w.findChild<DevicesPanel*>()->cameraSpec().toString()), QString("usb:4000456"));
+    usb.plug({sr4000("4000456", "3-1")});  // the first one pulled out
     QTRY_COMPARE_WITH_TIMEOUT(list->count(), 1, waitMs(3000));
-    QCOMPARE(list->itemData(0).toUInt(), 4000456u);
+    QCOMPARE(QString::fromStdString(w.findChild<DevicesPanel*>()->cameraSpec().toString()), QString("usb:4000456"));
     usb.plug({});
     QTRY_COMPARE_WITH_TIMEOUT(list->itemText(0), QString("no SwissRanger on USB"), waitMs(3000));
   }

@@ -8,20 +8,11 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/durable_file.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/dataset/dataset_layout.h"
 
 namespace keyturn::dataset {
 namespace {
-
-nlohmann::json parse(const std::string& path, const char* what) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": no such " + what);
-  try {
-    return nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
-}
 
 Eigen::Matrix4d matrix(const std::string& path, const nlohmann::json& j) {
   if (!j.is_array() || j.size() != 4) throw Error(path + ": camera_from_turntable must be a 4 × 4 array");
@@ -40,7 +31,7 @@ Eigen::Matrix4d matrix(const std::string& path, const nlohmann::json& j) {
 }  // namespace
 
 std::optional<Eigen::Matrix4d> readViewTransform(const std::string& path) {
-  const auto j = parse(path, "view sidecar");
+  const auto j = readJsonFile(path);
   if (!j.is_object() || !j.contains("camera_from_turntable")) throw Error(path + ": not a keyturn view sidecar");
   if (j["camera_from_turntable"].is_null()) return std::nullopt;
   return matrix(path, j["camera_from_turntable"]);
@@ -57,7 +48,7 @@ void readOptional(const nlohmann::json& c, const char* key, std::optional<T>& ou
 }  // namespace
 
 SidecarCameraRecord readSidecarCamera(const std::string& path) {
-  const auto j = parse(path, "view sidecar");
+  const auto j = readJsonFile(path);
   if (!j.is_object()) throw Error(path + ": not a keyturn view sidecar");
   SidecarCameraRecord out;
   out.imported = j.contains("imported_by");
@@ -80,7 +71,7 @@ SidecarCameraRecord readSidecarCamera(const std::string& path) {
 }
 
 Eigen::Matrix4d readAxisCalibration(const std::string& path) {
-  const auto j = parse(path, "calibration file");
+  const auto j = readJsonFile(path);
   if (!j.is_object() || !j.contains("format") || !j["format"].is_string() ||
       j["format"].get<std::string>() != "keyturn-axis-calibration")
     throw Error(path + ": not a keyturn axis calibration");

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/dataset/dataset_views.h"
 
@@ -16,14 +17,9 @@ std::string sidecarPathOf(const std::string& view_path) {
 }
 
 double readViewAzimuth(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw Error(path + ": no sidecar, so the view has no turntable pose");
-  nlohmann::json j;
-  try {
-    j = nlohmann::json::parse(in);
-  } catch (const std::exception& e) {
-    throw Error(path + ": not valid JSON: " + e.what());
-  }
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec)) throw Error(path + ": no sidecar, so the view has no turntable pose");
+  const nlohmann::json j = readJsonFile(path, JsonShape::Object);
   const auto it = j.find("measured_deg");
   if (it == j.end() || !it->is_number() || !std::isfinite(it->get<double>()))
     throw Error(path + ": no measured_deg, so the view has no turntable pose");

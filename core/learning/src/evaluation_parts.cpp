@@ -13,6 +13,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/fnv1a.h"
 #include "keyturn/core/json_error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 
 namespace keyturn::learning {
@@ -56,22 +57,10 @@ std::string differences(const json& theirs, const json& mine) {
   return keys.empty() ? "the plan" : keys;
 }
 
-json readJson(const std::string& path) {
-  std::ifstream f(path, std::ios::binary);
-  if (!f) throw Error(path + ": cannot read");
-  std::ostringstream s;
-  s << f.rdbuf();
-  try {
-    return json::parse(s.str());
-  } catch (const json::exception& e) {
-    throw Error(path + ": not valid JSON (" + jsonErrorText(e) + ")");
-  }
-}
-
 // Reads one part into the run's rows; `seen` marks the trainings already filled.
 double readPart(const std::string& path, int shard, int shards, EvaluationRun& run,
                 std::vector<std::vector<bool>>& seen) {
-  const json j = readJson(path);
+  const json j = readJsonFile(path, JsonShape::Object);
   const std::size_t most = std::numeric_limits<int>::max();
   try {
     if (!j.is_object() || j.value("format", "") != kFormat) throw Error(path + ": not a keyturn evaluation part");

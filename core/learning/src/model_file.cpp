@@ -14,6 +14,7 @@
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/json_error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 
 namespace keyturn::learning {
@@ -48,12 +49,7 @@ json toJson(const ModelInfo& m) {
 }  // namespace
 
 ModelInfo parseModelSidecar(const std::string& text, const std::string& source) {
-  json j;
-  try {
-    j = json::parse(text);
-  } catch (const json::exception& e) {
-    throw Error(source + ": not valid JSON (" + jsonErrorText(e) + ")");
-  }
+  const json j = parseJson(text, source, JsonShape::Object);
   ModelInfo m;
   const int most = std::numeric_limits<int>::max();
   try {

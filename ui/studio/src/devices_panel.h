@@ -1,10 +1,13 @@
 #pragma once
 // Devices: the camera (simulated, USB, Ethernet, a recording, OpenNI2) with its settings, and the
 // pose source (simulated turntable, Modbus TCP/RTU, CANopen) with a live
-// readout and jog / home / move-to / stop.
+// readout and jog / home / move-to / stop. One file a job: the widgets (devices_panel.cpp), the
+// choices as rig's specs (devices_panel_specs.cpp), settings kept between runs
+// (devices_panel_settings.cpp), what the devices report (devices_panel_status.cpp).
 #include <QWidget>
 
 #include <optional>
+#include <string>
 
 #include "keyturn/studio/rig_factory.h"
 
@@ -76,6 +79,11 @@ class DevicesPanel : public QWidget {
   QWidget* poseGroup();
   void updateCameraKind();
   void updatePoseKind();
+  rig::CameraSpec::Kind cameraKind() const;  // the Source row's (camera_rows.h)
+  // A found camera's row in a device list: its label, and its spec as the row's data.
+  static void addFound(QComboBox* list, const std::string& label, const rig::CameraSpec& spec);
+  // The spec of a device list's current row; `fallback` for an empty list.
+  static rig::CameraSpec currentSpec(const QComboBox* list, const rig::CameraSpec& fallback);
 
   RigFactory& factory_;
   bool camera_on_ = false, pose_on_ = false;

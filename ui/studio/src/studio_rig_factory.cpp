@@ -59,27 +59,9 @@ void StudioRigFactory::setSimulatedCameraUnplugged(bool unplugged) {
   else fs::remove(flag);
 }
 
-std::vector<std::pair<unsigned, std::string>> StudioRigFactory::usbCameras() {
-  std::vector<std::pair<unsigned, std::string>> out;
-  for (const auto& c : drivers::listSwissRangerCameras()) {
-    unsigned serial = 0;
-    try {
-      serial = static_cast<unsigned>(std::stoul(c.serial));
-    } catch (const std::exception&) {
-    }
-    std::string text = c.model + (c.serial.empty() ? "" : " " + c.serial) + " on USB " + c.port_path;
-    if (!c.accessible) text += " (no access: " + c.access_error + ")";
-    out.emplace_back(serial, text);
-  }
-  return out;
-}
+std::vector<rig::FoundCamera> StudioRigFactory::usbCameras() { return rig::findUsbCameras(); }
 
-std::vector<std::pair<std::string, std::string>> StudioRigFactory::openni2Cameras() {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& d : drivers::listOpenNi2Devices())
-    out.emplace_back(d.uri, d.vendor + " " + d.name + " (" + d.uri + ")" + (d.error.empty() ? "" : ": " + d.error));
-  return out;
-}
+std::vector<rig::FoundCamera> StudioRigFactory::openni2Cameras() { return rig::findOpenNi2Cameras(); }
 
 bool StudioRigFactory::usbCamerasChanged() {
   if (!hotplug_tried_) {

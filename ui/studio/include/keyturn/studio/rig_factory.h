@@ -12,6 +12,7 @@
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
 #include "keyturn/rig/device_spec.h"
+#include "keyturn/rig/found_camera.h"
 
 namespace keyturn::studio {
 
@@ -32,13 +33,14 @@ class RigFactory {
   virtual rig::CameraSpec simulatedCamera(const std::string& sim_object) = 0;
   // The simulated camera's cable: pulled (opens and frames fail) or plugged in.
   virtual void setSimulatedCameraUnplugged(bool unplugged) = 0;
-  // "SR4000 4000123 on USB 1-2" lines for the USB camera list; throws when USB is unusable.
-  virtual std::vector<std::pair<unsigned, std::string>> usbCameras() = 0;
+  // The SwissRangers on USB, each as the spec that opens it and its line in the list
+  // (rig/found_camera.h); throws when USB is unusable.
+  virtual std::vector<rig::FoundCamera> usbCameras() = 0;
   // Handles pending USB hot-plug events without waiting: true when a SwissRanger
   // arrived or left since the last call. False where libusb has no hot-plug.
   virtual bool usbCamerasChanged() { return false; }
-  // (URI, "vendor name (URI)") of each OpenNI2 depth camera present; throws when OpenNI2 cannot start.
-  virtual std::vector<std::pair<std::string, std::string>> openni2Cameras() { return {}; }
+  // The OpenNI2 depth cameras present, as usbCameras(); throws when OpenNI2 cannot start.
+  virtual std::vector<rig::FoundCamera> openni2Cameras() { return {}; }
   // Camera ← turntable at 0° for the views' sidecars: exact for the simulated
   // rig, from an axis calibration for a real one, none when not calibrated.
   virtual std::optional<Eigen::Matrix4d> cameraFromTurntable() const { return std::nullopt; }

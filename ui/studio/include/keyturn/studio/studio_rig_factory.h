@@ -25,9 +25,9 @@ class StudioRigFactory final : public RigFactory {
   std::vector<SimObject> simObjects() const override { return objects_; }
   rig::CameraSpec simulatedCamera(const std::string& sim_object) override;
   void setSimulatedCameraUnplugged(bool unplugged) override;
-  std::vector<std::pair<unsigned, std::string>> usbCameras() override;
+  std::vector<rig::FoundCamera> usbCameras() override;
   bool usbCamerasChanged() override;
-  std::vector<std::pair<std::string, std::string>> openni2Cameras() override;
+  std::vector<rig::FoundCamera> openni2Cameras() override;
   std::optional<Eigen::Matrix4d> cameraFromTurntable() const override;
   const std::string& runtimeDir() const { return files_.dir; }
 
