@@ -165,7 +165,8 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
   cmd->add_option("--protocol", a->protocols,
                   "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
-                  "default 5), fixed:FILE; or fusion alone (accuracy against the number of views of one object, "
+                  "default 5), open-set-instance[N] (the same, and of every other category with two or more instances "
+                  "one instance never trained on: a category model's two kinds of new object), fixed:FILE; or fusion alone (accuracy against the number of views of one object, "
                   "one feature set and classifier, under leave-instance and leave-elevation), or nbv alone (next "
                   "best view against fixed steps, the same way), or cross-sensor alone (with --other-camera: trained on "
                   "either camera's views or both, tested on each, one elevation left out at a time)")

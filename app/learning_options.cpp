@@ -54,6 +54,11 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                    "the median's to 1 minus it (1: each class's own spread; 0: one scale for all)")
         ->check(CLI::Range(0.0, 1.0))
         ->capture_default_str();
+  cmd.add_option("--open-set-spread", o.class_spread,
+                 "knn-relative: a class's scale from its views' spread (views: the nearest other view of it) or its "
+                 "instances' (instances: the nearest view of another of its instances, for category models)")
+      ->check(CLI::IsMember(learning::openSetSpreads()))
+      ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,
                  "Open-set: the rate of unknown views given a class that the threshold is calibrated for")
       ->check(CLI::Range(0.0, 0.99))

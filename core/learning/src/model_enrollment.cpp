@@ -133,6 +133,7 @@ Enrollment enrollObject(const Model& m, const FeatureTable& views, const std::ve
   o.neighbours = info.open_set.neighbours;
   o.scale_by = info.open_set.scale_by;  // a model calibrated with the pooled scale stays pooled
   o.class_scale_power = info.open_set.class_scale_power;
+  o.class_spread = info.open_set.class_spread;
   o.groups = info.training_views.open_set_groups;
   o.seed = info.training_views.open_set_seed;
   o.required = true;

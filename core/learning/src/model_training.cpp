@@ -45,10 +45,11 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
       turns.azimuth_deg = azimuth_deg;
       for (const auto& row : t.rows) turns.group.push_back(detail::captureGroupOf(row));
     }
-    std::vector<std::string> cameras;  // each view's camera, for the camera scale ("" : none known)
-    for (const auto& row : t.rows) cameras.push_back(row.camera);
+    std::vector<std::string> cameras, instances;  // each view's camera ("" : none known) and instance
+    for (const auto& row : t.rows) cameras.push_back(row.camera), instances.push_back(row.instance);
     if (o.required || distinct.size() >= kOpenSetMinCategories)
-      m.info.open_set = calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras).front();
+      m.info.open_set =
+          calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras, &instances).front();
     // The references are the training rows: with what else each row was trained by, the model can
     // be retrained with an object added (model_enrollment.h).
     if (keepsReferences(m.info.open_set.method)) {

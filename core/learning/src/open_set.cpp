@@ -43,6 +43,17 @@ void checkOpenSetScale(const std::string& scale_by) {
     throw Error("open-set scale '" + scale_by + "' is not one of pooled, camera");
 }
 
+const std::vector<std::string>& openSetSpreads() {
+  static const std::vector<std::string> spreads = {"views", "instances"};
+  return spreads;
+}
+
+void checkOpenSetSpread(const std::string& spread) {
+  const auto& s = openSetSpreads();
+  if (std::find(s.begin(), s.end(), spread) == s.end())
+    throw Error("open-set class spread '" + spread + "' is not one of views, instances");
+}
+
 namespace {
 
 // Each class's own scale for knn-relative: the median, over its training views, of the RMS
@@ -98,13 +109,47 @@ std::map<std::string, float> cameraScales(const std::vector<std::string>& camera
   return out;
 }
 
+// Each class's instance spread over its view spread: for a class of two or more instances, the median
+// over its views of the distance to the nearest view of another of its instances, over the class's
+// view scale `own`. A category model's unseen instance lies at the first distance from the references,
+// not at the second (the sensor noise and the turntable step between neighbouring views of one
+// instance). A single-instance class takes the median ratio of the others (1 when no class has two).
+std::vector<double> instanceSpreadRatios(const Matrix& refs, const std::vector<int>& y,
+                                         const std::vector<std::string>& instances, const std::vector<float>& own) {
+  std::vector<std::vector<Eigen::Index>> rows_of(own.size());
+  for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
+  std::vector<double> ratio(own.size(), std::nan("")), measured;
+  for (std::size_t c = 0; c < rows_of.size(); ++c) {
+    std::vector<double> nearest;
+    for (Eigen::Index a : rows_of[c]) {
+      double best = std::numeric_limits<double>::infinity();
+      for (Eigen::Index b : rows_of[c])
+        if (instances[static_cast<std::size_t>(b)] != instances[static_cast<std::size_t>(a)])
+          best = std::min(best, detail::rmsDistance(refs.row(a), refs.row(b)));
+      if (std::isfinite(best)) nearest.push_back(best);
+    }
+    if (nearest.empty()) continue;  // one instance
+    ratio[c] = std::max(1e-6, detail::medianOf(nearest)) / static_cast<double>(own[c]);
+    measured.push_back(ratio[c]);
+  }
+  const double fallback = measured.empty() ? 1.0 : detail::medianOf(measured);
+  for (double& v : ratio)
+    if (std::isnan(v)) v = fallback;
+  return ratio;
+}
+
 }  // namespace
 
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours,
                          const std::string& scale_by, const std::vector<std::string>* cameras,
-                         double class_scale_power) {
+                         double class_scale_power, const std::string& class_spread,
+                         const std::vector<std::string>* instances) {
   checkOpenSetMethod(method);
   checkOpenSetScale(scale_by);
+  checkOpenSetSpread(class_spread);
+  if (class_spread == "instances" && method == "knn-relative" && (!instances || instances->size() != y.size()))
+    throw Error("open-set class spread 'instances' needs each training view's instance (" + std::to_string(y.size()) +
+                " rows, " + std::to_string(instances ? instances->size() : 0) + " instances)");
   if (!(class_scale_power >= 0 && class_scale_power <= 1))
     throw Error("open-set class scale power must be within [0, 1], not " + std::to_string(class_scale_power));
   if (cameras && cameras->size() != y.size())
@@ -121,10 +166,16 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   if (method != "knn-relative") return s;
   std::vector<double> nearest;
   s.class_scale = classScales(s.references, y, &nearest);
+  const std::vector<float> own = s.class_scale;
   drawTowardMedian(s.class_scale, class_scale_power);
   s.class_scale_power = class_scale_power;
   s.scale_by = scale_by;
   if (scale_by == "camera" && cameras) s.camera_scale = cameraScales(*cameras, y, nearest, s.class_scale);
+  s.class_spread = class_spread;
+  if (class_spread == "instances") {  // after the camera factors: they compare cameras, not instances
+    const std::vector<double> ratio = instanceSpreadRatios(s.references, y, *instances, own);
+    for (std::size_t c = 0; c < s.class_scale.size(); ++c) s.class_scale[c] *= static_cast<float>(ratio[c]);
+  }
   return s;
 }
 

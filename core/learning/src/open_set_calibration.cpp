@@ -46,10 +46,15 @@ Matrix rowsOf(const Matrix& x, const std::vector<std::size_t>& rows) {
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
                                        const OpenSetOptions& o, const TurnRows* turns,
-                                       const std::vector<std::string>* cameras) {
+                                       const std::vector<std::string>* cameras,
+                                       const std::vector<std::string>* instances) {
   if (o.methods.empty()) return {};
   for (const auto& m : o.methods) checkOpenSetMethod(m);
   checkOpenSetScale(o.scale_by);
+  checkOpenSetSpread(o.class_spread);
+  if (instances && instances->size() != y.size())
+    throw Error("open-set calibration: " + std::to_string(y.size()) + " rows but " + std::to_string(instances->size()) +
+                " instances");
   if (cameras && cameras->size() != y.size())
     throw Error("open-set calibration: " + std::to_string(y.size()) + " rows but " + std::to_string(cameras->size()) +
                 " cameras");
@@ -80,11 +85,13 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     const int inner_classes = compact.empty() ? 0 : *std::max_element(compact.begin(), compact.end()) + 1;
     if (inner_classes < 2 || held.empty()) continue;  // nothing to learn or to score without this group
     const Matrix xtrain = rowsOf(x, train), xheld = rowsOf(x, held);
-    std::vector<std::string> camtrain, camheld;
+    std::vector<std::string> camtrain, camheld, insttrain;
     if (cameras) {
       for (auto r : train) camtrain.push_back((*cameras)[r]);
       for (auto r : held) camheld.push_back((*cameras)[r]);
     }
+    if (instances)
+      for (auto r : train) insttrain.push_back((*instances)[r]);
     auto clf = makeClassifier(params);
     clf->fit(xtrain, compact, inner_classes);
     const Matrix p = clf->predictProba(xheld);
@@ -99,7 +106,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
       const OpenSet scorer =
           fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours, o.scale_by, cameras ? &camtrain : nullptr,
-                           o.class_scale_power);
+                           o.class_scale_power, o.class_spread, instances ? &insttrain : nullptr);
       const std::vector<double> s = openSetScores(scorer, xheld, p, cameras ? &camheld : nullptr);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
       for (const auto& seq : held_turns) {
@@ -111,7 +118,8 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   }
   std::vector<OpenSet> out;
   for (std::size_t m = 0; m < o.methods.size(); ++m) {
-    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras, o.class_scale_power);
+    OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras, o.class_scale_power,
+                                 o.class_spread, instances);
     s.threshold = thresholdForFalseAccept(unknown[m], o.false_accept);
     s.false_accept = o.false_accept;
     s.calibration_views = static_cast<int>(unknown[m].size());

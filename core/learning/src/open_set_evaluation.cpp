@@ -132,7 +132,11 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
   const bool posed_training = !az.empty() && std::all_of(train.begin(), train.end(), [&](std::size_t r) { return std::isfinite(az[r]); });
   if (posed_training)
     for (auto r : train) turn_rows.group.push_back(detail::captureGroupOf(table.rows[r])), turn_rows.azimuth_deg.push_back(az[r]);
-  for (const OpenSet& s : calibrateOpenSets(xtrain, compact, categories, params, options, posed_training ? &turn_rows : nullptr)) {
+  std::vector<std::string> instances;
+  for (auto r : train) instances.push_back(table.rows.at(r).instance);
+  for (const OpenSet& s :
+       calibrateOpenSets(xtrain, compact, categories, params, options, posed_training ? &turn_rows : nullptr, nullptr,
+                         &instances)) {
     OpenSetFoldOutcome o;
     o.method = s.method;
     o.threshold = s.threshold;

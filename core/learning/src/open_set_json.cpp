@@ -27,6 +27,8 @@ json openSetJson(const OpenSet& s) {
   if (s.method == "knn-relative") j["class_scale"] = s.class_scale;
   if (s.method == "knn-relative" && s.class_scale_power != 1)  // absent: each class's own scale
     j["class_scale_power"] = s.class_scale_power;
+  if (s.method == "knn-relative" && s.class_spread != "views")  // absent: each class's views' spread
+    j["class_spread"] = s.class_spread;
   if (s.method == "knn-relative" && s.scale_by != "pooled") {  // absent: the pooled scale (models before issue 47's)
     j["scale_by"] = s.scale_by;
     j["camera_scale"] = s.camera_scale;
@@ -80,6 +82,14 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
         s.class_scale_power = j.at("class_scale_power").get<double>();
         if (!(s.class_scale_power >= 0 && s.class_scale_power <= 1))
           throw Error(where + ": class_scale_power must be within [0, 1]");
+      }
+      if (j.contains("class_spread")) {
+        s.class_spread = j.at("class_spread").get<std::string>();
+        try {
+          checkOpenSetSpread(s.class_spread);
+        } catch (const Error& e) {
+          throw Error(where + ": " + e.what());
+        }
       }
       if (j.contains("scale_by")) {
         s.scale_by = j.at("scale_by").get<std::string>();

@@ -78,6 +78,16 @@ Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint6
     p.folds = leaveOneInstanceOut(categories, instances);
     kind = LabelKind::Category;
     label.reset();  // an instance never trained on can only be judged by its category
+  } else if (name.rfind("open-set-instance", 0) == 0) {
+    int groups = 5;
+    if (name.size() > 17) try {
+        groups = std::stoi(name.substr(17));
+      } catch (const std::exception&) {
+        throw Error("protocol '" + name + "': expected open-set-instance or open-set-instanceN, e.g. open-set-instance5");
+      }
+    p.folds = openSetInstanceFolds(categories, instances, groups, seed);
+    kind = LabelKind::Category;
+    label.reset();  // an instance never trained on can only be named by its category
   } else if (name.rfind("open-set", 0) == 0) {
     int groups = 5;
     if (name.size() > 8) try {
@@ -89,7 +99,7 @@ Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint6
   } else if (name.rfind("fixed:", 0) == 0) {
     p.folds = {fixedSplit(ids, testList(name.substr(6)))};
   } else {
-    throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, open-set[N], fixed:FILE)");
+    throw Error("unknown protocol '" + name + "' (kfoldN, leave-elevation, leave-instance, open-set[N], open-set-instance[N], fixed:FILE)");
   }
   p.labels = labelRows(t, label.value_or(kind));
   return p;

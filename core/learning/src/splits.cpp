@@ -117,6 +117,51 @@ std::vector<int> categoryGroups(const std::vector<std::string>& distinct_categor
   return group;
 }
 
+std::vector<Fold> openSetInstanceFolds(const std::vector<std::string>& categories,
+                                       const std::vector<std::string>& instances, int groups, std::uint64_t seed) {
+  if (categories.size() != instances.size()) throw Error("open-set instance folds: one instance per row is needed");
+  const std::set<std::string> distinct_set(categories.begin(), categories.end());
+  const std::vector<std::string> distinct(distinct_set.begin(), distinct_set.end());
+  if (distinct.size() < 3)
+    throw Error("open-set folds leave categories out: they need at least 3 categories (the data has " +
+                std::to_string(distinct.size()) + ")");
+  if (groups < 2) throw Error("open-set folds need at least 2 groups of categories (got " + std::to_string(groups) + ")");
+  std::map<std::string, std::vector<std::string>> members;  // category -> its instances, in name order
+  for (std::size_t r = 0; r < categories.size(); ++r) members[categories[r]].push_back(instances[r]);
+  for (auto& [c, m] : members) {
+    std::sort(m.begin(), m.end());
+    m.erase(std::unique(m.begin(), m.end()), m.end());
+  }
+  const std::vector<int> group_of = categoryGroups(distinct, groups, seed);
+  const int g_count = *std::max_element(group_of.begin(), group_of.end()) + 1;
+  std::vector<Fold> folds;
+  for (int g = 0; g < g_count; ++g) {
+    Fold f;
+    std::string left_out, unseen;
+    std::map<std::string, std::string> held;  // category -> its instance tested
+    for (std::size_t c = 0; c < distinct.size(); ++c) {
+      const auto& m = members.at(distinct[c]);
+      if (group_of[c] == g) left_out += (left_out.empty() ? "" : "+") + distinct[c];
+      else if (m.size() >= 2) {
+        held[distinct[c]] = m[static_cast<std::size_t>(g) % m.size()];
+        unseen += (unseen.empty() ? "" : "+") + held[distinct[c]];
+      }
+    }
+    if (held.empty()) continue;
+    f.name = "unknown " + left_out + ", unseen " + unseen;
+    for (std::size_t r = 0; r < categories.size(); ++r) {
+      const auto c = std::lower_bound(distinct.begin(), distinct.end(), categories[r]) - distinct.begin();
+      const auto h = held.find(categories[r]);
+      if (group_of[static_cast<std::size_t>(c)] == g) f.unknown.push_back(r);
+      else (h != held.end() && h->second == instances[r] ? f.test : f.train).push_back(r);
+    }
+    folds.push_back(std::move(f));
+  }
+  if (folds.empty())
+    throw Error("open-set instance folds need a category with at least two instances outside a left-out group (none has)");
+  return folds;
+}
+
 std::vector<Fold> openSetFolds(const std::vector<std::string>& categories, const std::vector<std::string>& elevations,
                                int groups, std::uint64_t seed) {
   const std::set<std::string> distinct_set(categories.begin(), categories.end());

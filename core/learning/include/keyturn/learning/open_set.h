@@ -15,7 +15,10 @@
 //   conditions", measures it against the one pooled scale and other levers. With class_scale_power
 //   p < 1, each class's scale is drawn toward the median class's (s_c^p · median^(1-p)): a class whose
 //   own views lie far apart (the thin screwdriver's, 4 × the median's) otherwise lends that spread to
-//   every unknown view it is chosen for.
+//   every unknown view it is chosen for. With class_spread "instances", a class of several instances
+//   (a category model's) is scaled by how far its instances' views lie from each other's (the nearest
+//   view of another instance), so a view of an instance it never saw is judged by the spread between
+//   instances, not by the sensor noise between neighbouring views of one.
 // Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
@@ -67,6 +70,10 @@ struct OpenSet {
   double class_scale_power = 1;
   // knn-relative: "pooled" (the class scale alone) or "camera" (times the view's camera's factor).
   std::string scale_by = "pooled";
+  // knn-relative: "views" (a class's scale from the nearest other view of it) or "instances" (a class
+  // of several instances scaled by the nearest view of another instance; one of a single instance by
+  // its own views' scale times the median such ratio). Fitting only: the scales are stored.
+  std::string class_spread = "views";
   // scale_by "camera": per camera (cameraOf, feature_cache.h: the organized grid "WxH"), the median over
   // its training views of (distance to the nearest other view of the class) / (the class's scale).
   std::map<std::string, float> camera_scale;
@@ -84,6 +91,10 @@ struct OpenSet {
 const std::vector<std::string>& openSetScales();
 // Throws keyturn::Error naming the scale when it is not one of openSetScales().
 void checkOpenSetScale(const std::string& scale_by);
+// The spreads a class's knn-relative scale is measured by: views, instances (OpenSet::class_spread).
+const std::vector<std::string>& openSetSpreads();
+// Throws keyturn::Error naming the spread when it is not one of openSetSpreads().
+void checkOpenSetSpread(const std::string& spread);
 
 // A scorer for `method` fitted on training rows x (labels y: class indices): knn keeps the
 // standardised rows; max-probability keeps nothing. threshold and calibration are left at 0.
@@ -91,10 +102,13 @@ void checkOpenSetScale(const std::string& scale_by);
 // count for no camera); without cameras it is the pooled scale. class_scale_power (knn-relative, within
 // [0, 1]): each class's scale s_c becomes s_c^p · median^(1-p), the median over the classes' scales
 // (the upper middle of an even count; 1: its own; 0: one scale for all, the knn score over a constant); the camera factors are taken
-// against those scales. Throws keyturn::Error for a power outside [0, 1].
+// against those scales. class_spread "instances" (knn-relative) needs `instances` (one per row): each
+// class's scale is then multiplied by its instances' spread over its views' (camera factors unchanged).
+// Throws keyturn::Error for a power outside [0, 1], an unknown spread or instances not one per row.
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1,
                          const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr,
-                         double class_scale_power = 1);
+                         double class_scale_power = 1, const std::string& class_spread = "views",
+                         const std::vector<std::string>* instances = nullptr);
 
 // One score per row of x (probabilities: the classifier's rows for x; cameras: each row's camera, or
 // none: every view at the pooled scale). A row whose score cannot be computed (non-finite

@@ -28,6 +28,9 @@ struct OpenSetOptions {
   // knn-relative: each class's scale drawn toward the median class's, s_c^p · median^(1-p) (open_set.h;
   // 1: its own scale). docs/results.md, "Beyond the training conditions", measures p.
   double class_scale_power = 1;
+  // knn-relative: a class's scale from its views' spread, or its instances' (open_set.h's class_spread;
+  // docs/results.md, "A category model's unseen instances").
+  std::string class_spread = "views";
   std::uint64_t seed = 7;                      // the categories' shuffle
   // false: data of fewer than three categories (nothing to leave out) gives a closed-set model
   // instead of an error (trainModel).
@@ -55,10 +58,12 @@ struct TurnRows {
 // (left NaN when they form none). Throws keyturn::Error when fewer than three categories leave no
 // group out with two classes to train on, or turns are not one per row. cameras (one per row, "" for
 // none): each row's camera, for options.scale_by "camera"; the left-out views are scored with theirs.
+// instances (one per row): each row's instance, needed for options.class_spread "instances".
 std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& y,
                                        const std::vector<std::string>& categories, const ClassifierParams& params,
                                        const OpenSetOptions& options, const TurnRows* turns = nullptr,
-                                       const std::vector<std::string>* cameras = nullptr);
+                                       const std::vector<std::string>* cameras = nullptr,
+                                       const std::vector<std::string>* instances = nullptr);
 
 // Class indices made contiguous over the classes present: y's values mapped to 0 .. n - 1 in
 // increasing order; `present` (optional) receives the original index of each new one.

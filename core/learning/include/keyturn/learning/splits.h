@@ -44,6 +44,14 @@ std::vector<int> categoryGroups(const std::vector<std::string>& distinct_categor
 std::vector<Fold> openSetFolds(const std::vector<std::string>& categories, const std::vector<std::string>& elevations,
                                int groups, std::uint64_t seed);
 
+// Open-set folds for a category model meeting both kinds of new object: fold g leaves the categories
+// of group g out as unknowns (as openSetFolds) and tests, of every other category with two or more
+// instances, one instance never trained on (the category's (g mod n)-th, in name order); everything
+// else is trained on. Single-instance categories stay in training. Throws keyturn::Error as
+// openSetFolds does, or when no category outside a group has two instances.
+std::vector<Fold> openSetInstanceFolds(const std::vector<std::string>& categories,
+                                       const std::vector<std::string>& instances, int groups, std::uint64_t seed);
+
 // Nested validation inside fold i: the protocol's other folds' test views that fold i trains on,
 // each tested against the rest of fold i's training views; at most max_inner of them, spread evenly
 // over the other folds. Fold i's test views are in none of them. Empty when there is no other fold.
