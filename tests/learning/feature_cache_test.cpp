@@ -167,6 +167,46 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_THROW(describeCacheShard({sharded.string(), views, o, 1, nullptr}, 2, 2), Error);
 }
 
+// A describe stopped part-way (Ctrl-C, a killed job: here the progress throws at the third view) keeps
+// the views it had described: the next run describes only the rest, and the table is the one an
+// uninterrupted run gives.
+TEST(FeatureCache, AnInterruptedDescribeResumesWhereItStopped) {
+  class StopAtThird final : public DescribeProgress {
+   public:
+    void begin(std::size_t) override {}
+    void viewDone() override {
+      if (++done == 3) throw Error("interrupted");
+    }
+    void end() override {}
+    void note(const std::string&) override {}
+    void warning(const std::string&) override {}
+    std::atomic<std::size_t> done{0};
+  };
+  const keyturn::test::ScratchFolder scratch("feature_cache_resume");
+  const std::filesystem::path& root = scratch.path;
+  const auto views = writeViews(root);
+  DescriptorOptions o;
+  o.histogram.bins = 8;
+  StopAtThird stop;
+  FeatureCache c{root.string(), views, o, 1, &stop};
+  c.checkpoint_views = 1;  // a save after every view but the last
+  c.checkpoint_s = 0;
+  EXPECT_THROW(loadOrDescribeCache(c), Error);
+  EXPECT_EQ(loadFeatureTable(featureCachePath(root.string(), o)).rows.size(), 2u);
+  Counting again;
+  c.progress = &again;
+  const FeatureTable resumed = loadOrDescribeCache(c);
+  EXPECT_EQ(again.begun, 1u) << "only the view the interruption lost is described";
+  ASSERT_EQ(resumed.rows.size(), 3u);
+  // The same rows as one run through, in the views' order.
+  const keyturn::test::ScratchFolder whole_scratch("feature_cache_whole");
+  const FeatureTable whole = loadOrDescribeCache({whole_scratch.path.string(), views, o, 1, nullptr});
+  for (std::size_t v = 0; v < 3; ++v) {
+    EXPECT_EQ(resumed.rows[v].id, views[v].id);
+    EXPECT_TRUE(sameValues(resumed.rows[v].values, whole.rows[v].values)) << v;
+  }
+}
+
 // learning::datasetFeatures, the one path from a dataset to its table (the CLI and Python): Never
 // describes in memory the blocks asked for and writes nothing while the cache lacks a view, then
 // reads the cache Fill wrote once it holds every view, values equal to those described.

@@ -1,6 +1,7 @@
 #include "keyturn/learning/feature_cache.h"
 
 #include <algorithm>
+#include <chrono>
 #include <atomic>
 #include <cmath>
 #include <cstdio>
@@ -125,11 +126,11 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
 
 namespace {
 
-std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, const std::vector<std::size_t>& which,
+// The views `which` described (progress counts each; begin and end are the caller's).
+std::vector<FeatureRow> describeRows(const std::vector<LabelledView>& views, const std::vector<std::size_t>& which,
                                      const DescriptorOptions& options, const FeatureTable& layout, int jobs,
                                      DescribeProgress* progress) {
   std::vector<FeatureRow> rows(which.size());
-  if (progress) progress->begin(which.size());
   parallelFor(which.size(), jobs, [&](std::size_t k) {
     const LabelledView& v = views[which[k]];
     try {
@@ -148,6 +149,14 @@ std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, con
     rows[k].elevation = v.elevation;
     if (progress) progress->viewDone();
   });
+  return rows;
+}
+
+std::vector<FeatureRow> describeSome(const std::vector<LabelledView>& views, const std::vector<std::size_t>& which,
+                                     const DescriptorOptions& options, const FeatureTable& layout, int jobs,
+                                     DescribeProgress* progress) {
+  if (progress) progress->begin(which.size());
+  std::vector<FeatureRow> rows = describeRows(views, which, options, layout, jobs, progress);
   if (progress) progress->end();
   return rows;
 }
@@ -277,9 +286,27 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
   std::vector<std::size_t> missing;
   for (std::size_t i = 0; i < c.views.size(); ++i)
     if (!have.count(c.views[i].id)) missing.push_back(i);
-  if (!missing.empty())
-    for (auto& row : describeSome(c.views, missing, c.options, t, c.jobs, c.progress)) have[row.id] = std::move(row);
   t.rows.clear();
+  if (!missing.empty()) {
+    // In batches, saving what is described now and then: an interrupted run loses one batch at most.
+    if (c.progress) c.progress->begin(missing.size());
+    const std::size_t batch = std::max<std::size_t>(1, c.checkpoint_views);
+    auto saved = std::chrono::steady_clock::now();
+    for (std::size_t from = 0; from < missing.size(); from += batch) {
+      const std::vector<std::size_t> part(missing.begin() + static_cast<std::ptrdiff_t>(from),
+                                          missing.begin() + static_cast<std::ptrdiff_t>(std::min(missing.size(), from + batch)));
+      for (auto& row : describeRows(c.views, part, c.options, t, c.jobs, c.progress)) have[row.id] = std::move(row);
+      const auto now = std::chrono::steady_clock::now();
+      if (from + batch < missing.size() && std::chrono::duration<double>(now - saved).count() >= c.checkpoint_s) {
+        FeatureTable so_far = t;
+        for (const auto& v : c.views)
+          if (const auto it = have.find(v.id); it != have.end()) so_far.rows.push_back(it->second);
+        save(path, so_far);
+        saved = now;
+      }
+    }
+    if (c.progress) c.progress->end();
+  }
   for (const auto& v : c.views) t.rows.push_back(std::move(have[v.id]));
   if (!missing.empty() || !cached) save(path, t);
   return t;

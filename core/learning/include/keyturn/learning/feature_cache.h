@@ -70,12 +70,18 @@ struct FeatureCache {
   DescriptorOptions options;          // the parameters (features are the cache's, whatever is set here)
   int jobs = 0;
   DescribeProgress* progress = nullptr;
+  // loadOrDescribeCache saves the views described so far after a batch of checkpoint_views when
+  // checkpoint_s have passed since the last save, so an interrupted describe (Ctrl-C, a killed job)
+  // resumes where it stopped: the next run describes only the views the cache lacks.
+  std::size_t checkpoint_views = 256;
+  double checkpoint_s = 60;
 };
 
 // Describes the shard's views (i % shards == shard) into their shard file; returns its path.
 std::string describeCacheShard(const FeatureCache& cache, int shard, int shards);
 // The whole dataset's features: the cache if it is there, else merged shards if all are there,
-// else described now and cached. Views no longer in the list are dropped, new ones described.
+// else described now and cached. Views no longer in the list are dropped, new ones described (and
+// saved as they are, every cache.checkpoint_s).
 FeatureTable loadOrDescribeCache(const FeatureCache& cache);
 
 }  // namespace keyturn::learning
