@@ -23,6 +23,7 @@ export LSAN_OPTIONS=suppressions=$PWD/tests/sanitizers/lsan.supp
 export ASAN_SYMBOLIZER_PATH=$KEYTURN_SYMBOLIZER
 # umockdev's preload library cannot come before ASan's runtime, and the CLI, soak, Slurm and docs
 # scripts exercise the same code through the tool (the docs examples, ~27 min under the sanitizers,
-# time out there): those run in the normal build.
-ctest --test-dir "$B" --output-on-failure --parallel "$(nproc)" -E '^(cli\.|soak\.|slurm\.|docs\.examples|drivers\.usb)'
+# time out there): those run in the normal build. So does studio.chain, the CLI's chain (train,
+# capture, Poisson, enroll) behind the studio's buttons: its first sanitizer run passed 600 s unfinished.
+ctest --test-dir "$B" --output-on-failure --parallel "$(nproc)" -E '^(cli\.|soak\.|slurm\.|docs\.examples|drivers\.usb|studio\.chain)'
 bash tests/fuzz/run.sh "$B" "${FUZZ_RUNS:-4000}"

@@ -45,6 +45,8 @@ nlohmann::json parseJson(const std::string& text, const std::string& source, Jso
     // nlohmann counts the end of the input as one more byte read: a file cut short ends at its size.
     const std::size_t byte = std::min<std::size_t>(e.byte, text.size());
     detail::fail(source, "not JSON at byte " + std::to_string(byte) + " (" + parseReason(e) + ")");
+  } catch (const nlohmann::json::exception& e) {  // a number too large for a double (out_of_range 406)
+    detail::fail(source, "not JSON (" + jsonErrorText(e) + ")");
   }
   if (shape == JsonShape::Object && !j.is_object())
     detail::fail(source, "expected a JSON object, found " + withArticle(j));

@@ -44,6 +44,9 @@ TEST(JsonFile, ABadFileIsOneLineNamingItAndWhatWasWrong) {
   EXPECT_EQ(errorOf([&] { readJsonFile(png); }), png + ": not JSON at byte 1 (invalid literal; last read: '\\x89')");
   const std::string spaces = at("spaces.json", " \n\t\n");
   EXPECT_EQ(errorOf([&] { readJsonFile(spaces); }), spaces + ": not JSON at byte 4 (unexpected end of input; expected '[', '{', or a literal)");
+  // A number past a double's range (found by fuzz_dataset, fuzz_configs and fuzz_learning: it ended the process).
+  const std::string huge = at("huge.json", R"({"step": 22223e3022})");
+  EXPECT_EQ(errorOf([&] { readJsonFile(huge); }), huge + ": not JSON (number overflow parsing '22223e3022')");
   // The wrong kind of value at the top.
   const std::string list = at("list.json", "[1, 2]");
   EXPECT_EQ(errorOf([&] { readJsonFile(list, JsonShape::Object); }), list + ": expected a JSON object, found an array");
