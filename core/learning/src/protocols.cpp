@@ -50,6 +50,18 @@ std::vector<std::string> testList(const std::string& file) {
   return test;
 }
 
+// The N of an open-set protocol's name PREFIX[N]: its groups of categories (5 without one).
+int groupsOf(const std::string& name, const std::string& prefix) {
+  if (name.size() == prefix.size()) return 5;
+  try {
+    std::size_t used = 0;
+    const int n = std::stoi(name.substr(prefix.size()), &used);
+    if (used == name.size() - prefix.size()) return n;
+  } catch (const std::exception&) {
+  }
+  throw Error("protocol '" + name + "': expected " + prefix + " or " + prefix + "N, e.g. " + prefix + "5");
+}
+
 }  // namespace
 
 Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint64_t seed,
@@ -79,23 +91,11 @@ Protocol makeProtocol(const std::string& name, const FeatureTable& t, std::uint6
     kind = LabelKind::Category;
     label.reset();  // an instance never trained on can only be judged by its category
   } else if (name.rfind("open-set-instance", 0) == 0) {
-    int groups = 5;
-    if (name.size() > 17) try {
-        groups = std::stoi(name.substr(17));
-      } catch (const std::exception&) {
-        throw Error("protocol '" + name + "': expected open-set-instance or open-set-instanceN, e.g. open-set-instance5");
-      }
-    p.folds = openSetInstanceFolds(categories, instances, groups, seed);
+    p.folds = openSetInstanceFolds(categories, instances, groupsOf(name, "open-set-instance"), seed);
     kind = LabelKind::Category;
     label.reset();  // an instance never trained on can only be named by its category
   } else if (name.rfind("open-set", 0) == 0) {
-    int groups = 5;
-    if (name.size() > 8) try {
-        groups = std::stoi(name.substr(8));
-      } catch (const std::exception&) {
-        throw Error("protocol '" + name + "': expected open-set or open-setN, e.g. open-set5");
-      }
-    p.folds = openSetFolds(categories, elevations, groups, seed);
+    p.folds = openSetFolds(categories, elevations, groupsOf(name, "open-set"), seed);
   } else if (name.rfind("fixed:", 0) == 0) {
     p.folds = {fixedSplit(ids, testList(name.substr(6)))};
   } else {

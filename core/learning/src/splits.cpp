@@ -117,15 +117,25 @@ std::vector<int> categoryGroups(const std::vector<std::string>& distinct_categor
   return group;
 }
 
-std::vector<Fold> openSetInstanceFolds(const std::vector<std::string>& categories,
-                                       const std::vector<std::string>& instances, int groups, std::uint64_t seed) {
-  if (categories.size() != instances.size()) throw Error("open-set instance folds: one instance per row is needed");
-  const std::set<std::string> distinct_set(categories.begin(), categories.end());
-  const std::vector<std::string> distinct(distinct_set.begin(), distinct_set.end());
+namespace {
+
+// The distinct categories open-set folds deal into groups, in name order; throws keyturn::Error for
+// fewer than three (a fold must train on two) or fewer than two groups.
+std::vector<std::string> openSetCategories(const std::vector<std::string>& categories, int groups) {
+  const std::set<std::string> distinct(categories.begin(), categories.end());
   if (distinct.size() < 3)
     throw Error("open-set folds leave categories out: they need at least 3 categories (the data has " +
                 std::to_string(distinct.size()) + ")");
   if (groups < 2) throw Error("open-set folds need at least 2 groups of categories (got " + std::to_string(groups) + ")");
+  return std::vector<std::string>(distinct.begin(), distinct.end());
+}
+
+}  // namespace
+
+std::vector<Fold> openSetInstanceFolds(const std::vector<std::string>& categories,
+                                       const std::vector<std::string>& instances, int groups, std::uint64_t seed) {
+  if (categories.size() != instances.size()) throw Error("open-set instance folds: one instance per row is needed");
+  const std::vector<std::string> distinct = openSetCategories(categories, groups);
   std::map<std::string, std::vector<std::string>> members;  // category -> its instances, in name order
   for (std::size_t r = 0; r < categories.size(); ++r) members[categories[r]].push_back(instances[r]);
   for (auto& [c, m] : members) {
@@ -164,12 +174,7 @@ std::vector<Fold> openSetInstanceFolds(const std::vector<std::string>& categorie
 
 std::vector<Fold> openSetFolds(const std::vector<std::string>& categories, const std::vector<std::string>& elevations,
                                int groups, std::uint64_t seed) {
-  const std::set<std::string> distinct_set(categories.begin(), categories.end());
-  const std::vector<std::string> distinct(distinct_set.begin(), distinct_set.end());
-  if (distinct.size() < 3)
-    throw Error("open-set folds leave categories out: they need at least 3 categories (the data has " +
-                std::to_string(distinct.size()) + ")");
-  if (groups < 2) throw Error("open-set folds need at least 2 groups of categories (got " + std::to_string(groups) + ")");
+  const std::vector<std::string> distinct = openSetCategories(categories, groups);
   const std::vector<int> group_of = categoryGroups(distinct, groups, seed);
   const int g_count = *std::max_element(group_of.begin(), group_of.end()) + 1;
   const std::set<std::string> elevation_set(elevations.begin(), elevations.end());
