@@ -30,13 +30,15 @@ std::vector<float> pclVfh(const PointSet& set, double normal_radius) {
 
 // PCL 1.13's OUR-CVFH aborts on some views (an out-of-range histogram index in
 // computeRFAndShapeDistribution: an assertion in Debian's build, a stray write
-// without one) and no input check we can make predicts it. It runs in a forked
-// child (worker_process.h): the histogram comes back, a crash becomes an error.
-// The plugin is loaded here, before the fork, so the parent keeps it.
+// without one) and no input check we can make predicts it. It runs in the worker
+// program (worker_process.h): the histogram comes back, a crash becomes an error.
 std::vector<float> pclOurCvfh(const PointSet& set, double normal_radius) {
-  const detail::PclFeatures& pcl = detail::pclFeatures();
-  return inWorkerProcess([&] { return pcl.our_cvfh(set, normal_radius); }, "OUR-CVFH",
-                         "PCL's OUR-CVFH crashed on this view", "PCL 1.13 computeRFAndShapeDistribution");
+  WorkerJob request{"our-cvfh", {}};
+  request.input.reserve(1 + 3 * set.size());
+  request.input.push_back(static_cast<float>(normal_radius));
+  for (const Eigen::Vector3f& p : set.points) request.input.insert(request.input.end(), {p.x(), p.y(), p.z()});
+  return inWorkerProcess(request, "OUR-CVFH", "PCL's OUR-CVFH crashed on this view",
+                         "PCL 1.13 computeRFAndShapeDistribution");
 }
 
 }  // namespace keyturn

@@ -35,24 +35,25 @@ std::vector<fs::path> searchFolders() {
 }
 
 void* openPlugin(const std::string& name) {
-  const std::string file = "libkeyturn_" + name + ".so";
+  const fs::path path = pluginFile("libkeyturn_" + name + ".so", "plugin '" + name + "'");
+  if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
+  const char* why = dlerror();
+  throw Error("plugin '" + name + "' (" + path.string() + ") cannot be loaded: " + (why ? why : "unknown reason"));
+}
+
+}  // namespace
+
+fs::path pluginFile(const std::string& file, const std::string& what) {
   std::string searched;
   for (const fs::path& folder : searchFolders()) {
     const fs::path path = folder / file;
     std::error_code ec;
-    if (!fs::exists(path, ec)) {
-      searched += (searched.empty() ? "" : ", ") + folder.string();
-      continue;
-    }
-    if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
-    const char* why = dlerror();
-    throw Error("plugin '" + name + "' (" + path.string() + ") cannot be loaded: " + (why ? why : "unknown reason"));
+    if (fs::exists(path, ec)) return path;
+    searched += (searched.empty() ? "" : ", ") + folder.string();
   }
-  throw Error("plugin '" + name + "' (" + file + ") not found in " + (searched.empty() ? "no folder" : searched) +
+  throw Error(what + " (" + file + ") not found in " + (searched.empty() ? "no folder" : searched) +
               " (set KEYTURN_PLUGIN_PATH to the folder that holds it)");
 }
-
-}  // namespace
 
 void* pluginSymbol(const std::string& name, const char* symbol) {
   static std::mutex mutex;

@@ -8,6 +8,9 @@
 #include <pcl/search/kdtree.h>
 #include <pcl/segmentation/extract_clusters.h>
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
 #include <ctime>
 #include <filesystem>
@@ -27,6 +30,7 @@
 #include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/pcl_baselines.h"
 #include "keyturn/core/radius_search.h"
+#include "keyturn/core/worker_process.h"
 #include "keyturn/learning/live_fusion.h"
 #include "keyturn/learning/recognizer.h"
 #include "keyturn/sim/mesh.h"
@@ -175,6 +179,51 @@ static void BM_PclIss(benchmark::State& s) {
                                              o.gamma21, o.gamma32, o.min_neighbors));
 }
 BENCHMARK(BM_PclIss)->Unit(benchmark::kMillisecond);
+
+// OUR-CVFH runs in the worker program (worker_process.h): the whole call, and the worker's round
+// trip alone (the view's points there and back) against what the fork of each call it replaced cost
+// in this same process (fork, the points back through a pipe, waitpid).
+static void BM_PclOurCvfh(benchmark::State& s) {
+  for (auto _ : s) benchmark::DoNotOptimize(pclOurCvfh(fx().set, 0.012));
+}
+BENCHMARK(BM_PclOurCvfh)->Unit(benchmark::kMillisecond);
+
+static std::vector<float> setAsFloats() {
+  std::vector<float> v;
+  for (const auto& p : fx().set.points) v.insert(v.end(), {p.x(), p.y(), p.z()});
+  return v;
+}
+
+static void BM_WorkerRoundTrip(benchmark::State& s) {
+  const std::vector<float> in = setAsFloats();
+  for (auto _ : s) benchmark::DoNotOptimize(inWorkerProcess({"echo", in}, "bench", "crashed", "here"));
+  s.counters["floats"] = static_cast<double>(in.size());
+}
+BENCHMARK(BM_WorkerRoundTrip)->Unit(benchmark::kMillisecond);
+
+static void BM_ForkRoundTrip(benchmark::State& s) {
+  const std::vector<float> in = setAsFloats();
+  for (auto _ : s) {
+    int fds[2];
+    if (::pipe(fds) != 0) return s.SkipWithError("pipe");
+    const pid_t child = ::fork();
+    if (child == 0) {
+      const auto bytes = static_cast<ssize_t>(in.size() * sizeof(float));
+      ::_exit(::write(fds[1], in.data(), static_cast<std::size_t>(bytes)) == bytes ? 0 : 1);
+    }
+    ::close(fds[1]);
+    std::vector<float> out(in.size());
+    std::size_t got = 0;
+    for (ssize_t n; got < out.size() * sizeof(float) &&
+                    (n = ::read(fds[0], reinterpret_cast<char*>(out.data()) + got, out.size() * sizeof(float) - got)) > 0;)
+      got += static_cast<std::size_t>(n);
+    ::close(fds[0]);
+    int status = 0;
+    ::waitpid(child, &status, 0);
+    benchmark::DoNotOptimize(out);
+  }
+}
+BENCHMARK(BM_ForkRoundTrip)->Unit(benchmark::kMillisecond);
 
 static void BM_Kpd(benchmark::State& s) {
   std::vector<Eigen::Vector3f> kp;

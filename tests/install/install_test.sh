@@ -31,7 +31,7 @@ clean() { env -i PATH=/usr/bin:/bin HOME="$work" LANG=C.UTF-8 "$@"; }
 cmake --install "$build" --prefix "$prefix" > "$work/install.log" 2>&1 || { cat "$work/install.log"; exit 1; }
 kt=$prefix/bin/keyturn
 
-check "programs, plugins, simulator and data installed" test -x "$kt" -a -f "$prefix/lib/keyturn/libkeyturn_pcl_io.so" \
+check "programs, plugins, simulator and data installed" test -x "$kt" -a -f "$prefix/lib/keyturn/libkeyturn_pcl_io.so" -a -x "$prefix/lib/keyturn/keyturn-worker" \
   -a -f "$prefix/lib/keyturn/mesasr-sim/libmesasr.so" -a -f "$prefix/lib/keyturn/mesasr-sim/libmesasr-sim-core.so" \
   -a -f "$prefix/share/keyturn/objects/objects.csv" -a -d "$prefix/share/keyturn/models/sim-objects"
 # Absolute paths compiled or written into what is installed would tie it to this checkout.

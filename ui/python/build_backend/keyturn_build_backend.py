@@ -135,9 +135,10 @@ def build_wheel(wheel_directory, config_settings=None, metadata_directory=None):
 
     with zipfile.ZipFile(wheel, "w") as zf:
         for f in sorted(package.iterdir()):
-            if f.is_file() and (f.suffix in (".py", ".pyi", ".so") or f.name == "py.typed"):
+            program = f.name == "keyturn-worker"  # the worker program of core/worker_process.h
+            if f.is_file() and (f.suffix in (".py", ".pyi", ".so") or f.name == "py.typed" or program):
                 info = zipfile.ZipInfo(f"{NAME}/{f.name}", date_time=(2020, 1, 1, 0, 0, 0))
-                info.external_attr = (0o755 if f.suffix == ".so" else 0o644) << 16
+                info.external_attr = (0o755 if f.suffix == ".so" or program else 0o644) << 16
                 data = f.read_bytes()
                 zf.writestr(info, data, zipfile.ZIP_DEFLATED)
                 digest = base64.urlsafe_b64encode(hashlib.sha256(data).digest()).rstrip(b"=").decode()

@@ -9,6 +9,7 @@
 //      plugins beside its extension), and its ../lib/keyturn (an install: bin/ and lib/keyturn/);
 //   3. the build tree's lib/keyturn (for programs run from the build, such as the tests).
 // Loaded once per process and never unloaded; thread-safe.
+#include <filesystem>
 #include <string>
 
 namespace keyturn {
@@ -16,6 +17,10 @@ namespace keyturn {
 // The address of `symbol` in plugin `name`. Throws keyturn::Error naming the plugin, the folders
 // searched and the loader's reason when the module or the symbol cannot be found.
 void* pluginSymbol(const std::string& name, const char* symbol);
+
+// The path of `file` in the first of the folders above that holds it (plugins, and the worker
+// program of worker_process.h). Throws keyturn::Error naming `what`, the file and the folders searched.
+std::filesystem::path pluginFile(const std::string& file, const std::string& what);
 
 template <class Function>
 Function* pluginFunction(const std::string& name, const char* symbol) {
