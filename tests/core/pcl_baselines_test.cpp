@@ -1,5 +1,5 @@
 // The peers keyturn compares against: ESF made repeatable, VFH and OUR-CVFH
-// returning their histograms (OUR-CVFH from a forked worker).
+// returning their histograms (OUR-CVFH from the worker program).
 #include "keyturn/core/pcl_baselines.h"
 
 #include <gtest/gtest.h>
@@ -57,12 +57,12 @@ TEST(PclBaselines, VfhAndOurCvfhGiveTheirHistograms) {
   ASSERT_EQ(vfh.size(), 308u);
   ASSERT_EQ(cvfh.size(), 308u);
   EXPECT_GT(std::accumulate(cvfh.begin(), cvfh.end(), 0.0), 0.0);
-  // Same input, same answer from the forked worker.
+  // Same input, same answer from the worker (a kept one: worker_process.h).
   EXPECT_EQ(pclOurCvfh(set, 0.012), cvfh);
 }
 
 // Which of the two PCL does on these cylinders depends on the build (the clang build aborts in
-// OUR-CVFH): a survival check. The crash path itself is tested in WorkerProcess.ACrashIsAnErrorNamingTheSignal.
+// OUR-CVFH): a survival check. The crash path itself is tested in WorkerProcess.ACrashIsAnErrorNamingTheSignalAndTheNextCallGetsANewWorker.
 TEST(PclBaselines, OurCvfhOnCylindersIsAFilledHistogramOrAnErrorNamingOurCvfh) {
   for (const PointSet& set : {cylinder(), PointSet::fromCloud(test::unorganized(test::cylinderSurface(0.02f, 0.3f, 20, 60)))}) {
     try {

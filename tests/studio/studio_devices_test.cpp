@@ -5,6 +5,7 @@
 #include <cstdlib>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/json_file.h"
 #include "keyturn/rig/device_factory.h"
 #include "keyturn/studio/studio_rig_factory.h"
 
@@ -42,6 +43,27 @@ TEST(StudioDevices, TheStudiosSimulatedCameraIsTheOneTheCliOpensFromTheSameSpec)
   auto other = studio.openCamera(studio.simulatedCamera(studio.simObjects()[0].instance), {});
   EXPECT_NE(other->acquire().distance, a.distance);
   ::unsetenv("MESASR_SIM_CONFIG");
+}
+
+// The simulated OpenNI2 camera's default device, chosen in the studio, looks at the studio's own
+// simulated rig: the chosen object's mesh on the studio's turntable (before, its built-in mug,
+// which no model was trained on), through the same configuration file format the CLI writes.
+TEST(StudioDevices, TheSimulatedOpenNi2CameraLooksAtTheStudiosObjectAndTurntable) {
+  studio::StudioRigFactory studio(std::string(KEYTURN_DATA_DIR) + "/objects/objects.csv");
+  const studio::SimObject object = studio.simObjects()[1];
+  const rig::CameraSpec spec = studio.simulatedOpenNi2Camera(object.instance);
+  ASSERT_EQ(spec.kind, rig::CameraSpec::Kind::OpenNi2);
+  const std::string scheme = "keyturn-sim://";
+  ASSERT_EQ(spec.openni2_uri.rfind(scheme + "/", 0), 0u) << spec.openni2_uri;  // a configuration file's path
+  const std::string config = spec.openni2_uri.substr(scheme.size());
+  const nlohmann::json j = readJsonFile(config);
+  EXPECT_EQ(j.at("mesh").get<std::string>(), object.mesh);
+  EXPECT_EQ(j.at("world").get<std::string>(), studio.runtimeDir() + "/world.json");
+  EXPECT_EQ(j.at("frame_rate").get<double>(), 30.0);
+  EXPECT_EQ(rig::CameraSpec::parse(spec.toString()), spec);  // the CLI's text form opens the same device
+  // The SR4000's spec still gets its own rate from the same file.
+  const rig::CameraSpec sr4000 = studio.simulatedCamera(object.instance);
+  EXPECT_EQ(readJsonFile(sr4000.sim_config).at("frame_rate").get<double>(), 50.0);
 }
 
 TEST(StudioDevices, ARealCameraSpecFailsTheSameWayInBoth) {

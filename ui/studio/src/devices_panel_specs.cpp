@@ -52,7 +52,11 @@ rig::CameraSpec DevicesPanel::cameraSpec() const {
       // A path ending in .oni is OpenNI2's recording, as the CLI's playback:FILE.oni.
       spec.kind = rig::CameraSpec::parse("playback:" + spec.playback.dataset).kind;
       return spec;
-    case rig::CameraSpec::Kind::OpenNi2: return rig::openNi2CameraSpec(openni2Uri().toStdString());
+    case rig::CameraSpec::Kind::OpenNi2:
+      // The simulated OpenNI2 camera's default device looks at the object chosen for the simulated rig.
+      if (openni2Uri() == RigFactory::kSimulatedOpenNi2Default)
+        return factory_.simulatedOpenNi2Camera(simObject().toStdString());
+      return rig::openNi2CameraSpec(openni2Uri().toStdString());
   }
   return spec;
 }

@@ -22,7 +22,7 @@ std::vector<float> pclEsfSeeded(const PointSet& set, unsigned seed);
 
 // OUR-CVFH (308 bins): PCL computes one histogram per smooth region; this is
 // the first one (the region PCL lists first), empty when PCL finds none.
-// Runs in a forked process: PCL 1.13 crashes on some views, which then throws
+// Runs in the worker program (worker_process.h): PCL 1.13 crashes on some views, which then throws
 // keyturn::Error instead of taking the caller down.
 std::vector<float> pclOurCvfh(const PointSet& set, double normal_radius);
 // VFH (308 bins) with normals from a radius search of normal_radius metres.

@@ -31,6 +31,13 @@ class RigFactory {
   // The simulated camera looking at sim_object (an instance from simObjects(); unknown: the first)
   // on the studio's simulated turntable: its configuration written, the spec that opens it returned.
   virtual rig::CameraSpec simulatedCamera(const std::string& sim_object) = 0;
+  // The simulated OpenNI2 camera's default device (keyturn-sim://default) as the studio opens it:
+  // looking at sim_object on the studio's simulated turntable, as simulatedCamera's SR4000 does,
+  // at a Kinect's 30 frames/s. A factory without a simulated rig opens the default device as it is.
+  virtual rig::CameraSpec simulatedOpenNi2Camera(const std::string& /*sim_object*/) {
+    return rig::openNi2CameraSpec(kSimulatedOpenNi2Default);
+  }
+  static constexpr const char* kSimulatedOpenNi2Default = "keyturn-sim://default";
   // The simulated camera's cable: pulled (opens and frames fail) or plugged in.
   virtual void setSimulatedCameraUnplugged(bool unplugged) = 0;
   // The SwissRangers on USB, each as the spec that opens it and its line in the list

@@ -24,6 +24,7 @@ class StudioRigFactory final : public RigFactory {
   std::unique_ptr<drivers::PoseSource> openPose(const rig::PoseSpec& spec, Log log) override;
   std::vector<SimObject> simObjects() const override { return objects_; }
   rig::CameraSpec simulatedCamera(const std::string& sim_object) override;
+  rig::CameraSpec simulatedOpenNi2Camera(const std::string& sim_object) override;
   void setSimulatedCameraUnplugged(bool unplugged) override;
   std::vector<rig::FoundCamera> usbCameras() override;
   bool usbCamerasChanged() override;
