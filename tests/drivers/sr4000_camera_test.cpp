@@ -266,6 +266,27 @@ TEST_F(Sr4000SimTest, PhaseWrapsBeyondTheNonAmbiguousRange) {
   EXPECT_NEAR(p.norm(), 3.0 - 0.04 - nonAmbiguousRange(MF_60MHz), 0.02);
 }
 
+// noise_per_pose: one noise draw per turntable angle, so a still table gives equal frames (the studio's
+// deterministic recognition test); without it every frame draws its own, as a sensor's.
+TEST_F(Sr4000SimTest, NoisePerPoseGivesEqualFramesAtOnePoseAndANewDrawAtAnother) {
+  auto frames = [&](bool per_pose, double angle) {
+    sim::MesaSrSimConfig c;
+    c.noise_per_pose = per_pose;
+    c.turntable_deg = angle;
+    useConfig(c);
+    auto cam = open();
+    const TofFrame a = cam->acquire(), b = cam->acquire();
+    return std::make_pair(a.distance, b.distance);
+  };
+  const auto still = frames(true, 0.0);
+  EXPECT_EQ(still.first, still.second);
+  const auto turned = frames(true, 5.0);
+  EXPECT_NE(turned.first, still.first);
+  EXPECT_EQ(frames(true, 0.0).first, still.first) << "the same draw at the same angle, camera after camera";
+  const auto per_frame = frames(false, 0.0);
+  EXPECT_NE(per_frame.first, per_frame.second);
+}
+
 TEST_F(Sr4000SimTest, TimeoutsAreRetriedByReopening) {
   sim::MesaSrSimConfig c;
   c.faults.timeout_every = 2;

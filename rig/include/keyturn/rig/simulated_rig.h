@@ -38,7 +38,7 @@ struct SimulatedCameraOptions {
   std::uint64_t seed = 1;
   double fault_rate = 0;             // random faults per acquisition
   double frame_rate = 0;             // 0: as fast as it renders
-  bool noise_per_pose = false;       // the OpenNI2 camera's noise fixed per pose (MesaSrSimConfig)
+  bool noise_per_pose = false;       // the noise fixed per pose, both cameras (MesaSrSimConfig)
   std::string world;                 // the world file to follow; empty: a still turntable
   std::string unplug_file;           // while this file exists the camera is unplugged
 };

@@ -14,6 +14,7 @@
 //   "serial": 4000123, "seed": 1,
 //   "unplug_file": "",         while this file exists the camera is unplugged: opens fail, acquires fail
 //   "frame_rate": 0,           frames/s SR_Acquire keeps to, as a real camera does; 0 = as fast as it renders
+//   "noise_per_pose": false,   one noise draw per turntable angle (frames at a still pose are equal), else one per frame
 //   "faults": { "open_fail": false,      every open returns -1
 //               "timeout_every": 0,      every Nth acquire times out (returns -1)
 //               "corrupt_every": 0,      every Nth acquire transfers a short frame

@@ -16,8 +16,10 @@ namespace keyturn::studio {
 
 class StudioRigFactory final : public RigFactory {
  public:
-  // objects_csv: the simulated objects (data/objects/objects.csv).
-  explicit StudioRigFactory(std::string objects_csv);
+  // objects_csv: the simulated objects (data/objects/objects.csv). noise_per_pose: the simulated
+  // cameras draw their noise once per turntable angle (a still table gives equal frames: the tests'
+  // deterministic recognition), else once per frame as a sensor does.
+  explicit StudioRigFactory(std::string objects_csv, bool noise_per_pose = false);
   ~StudioRigFactory() override;
 
   std::unique_ptr<drivers::TofCamera> openCamera(const rig::CameraSpec& spec, Log log) override;
@@ -37,6 +39,7 @@ class StudioRigFactory final : public RigFactory {
   std::vector<SimObject> objects_;
   rig::SimulatedRigFiles files_;
   std::unique_ptr<rig::DeviceFactory> devices_;  // its simulated turntable writes files_.world()
+  bool noise_per_pose_ = false;
   std::mutex config_mutex_;                      // simulatedCamera writes one configuration at a time
   std::unique_ptr<drivers::UsbHotplugWatcher> hotplug_;
   bool hotplug_tried_ = false, usb_changed_ = false;
