@@ -42,6 +42,15 @@ EnrolledObject enrollObject(ObjectEnrollment request, const EnrollmentProgress& 
   result.label = learning::enrolledClass(model, sim.object.cls, sim.object.instance, request.model);
   sim.checkMesh();
   if (sim.dir.empty()) sim.dir = request.out + ".views";
+  // The rendered views go with the enrollment, also when it fails or is cancelled half-way (a
+  // progress callback that throws): kept only when asked for (they then resume).
+  struct RemoveViews {
+    const ObjectEnrollment& request;
+    ~RemoveViews() {
+      std::error_code ec;
+      if (!request.keep_views) fs::remove_all(request.simulation.dir, ec);
+    }
+  } remove_views{request};
 
   progress.rendering(sim.views(), result.label, sim.dir);
   simulateObject(sim, progress.view_rendered);
@@ -72,7 +81,6 @@ EnrolledObject enrollObject(ObjectEnrollment request, const EnrollmentProgress& 
   result.enrollment = learning::enrollObject(model, views, azimuths, request.model);
   learning::saveModel(request.out, result.enrollment.model);
   result.train_s = secondsSince(t2);
-  if (!request.keep_views) fs::remove_all(sim.dir);
   return result;
 }
 

@@ -5,6 +5,7 @@
 // KEYTURN_STUDIO_SHOT=FILE: the window is saved there once the mesh is shown (docs/studio).
 #include <QApplication>
 #include <QDir>
+#include <QFileInfo>
 #include <QLabel>
 #include <QLineEdit>
 #include <QDialogButtonBox>
@@ -121,13 +122,33 @@ class StudioChainTest : public QObject {
     }
 
     // Enroll…: the dialog suggests the captured object's names; Enroll runs it.
-    QTimer::singleShot(0, this, [] {
-      QTRY_VERIFY_WITH_TIMEOUT(qobject_cast<EnrollDialog*>(QApplication::activeModalWidget()), waitMs(5000));
-      auto* d = qobject_cast<EnrollDialog*>(QApplication::activeModalWidget());
-      QCOMPARE(d->cls(), QString("drill"));
-      QCOMPARE(d->instance(), QString("ycb_035_power_drill"));
-      QTest::mouseClick(d->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok), Qt::LeftButton);
-    });
+    const auto acceptEnrollDialog = [this] {
+      QTimer::singleShot(0, this, [] {
+        QTRY_VERIFY_WITH_TIMEOUT(qobject_cast<EnrollDialog*>(QApplication::activeModalWidget()), waitMs(5000));
+        auto* d = qobject_cast<EnrollDialog*>(QApplication::activeModalWidget());
+        QCOMPARE(d->cls(), QString("drill"));
+        QCOMPARE(d->instance(), QString("ycb_035_power_drill"));
+        QTest::mouseClick(d->findChild<QDialogButtonBox*>()->button(QDialogButtonBox::Ok), Qt::LeftButton);
+      });
+    };
+    // First cancelled while it renders: the job stops, no model is written, no rendered view is left.
+    auto* cancel = w.findChild<QPushButton*>("jobCancel");
+    QVERIFY(cancel && !cancel->isVisible());
+    acceptEnrollDialog();
+    QTest::mouseClick(w.findChild<QPushButton*>("captureEnroll"), Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(status->text().startsWith("render: ") && cancel->isVisible(), waitMs(60000));
+    if (const QByteArray shot = qgetenv("KEYTURN_STUDIO_CANCEL_SHOT"); !shot.isEmpty()) {
+      const QRect g = w.frameGeometry();
+      QVERIFY(w.screen()->grabWindow(0, g.x(), g.y(), g.width(), g.height()).save(QString::fromLocal8Bit(shot)));
+    }
+    QTest::mouseClick(cancel, Qt::LeftButton);
+    QTRY_VERIFY_WITH_TIMEOUT(status->failed(), waitMs(60000));
+    QCOMPARE(status->text(), QString("enroll: cancelled"));
+    QVERIFY(!cancel->isVisible());
+    QVERIFY(!QFileInfo::exists(model_ + "+ycb_035_power_drill"));
+    QVERIFY(!QFileInfo::exists(model_ + "+ycb_035_power_drill.views"));
+
+    acceptEnrollDialog();
     QTest::mouseClick(w.findChild<QPushButton*>("captureEnroll"), Qt::LeftButton);
     QTRY_VERIFY_WITH_TIMEOUT(status->text().startsWith("enrolled") || status->failed(), waitMs(300000));
     QVERIFY2(!status->failed(), qPrintable(status->text()));

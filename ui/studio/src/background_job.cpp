@@ -19,9 +19,12 @@ bool BackgroundJob::start(const QString& name, Work work, std::function<void()> 
   if (running()) return false;
   if (thread_) thread_->deleteLater();
   auto error = std::make_shared<QString>();
+  cancelled_ = false;
   thread_ = QThread::create([this, name, work = std::move(work), error] {
     try {
       work(*this);
+    } catch (const JobCancelled&) {
+      *error = tr("cancelled");
     } catch (const std::exception& e) {
       *error = QString::fromUtf8(e.what()).split('\n').front();
     } catch (...) {
@@ -43,7 +46,16 @@ bool BackgroundJob::start(const QString& name, Work work, std::function<void()> 
   return true;
 }
 
+void BackgroundJob::cancel() {
+  if (running()) cancelled_ = true;
+}
+
+void BackgroundJob::throwIfCancelled() const {
+  if (cancelled_) throw JobCancelled();
+}
+
 void BackgroundJob::stage(const QString& stage, int total) {
+  throwIfCancelled();
   stage_ = stage;
   done_ = 0;
   total_ = total;
@@ -51,6 +63,7 @@ void BackgroundJob::stage(const QString& stage, int total) {
 }
 
 void BackgroundJob::step() {
+  throwIfCancelled();
   const int done = ++done_;
   emit progressed(stage_, done, total_);
 }

@@ -1,10 +1,11 @@
 #pragma once
 // The status bar's line for the long jobs (reconstruct, enroll): the stage and a progress bar while
-// one runs, then what it made, or its error in one red line.
+// one runs, with Cancel beside them, then what it made, or its error in one red line.
 #include <QWidget>
 
 class QLabel;
 class QProgressBar;
+class QPushButton;
 
 namespace keyturn::studio {
 
@@ -15,6 +16,9 @@ class JobStatus : public QWidget {
   QString text() const;  // the line shown (plain text)
   bool failed() const { return failed_; }
 
+ signals:
+  void cancelRequested();  // Cancel clicked while a job runs
+
  public slots:
   void progress(const QString& stage, int done, int total);
   void succeeded(const QString& text);
@@ -22,7 +26,9 @@ class JobStatus : public QWidget {
 
  private:
   QLabel* label_;
+  void ended();  // no job running: the bar and Cancel hidden
   QProgressBar* bar_;
+  QPushButton* cancel_;
   QString plain_;
   bool failed_ = false;
 };

@@ -185,6 +185,7 @@ void StudioWindow::buildModelActions(CloudView* cloud) {
   connect(capture_panel_, &CapturePanel::reconstruct, reconstruct_.get(), &ReconstructController::reconstruct);
   connect(capture_panel_, &CapturePanel::enroll, enroll_.get(), &EnrollController::enroll);
   connect(job_.get(), &BackgroundJob::progressed, job_status, &JobStatus::progress);
+  connect(job_status, &JobStatus::cancelRequested, job_.get(), &BackgroundJob::cancel);
   connect(job_.get(), &BackgroundJob::finished, job_status, [job_status](const QString& name, const QString& error) {
     if (!error.isEmpty()) job_status->fail(name + ": " + error);
   });
