@@ -12,9 +12,21 @@ CameraWorker::CameraWorker(RigFactory& factory) : factory_(factory) {
   live_ = new QTimer(this);
   live_->setInterval(0);  // the camera paces us: acquire() waits for the next frame
   connect(live_, &QTimer::timeout, this, &CameraWorker::acquireOne);
-  reconnect_ = new QTimer(this);
-  reconnect_->setInterval(1000);
-  connect(reconnect_, &QTimer::timeout, this, &CameraWorker::tryReconnect);
+  reconnect_ = new ReconnectLoop(
+      [this] {
+        try {
+          openCamera();
+        } catch (...) {
+          camera_.reset();
+          throw;
+        }
+      },
+      [this] {
+        emit recovered(QString::fromStdString(camera_->deviceString()));
+        live_->start();
+      },
+      this);
+  connect(reconnect_, &ReconnectLoop::logLine, this, &CameraWorker::logLine);
 }
 
 CameraWorker::~CameraWorker() = default;
@@ -97,20 +109,7 @@ void CameraWorker::lost(const std::string& why) {
 }
 
 void CameraWorker::reconnectNow() {
-  if (!camera_) tryReconnect();
-}
-
-void CameraWorker::tryReconnect() {
-  try {
-    openCamera();
-  } catch (const std::exception& e) {
-    camera_.reset();
-    emit logLine(QString::fromStdString(std::string("reconnect: ") + e.what()));
-    return;
-  }
-  reconnect_->stop();
-  emit recovered(QString::fromStdString(camera_->deviceString()));
-  live_->start();
+  if (!camera_) reconnect_->tryNow();
 }
 
 void CameraWorker::capture(const CaptureRequest& request, std::shared_ptr<drivers::PoseSource> pose) {

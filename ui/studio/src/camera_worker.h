@@ -4,6 +4,8 @@
 // stops answering, reports it and keeps trying to open it again.
 #include <QObject>
 #include <QTimer>
+
+#include "reconnect_loop.h"
 #include <atomic>
 #include <memory>
 
@@ -50,14 +52,13 @@ class CameraWorker : public QObject {
   void openCamera();  // spec_ with settings_; throws
   void acquireOne();
   void lost(const std::string& why);
-  void tryReconnect();
 
   RigFactory& factory_;
   std::unique_ptr<drivers::TofCamera> camera_;
   rig::CameraSpec spec_;
   drivers::TofSettings settings_;
   QTimer* live_ = nullptr;
-  QTimer* reconnect_ = nullptr;
+  ReconnectLoop* reconnect_ = nullptr;
   std::atomic<bool> capture_stop_{false};
   int frames_in_second_ = 0;
   qint64 second_start_ms_ = 0;

@@ -10,9 +10,22 @@ PoseWorker::PoseWorker(RigFactory& factory) : factory_(factory) {
   poll_ = new QTimer(this);
   poll_->setInterval(100);
   connect(poll_, &QTimer::timeout, this, &PoseWorker::poll);
-  reconnect_ = new QTimer(this);
-  reconnect_->setInterval(1000);
-  connect(reconnect_, &QTimer::timeout, this, &PoseWorker::tryReconnect);
+  reconnect_ = new ReconnectLoop(
+      [this] {
+        try {
+          connectSource();
+        } catch (...) {
+          source_.reset();
+          throw;
+        }
+      },
+      [this] {
+        emit recovered(QString::fromStdString(source_->describe()));
+        emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);
+        poll_->start();
+      },
+      this);
+  connect(reconnect_, &ReconnectLoop::logLine, this, &PoseWorker::logLine);
 }
 
 PoseWorker::~PoseWorker() = default;
@@ -59,20 +72,6 @@ void PoseWorker::poll() {
     emit failed(QString::fromStdString(e.what()));
     reconnect_->start();
   }
-}
-
-void PoseWorker::tryReconnect() {
-  try {
-    connectSource();
-  } catch (const std::exception& e) {
-    source_.reset();
-    emit logLine(QString::fromStdString(std::string("reconnect: ") + e.what()));
-    return;
-  }
-  reconnect_->stop();
-  emit recovered(QString::fromStdString(source_->describe()));
-  emit opened(QString::fromStdString(source_->describe()), source_->canMove(), source_);
-  poll_->start();
 }
 
 void PoseWorker::command(const char* what, const std::function<void(drivers::PoseSource&)>& f) {

@@ -4,6 +4,8 @@
 // is shared, behind a lock, with capture sequences on the camera's thread.
 #include <QObject>
 #include <QTimer>
+
+#include "reconnect_loop.h"
 #include <memory>
 #include <optional>
 
@@ -37,14 +39,13 @@ class PoseWorker : public QObject {
  private:
   void poll();
   void command(const char* what, const std::function<void(drivers::PoseSource&)>& f);
-  void tryReconnect();
   void connectSource();  // spec_; throws
 
   RigFactory& factory_;
   std::optional<rig::PoseSpec> spec_;
   std::shared_ptr<drivers::PoseSource> source_;
   QTimer* poll_ = nullptr;
-  QTimer* reconnect_ = nullptr;
+  ReconnectLoop* reconnect_ = nullptr;
   double last_deg_ = 0;
 };
 
