@@ -43,7 +43,14 @@ int captureSequence(CaptureArgs a) {
   dataset::DatasetLock lock(a.out);
   a.devices.sim.dir = dataset::datasetPath(a.out, dataset::kSimulatorFolder);
   a.devices.sim.camera.elevation_deg = o.elevation_deg;
-  rig::CaptureRig capture_rig(a.devices);
+  std::optional<rig::CaptureRig> opened;
+  try {
+    opened.emplace(a.devices);
+  } catch (const rig::SimulatedTurntableNeedsSimulatedCamera&) {
+    throw Error("--pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera): the simulated table and "
+                "camera share one world");
+  }
+  rig::CaptureRig& capture_rig = *opened;
   o.camera_from_turntable_zero = capture_rig.cameraFromTurntable();
   dataset::Dataset dataset(a.out, std::move(lock));
   if (const std::size_t n = dataset.temporariesRemoved())

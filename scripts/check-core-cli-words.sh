@@ -1,9 +1,12 @@
 #!/usr/bin/env bash
-# Core speaks no CLI language: fails, listing each one, when a string literal in the C/C++ sources
-# under ROOT/core (default: this checkout) names a command-line flag — "--" followed by a letter
-# ("--shard", "see --explain"). Flags, their syntax and every wording that names them belong to
-# app/; core's errors name the value and what is wrong (docs/architecture.md). Comments may name
-# flags: only string literals are read (raw strings and character literals understood).
+# Below app/ nothing speaks the CLI's language: fails, listing each one, when a string literal in the
+# C/C++ sources under ROOT/core, ROOT/drivers, ROOT/rig or ROOT/simulators (default: this checkout)
+# names a command-line flag — "--" followed by a letter ("--shard", "see --explain"). Flags, their
+# syntax and every wording that names them belong to app/ (the studio and Python reach the same code
+# without them); the libraries' errors name the value and what is wrong, typed where app/ words them
+# in its flags (docs/architecture.md). Comments may name flags: only string literals are read (raw
+# strings and character literals understood). A literal that is another program's command line
+# (udevadm's, for the USB permissions) is not keyturn's flag.
 # Usage: scripts/check-core-cli-words.sh [ROOT]
 set -euo pipefail
 root=${1:-"$(cd "$(dirname "$0")/.." && pwd)"}
@@ -59,17 +62,20 @@ def literals(text):
 
 
 hits = []
-for path in sorted((root / "core").rglob("*")):
+OTHER_PROGRAM = re.compile(r"\budevadm\b")
+FOLDERS = [f for f in ("core", "drivers", "rig", "simulators") if (root / f).is_dir()]
+paths = sorted(p for f in FOLDERS for p in (root / f).rglob("*"))
+for path in paths:
     if path.suffix in SOURCES and path.is_file():
         text = path.read_text(encoding="utf-8", errors="replace")
         for line, s in literals(text):
-            if FLAG.search(s):
+            if FLAG.search(s) and not OTHER_PROGRAM.search(s):
                 shown = s.replace("\n", "\\n")  # one line per literal, raw strings too
                 hits.append(f"{path.relative_to(root)}:{line}: \"{shown}\"")
 if hits:
-    print(f"check-core-cli-words: {len(hits)} string literal(s) under core/ name a command-line flag "
+    print(f"check-core-cli-words: {len(hits)} string literal(s) under {', '.join(f + '/' for f in FOLDERS)} name a command-line flag "
           "(the CLI's wording belongs to app/):", file=sys.stderr)
     print("\n".join(hits), file=sys.stderr)
     sys.exit(1)
-print("check-core-cli-words: no string literal under core/ names a command-line flag")
+print(f"check-core-cli-words: no string literal under {', '.join(f + '/' for f in FOLDERS)} names a command-line flag")
 PY

@@ -37,7 +37,7 @@ std::shared_ptr<MesaSrLibrary> MesaSrLibrary::load(const std::string& explicit_p
   }
   if (!lib->handle)
     throw Error("libMesaSR not found (tried " + tried + (last_error.empty() ? "" : ": " + last_error) +
-                "); install MESA's libmesasr, set KEYTURN_MESASR_LIB to its path, or use --camera sim");
+                "); install MESA's libmesasr, set KEYTURN_MESASR_LIB to its path, or use the simulated camera (sim)");
 
   std::string missing;
 #define KEYTURN_MESASR_RESOLVE(ret, name, args)                                        \

@@ -4,6 +4,7 @@
 #include <string>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/string_format.h"
 
 namespace keyturn::drivers {
 
@@ -15,7 +16,9 @@ double modulationMHz(int f) {
 int modulationIndex(double mhz) {
   for (int f = 0; f < 12; ++f)
     if (std::abs(modulationMHz(f) - mhz) < 1e-6) return f;
-  throw Error("--modulation: " + std::to_string(mhz) +
+  std::string shown;
+  appendFormat(shown, "%g", mhz);
+  throw Error("modulation " + shown +
               " MHz is not an SR4000 frequency (40, 30, 21, 20, 19, 60, 15, 10, 29, 31, 14.5, 15.5)");
 }
 

@@ -14,7 +14,7 @@ namespace {
 constexpr double kMinTargetCircle = 0.01;  // m: a ball standing ~6 cm off the axis goes round on ~6 cm
 constexpr double kMaxAngleRmsDeg = 1.0;    // a fixed ball on a well-scaled pose source: ~0.05°
 const char* const kNotATarget =
-    ": not a sphere-target sequence (a ball of ~6 cm standing off-centre; simulated: capture --mesh "
+    ": not a sphere-target sequence (a ball of ~6 cm standing off-centre; simulated: the mesh "
     "builtin:sphere-target), or the ball moved, or the pose source's scale is wrong; nothing written";
 
 nlohmann::json matrixJson(const Eigen::Matrix4d& m) {

@@ -6,11 +6,9 @@
 
 namespace keyturn::rig {
 
-namespace {
-const char* const kSharedWorld =
-    "--pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera): the simulated table and camera share "
-    "one world";
-}
+SimulatedTurntableNeedsSimulatedCamera::SimulatedTurntableNeedsSimulatedCamera()
+    : Error("the simulated turntable needs the simulated SR4000 (sim) or the simulated OpenNI2 camera (openni2): the "
+            "simulated table and camera share one world") {}
 
 CaptureRig::CaptureRig(const CaptureDevices& d) {
   using CameraKind = CameraSpec::Kind;
@@ -27,7 +25,7 @@ CaptureRig::CaptureRig(const CaptureDevices& d) {
     camera_from_turntable_ = factory_.cameraFromTurntable();
     return;
   }
-  if (d.pose.kind == PoseKind::Playback) throw Error("--pose playback needs --camera playback:DATASET (the recording holds both)");
+  if (d.pose.kind == PoseKind::Playback) throw Error("a recording's poses need its camera too (playback:DATASET: the recording holds both)");
   // openni2 with the simulated turntable: the simulated rig's camera, seen through the simulated OpenNI2 driver.
   const bool simulated_openni2 =
       d.camera.kind == CameraKind::OpenNi2 && d.camera.openni2_uri.empty() && d.pose.kind == PoseKind::Simulated;
@@ -45,7 +43,7 @@ CaptureRig::CaptureRig(const CaptureDevices& d) {
     pose_ = so.simulated_pose ? static_cast<drivers::PoseSource*>(sim_.turntable.get()) : real_pose_.get();
     return;
   }
-  if (d.pose.kind == PoseKind::Simulated) throw Error(kSharedWorld);
+  if (d.pose.kind == PoseKind::Simulated) throw SimulatedTurntableNeedsSimulatedCamera();
   real_pose_ = factory_.openPoseSource(d.pose);  // before the camera: a missing profile is said at once
   real_camera_ = factory_.openCamera(d.camera);
   camera_ = real_camera_.get();

@@ -168,7 +168,7 @@ std::unique_ptr<drivers::PoseSource> DeviceFactory::openPoseSource(const PoseSpe
       // CANopen axes over SocketCAN; the axes file takes the register profile's place.
       if (spec.profile.empty() || spec.profile == "keyturn-sim")
         throw Error("pose '" + spec.toString() +
-                    "' needs the CANopen axes file (--profile AXES.json, or can:IFACE,profile=AXES.json; see "
+                    "' needs the CANopen axes file as its profile (can:IFACE,profile=AXES.json; see "
                     "docs/protocols.md)");
       return std::make_unique<drivers::CanOpenPoseSource>(std::make_unique<drivers::SocketCanBus>(spec.can_interface),
                                                           drivers::CanOpenAxis::loadAll(spec.profile));

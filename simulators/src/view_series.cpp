@@ -14,7 +14,7 @@ namespace keyturn::sim {
 std::string seriesFileName(const std::string& pattern, double angle, bool several) {
   const auto at = pattern.find("{angle}");
   if (at == std::string::npos) {
-    if (several) throw Error("--out must contain {angle} when several angles are rendered");
+    if (several) throw Error("output path '" + pattern + "' must contain {angle} when several angles are rendered");
     return pattern;
   }
   char buf[16];

@@ -125,8 +125,8 @@ TEST(CaptureRig, OpensTheSimulatedRigAndRefusesASimulatedTableWithARealCamera) {
   EXPECT_EQ(simulated.camera().acquire().cloud.width, 176u);  // an SR4000 frame
   d.camera = rig::CameraSpec::parse("usb");
   EXPECT_EQ(errorOf([&] { rig::CaptureRig real(d); }),
-            "--pose sim needs --camera sim or openni2 (the simulated OpenNI2 camera): the simulated table and camera "
-            "share one world");
+            "the simulated turntable needs the simulated SR4000 (sim) or the simulated OpenNI2 camera (openni2): the "
+            "simulated table and camera share one world");
   d.camera = rig::CameraSpec::parse("sim:" + (dir / "camera.json").string());
   EXPECT_EQ(errorOf([&] { rig::CaptureRig configured(d); }),
             "camera 'sim:" + (dir / "camera.json").string() +

@@ -83,7 +83,7 @@ TEST_F(DeviceFactoryTest, PoseSourcesThatBelongWithACameraAreRefusedWithoutIt) {
   EXPECT_EQ(errorOf([&] { factory.openPoseSource(rig::PoseSpec::parse("playback")); }),
             "pose 'playback' needs camera playback:DATASET (the recording holds both)");
   EXPECT_EQ(errorOf([&] { factory.openPoseSource(rig::PoseSpec::parse("can:vcan0")); }),
-            "pose 'can:vcan0' needs the CANopen axes file (--profile AXES.json, or can:IFACE,profile=AXES.json; see "
+            "pose 'can:vcan0' needs the CANopen axes file as its profile (can:IFACE,profile=AXES.json; see "
             "docs/protocols.md)");
 }
 

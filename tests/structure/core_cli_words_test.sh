@@ -40,6 +40,18 @@ check "it lists each literal by file and line, and only those" \
     'core/src/study.cpp:9: "line one\n-- not a flag, then --explain"')"
 check "and says how many" grep -q "^check-core-cli-words: 3 string literal(s) under core/ name a command-line flag" "$work/bad.err"
 
+# drivers/, rig/ and simulators/ are read too; another program's command line (udevadm's) is not a flag.
+mkdir -p "$work/lower/core" "$work/lower/drivers/src" "$work/lower/rig/src"
+echo 'void f() { throw Error("libMesaSR not found, or use --camera sim"); }' > "$work/lower/drivers/src/lib.cpp"
+echo 'const char* rule = "sudo udevadm control --reload-rules";' > "$work/lower/drivers/src/udev.cpp"
+echo 'void g() { throw Error("--pose sim needs a simulated camera"); }' > "$work/lower/rig/src/rig.cpp"
+bash "$check_script" "$work/lower" > /dev/null 2> "$work/lower.err"
+check "a flag in drivers/ or rig/ fails the check too" test $? -eq 1
+check "both listed, udevadm's command line not" \
+  test "$(grep -E '^(drivers|rig)/' "$work/lower.err")" = "$(printf '%s\n' \
+    'drivers/src/lib.cpp:1: "libMesaSR not found, or use --camera sim"' \
+    'rig/src/rig.cpp:1: "--pose sim needs a simulated camera"')"
+
 bash "$check_script" "$work/clean" > "$work/clean.out" 2>&1
 check "comments, character literals and dashes without a letter pass" test $? -eq 0
 bash "$check_script" "$work/none" > /dev/null 2>&1

@@ -8,6 +8,7 @@
 #include <optional>
 #include <string>
 
+#include "keyturn/core/error.h"
 #include "keyturn/drivers/pose_source.h"
 #include "keyturn/drivers/tof_camera.h"
 #include "keyturn/rig/device_factory.h"
@@ -21,6 +22,12 @@ struct CaptureDevices {
                              // sim: the simulated rig's camera through the simulated OpenNI2 driver)
   PoseSpec pose;             // sim: the simulated or played-back rig's own; playback; or a real pose source
   SimulatedRigOptions sim;   // with a simulated camera (simulated_pose follows pose)
+};
+
+// The simulated turntable asked for with a camera that is not simulated: the simulated table and
+// camera share one world. Typed, so the CLI can word it in its flags.
+struct SimulatedTurntableNeedsSimulatedCamera : Error {
+  SimulatedTurntableNeedsSimulatedCamera();
 };
 
 class CaptureRig {
