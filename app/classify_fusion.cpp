@@ -6,7 +6,7 @@
 #include <iostream>
 #include <nlohmann/json.hpp>
 
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "fusion_options.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/string_format.h"

@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "commands.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "descriptor_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/learning/consistency.h"

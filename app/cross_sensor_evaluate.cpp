@@ -5,7 +5,7 @@
 #include <iostream>
 
 #include "cross_sensor_evaluate.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "keyturn/core/error.h"
 #include "keyturn/learning/cross_sensor_evaluation.h"
 #include "learning_options.h"

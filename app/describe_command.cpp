@@ -6,7 +6,7 @@
 #include <iostream>
 
 #include "commands.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/core/describe_files.h"

@@ -7,7 +7,7 @@
 #include <memory>
 
 #include "commands.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/string_format.h"
 #include "keyturn/rig/object_enrollment.h"

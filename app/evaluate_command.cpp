@@ -8,7 +8,7 @@
 
 #include "commands.h"
 #include "cross_sensor_evaluate.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "descriptor_options.h"
 #include "fusion_options.h"
 #include "keyturn/core/descriptor_parameters.h"

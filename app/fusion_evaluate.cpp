@@ -7,7 +7,7 @@
 #include <set>
 #include <sstream>
 
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "fusion_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"

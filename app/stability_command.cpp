@@ -8,7 +8,7 @@
 #include <sstream>
 
 #include "commands.h"
-#include "dataset_features.h"
+#include "cached_features.h"
 #include "depth_image_options.h"
 #include "descriptor_options.h"
 #include "keyturn/core/cloud_io.h"

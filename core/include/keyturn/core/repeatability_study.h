@@ -12,7 +12,7 @@
 #include <utility>
 #include <vector>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/error.h"

@@ -10,7 +10,7 @@
 #include "keyturn/bench/view_timing.h"
 #include "keyturn/core/depth_image.h"
 #include "keyturn/core/descriptor.h"
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::bench {
 
@@ -34,7 +34,7 @@ nlohmann::json runScaling(const ScalingArgs& args, const DescriptorOptions& opti
 // The table `keyturn bench --scaling` prints; its first line begins with the source's name (the
 // CLI puts its command before it).
 std::string scalingTable(const nlohmann::json& scaling);
-// Its log-log plot of time against size, to be drawn into file (ui/report_plots.h).
+// Its log-log plot of time against size, to be drawn into file (ui/plots/report_plots.h).
 CurvePlot scalingPlot(const nlohmann::json& scaling, const std::string& file);
 
 }  // namespace keyturn::bench

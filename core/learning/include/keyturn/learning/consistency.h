@@ -8,7 +8,7 @@
 
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/learning/feature_table.h"
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::learning {
 

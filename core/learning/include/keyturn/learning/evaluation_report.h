@@ -17,7 +17,7 @@
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/open_set_calibration.h"
 #include "keyturn/learning/protocols.h"
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::learning {
 

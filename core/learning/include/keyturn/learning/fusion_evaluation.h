@@ -9,7 +9,7 @@
 #include <string>
 #include <vector>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/protocols.h"
 #include "keyturn/learning/view_fusion.h"

@@ -12,7 +12,7 @@
 #include <string>
 #include <vector>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 #include "keyturn/learning/feature_table.h"
 #include "keyturn/learning/fusion_evaluation.h"
 #include "keyturn/learning/next_best_view.h"

@@ -1,10 +1,10 @@
 #pragma once
-// The plots a report links to (core/report_plots.h) drawn as PNG files in
+// The plots a report links to (core/report_plot_specs.h) drawn as PNG files in
 // the report's folder (sub-folders made as needed; dir "" for files named as they are).
 // Drawn with Qt Charts in the plugin "plots", loaded on the first call.
 #include <string>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::plots {
 

@@ -1,9 +1,9 @@
 #pragma once
-// A confusion matrix (core/report_plots.h) as a PNG heat map (rows: true class, columns:
+// A confusion matrix (core/report_plot_specs.h) as a PNG heat map (rows: true class, columns:
 // predicted), each cell shaded by the share of its row and labelled with its count.
 #include <string>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::plots {
 

@@ -1,4 +1,4 @@
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 #include <cctype>
 

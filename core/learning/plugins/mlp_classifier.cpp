@@ -1,4 +1,4 @@
-#include "mlp_classifier.h"
+#include "../src/mlp_classifier.h"
 
 #include <ATen/CPUGeneratorImpl.h>
 #include <torch/torch.h>

@@ -1,4 +1,4 @@
-#include "dataset_features.h"
+#include "cached_features.h"
 
 #include <iostream>
 

@@ -1,7 +1,7 @@
 #pragma once
 // The plots a report links to, as data: what to draw and the file to draw it in
 // (relative to the report's folder). The libraries decide the plots (evaluate's,
-// consistency's, bench --scaling's); ui/report_plots.h draws them (PNG, Qt), so
+// consistency's, bench --scaling's); ui/plots/report_plots.h draws them (PNG, Qt), so
 // core and learning stay free of Qt.
 #include <cmath>
 #include <string>

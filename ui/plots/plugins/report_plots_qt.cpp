@@ -6,7 +6,7 @@
 #include "curve_plot_png.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/plugin.h"
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::plots {
 namespace {

@@ -1,9 +1,9 @@
 #pragma once
-// A curve plot (core/report_plots.h) drawn with Qt Charts into a PNG of its size, headless (the
+// A curve plot (core/report_plot_specs.h) drawn with Qt Charts into a PNG of its size, headless (the
 // offscreen platform is chosen when there is no display).
 #include <string>
 
-#include "keyturn/core/report_plots.h"
+#include "keyturn/core/report_plot_specs.h"
 
 namespace keyturn::plots {
 
