@@ -9,7 +9,7 @@
 #include "depth_image_options.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/pose_list.h"
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 #include "keyturn/dataset/study_views.h"
 #include "keyturn/plots/report_plots.h"
 #include "progress.h"

@@ -14,7 +14,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
-#include "keyturn/core/stability_study.h"
+#include "keyturn/studies/stability_study.h"
 #include "keyturn/core/view_files.h"
 #include "keyturn/sim/tof_view.h"
 #include "keyturn/plots/report_plots.h"

@@ -1,6 +1,6 @@
 #pragma once
 // keyturn repeatability's option syntax: the lists its flags take, turned into the study's
-// typed options (keyturn/core/repeatability_study.h); errors name the flag.
+// typed options (keyturn/studies/repeatability_study.h); errors name the flag.
 #include <string>
 #include <vector>
 

@@ -13,7 +13,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/keypoint_placement.h"
 #include "keyturn/core/pose_list.h"
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 
 namespace keyturn {
 namespace {

@@ -10,7 +10,7 @@
 #include "keyturn/core/pose_list.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/repeatability.h"
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 #include "support/error_of.h"
 #include "support/synthetic_clouds.h"
 

@@ -9,8 +9,8 @@
 
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
-#include "keyturn/core/stability_study.h"
-#include "keyturn/core/view_perturbation.h"
+#include "keyturn/studies/stability_study.h"
+#include "keyturn/studies/view_perturbation.h"
 #include "keyturn/sim/tof_view.h"
 
 namespace keyturn {

@@ -5,7 +5,7 @@
 #include <vector>
 
 #include "keyturn/core/pose_list.h"
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 
 namespace keyturn::dataset {
 

@@ -11,7 +11,7 @@
 #include "keyturn/core/cloud.h"
 #include "keyturn/core/descriptor.h"
 #include "keyturn/core/report_plot_specs.h"
-#include "keyturn/core/view_perturbation.h"
+#include "keyturn/studies/view_perturbation.h"
 
 namespace keyturn {
 

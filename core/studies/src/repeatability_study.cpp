@@ -1,6 +1,6 @@
 // The repeatability study: pairs, the overlap check, native and equal-K detection,
 // scores per pair and their means per detector.
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 
 #include <Eigen/Geometry>
 #include <algorithm>

@@ -6,7 +6,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "keyturn/core/repeatability_study.h"
+#include "keyturn/studies/repeatability_study.h"
 
 namespace keyturn {
 namespace {

@@ -1,4 +1,4 @@
-#include "keyturn/core/view_perturbation.h"
+#include "keyturn/studies/view_perturbation.h"
 
 #include <Eigen/Geometry>
 #include <cmath>

@@ -1,4 +1,4 @@
-#include "keyturn/core/stability_study.h"
+#include "keyturn/studies/stability_study.h"
 
 #include <algorithm>
 #include <cmath>
