@@ -60,9 +60,12 @@ void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, co
       so.camera.mesh = obj.mesh;
       so.camera.elevation_deg = el;
       so.camera.seed = s.seed;
-      so.camera.noise_per_pose = true;  // the same dataset on every run, whichever frame is taken
       so.fast = true;
       so.openni2 = s.camera == SimulatedCamera::OpenNi2;
+      // The same dataset on every run, whichever frame is taken: the OpenNI2 camera's frames come on
+      // its own thread, so its noise is drawn per pose. The SR4000's come in capture order and keep
+      // their per-frame draws (the datasets and models made before the SR4000 honoured noise_per_pose).
+      so.camera.noise_per_pose = so.openni2;
       SimulatedRig simrig = openSimulatedRig(so);
       CaptureOptions o = viewOptions(base, obj, el, elevationLabel(el));
       o.camera_from_turntable_zero = simrig.camera_from_turntable;
@@ -88,9 +91,9 @@ CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& 
   so.camera.scale = draw.scale;
   so.camera.roll_deg = draw.roll_deg;
   so.camera.seed = viewHash(s.seed, key);  // each view its own noise
-  so.camera.noise_per_pose = true;
   so.fast = true;
   so.openni2 = s.camera == SimulatedCamera::OpenNi2;
+  so.camera.noise_per_pose = so.openni2;  // as above
   SimulatedRig simrig = openSimulatedRig(so);
   if (draw.integration > 0) {
     drivers::TofSettings settings = simrig.camera->settings();
