@@ -17,7 +17,6 @@
 #include "keyturn/core/error.h"
 #include "keyturn/drivers/mesasr_api.h"
 #include "keyturn/drivers/tof_camera.h"
-#include "keyturn/core/fnv1a.h"
 #include "keyturn/sim/mesasr_sim_config.h"
 #include "keyturn/sim/tof_view.h"
 
@@ -116,13 +115,7 @@ void renderFrame(CMesaDevice& d) {
   v.turntable_deg = d.config.world.empty()
                         ? d.config.turntable_deg
                         : keyturn::sim::readWorldTurntable(d.config.world, d.config.turntable_deg);
-  if (d.config.noise_per_pose) {  // one noise draw per angle, as the simulated OpenNI2 camera's
-    std::string bits(sizeof(v.turntable_deg), '\0');
-    std::memcpy(bits.data(), &v.turntable_deg, bits.size());
-    v.seed = keyturn::fnv1a(bits, d.config.seed * 1000003ULL);
-  } else {
-    v.seed = d.config.seed + d.frames;
-  }
+  v.seed = d.config.noise_per_pose ? d.config.poseNoiseSeed(v.turntable_deg) : d.config.seed + d.frames;
   // Shorter integration collects less light: noise grows as 1/sqrt(time).
   const double t_ms = 0.3 + 0.1 * d.int_time, t_ref = 0.3 + 0.1 * 30;
   v.noise_at_1m *= std::sqrt(t_ref / t_ms);

@@ -9,7 +9,6 @@
 #include <iomanip>
 #include <sstream>
 
-#include "keyturn/core/fnv1a.h"
 #include "keyturn/sim/mesh.h"
 #include "sim_properties.h"
 #include "sim_stream.h"
@@ -187,13 +186,9 @@ SceneView SimDevice::view() const {
 
 StructuredLightFrame SimDevice::renderFrame() {
   SceneView v = view();
-  if (config_.noise_per_pose) {  // one noise draw per angle, whichever frame a capture takes
-    std::string bits(sizeof(v.turntable_deg), '\0');
-    std::memcpy(bits.data(), &v.turntable_deg, bits.size());
-    v.seed = fnv1a(bits, config_.seed * 1000003ULL);
-  } else {
-    v.seed = config_.seed * 1000003ULL + static_cast<std::uint64_t>(frames_);  // repeatable per frame
-  }
+  // One noise draw per angle, whichever frame a capture takes; else one per frame, repeatable.
+  v.seed = config_.noise_per_pose ? config_.poseNoiseSeed(v.turntable_deg)
+                                  : config_.seed * 1000003ULL + static_cast<std::uint64_t>(frames_);
   return renderer_->render(v);
 }
 

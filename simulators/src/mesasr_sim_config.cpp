@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -9,6 +10,7 @@
 
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/fnv1a.h"
 #include "keyturn/core/json_file.h"
 #include "keyturn/core/json_integer.h"
 
@@ -98,6 +100,12 @@ void writeWorldTurntable(const std::string& path, double degrees) {
   std::error_code ec;
   fs::rename(tmp, path, ec);
   if (ec) throw Error(path + ": cannot write world state: " + ec.message());
+}
+
+std::uint64_t MesaSrSimConfig::poseNoiseSeed(double turntable_deg) const {
+  std::string bits(sizeof turntable_deg, '\0');
+  std::memcpy(bits.data(), &turntable_deg, bits.size());
+  return fnv1a(bits, seed * 1000003ULL);
 }
 
 }  // namespace keyturn::sim

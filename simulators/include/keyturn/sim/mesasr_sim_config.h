@@ -49,6 +49,9 @@ struct MesaSrSimConfig {
   // run free at 30/s, so which frame a capture takes depends on timing; with this on, a simulated
   // dataset is the same on every run (keyturn simulate sets it). Off: new noise every frame.
   bool noise_per_pose = false;
+  // The noise seed of a frame at this turntable angle when noise_per_pose is set: the same for
+  // every frame at the angle, for both simulated cameras.
+  std::uint64_t poseNoiseSeed(double turntable_deg) const;
   std::string unplug_file;
   MesaSrSimFaults faults;
 
