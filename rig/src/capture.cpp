@@ -28,14 +28,17 @@ drivers::Pose waitStable(drivers::PoseSource& pose, double target, const Capture
   drivers::Pose p;
   for (;;) {
     p = pose.read();
-    const bool ok = !p.moving && angleDiff(p.turntable_deg, target) <= o.tolerance_deg;
+    // Not moving is not yet settled: a drive reports "in position" only after its settling window
+    // (an angle read while settling carries the encoder's jitter, and was written as the view's).
+    const bool ok = !p.moving && p.in_position && angleDiff(p.turntable_deg, target) <= o.tolerance_deg;
     if (!ok) stable_since.reset();
     else if (!stable_since) stable_since = Clock::now();
     if (stable_since && Clock::now() - *stable_since >= std::chrono::duration<double>(o.settle_s)) return p;
     if (Clock::now() > deadline)
       throw Error(pose.describe() + ": not stable within " + std::to_string(o.tolerance_deg) + "° of " +
                   std::to_string(target) + "° after " + std::to_string(o.move_timeout_s) + " s (at " +
-                  std::to_string(p.turntable_deg) + "°, " + (p.moving ? "moving" : "still") + ")");
+                  std::to_string(p.turntable_deg) + "°, " + (p.moving ? "moving" : p.in_position ? "still" : "not in position") +
+                  ")");
     std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 }
@@ -79,7 +82,7 @@ CaptureReport runCapture(drivers::TofCamera& camera, drivers::PoseSource& pose, 
       for (int i = 0; i < o.frames; ++i) frames.push_back(camera.acquire());
       const drivers::Pose after = pose.read();
       // The table moved during the exposure: this view would be blurred or mislabelled.
-      if (after.moving || angleDiff(after.turntable_deg, before.turntable_deg) > o.tolerance_deg) {
+      if (after.moving || !after.in_position || angleDiff(after.turntable_deg, before.turntable_deg) > o.tolerance_deg) {
         if (++redos > o.max_redos)
           throw Error(pose.describe() + ": the pose kept moving during acquisition at " + std::to_string(angle) + "°");
         continue;

@@ -95,7 +95,7 @@ TEST_F(SimulatedRig, CapturesPoseTaggedViewsThatVerify) {
   ASSERT_EQ(views.size(), 4u);
   for (std::size_t i = 0; i < views.size(); ++i) {
     EXPECT_DOUBLE_EQ(views[i].key.commanded_deg, 10.0 * i);
-    EXPECT_NEAR(views[i].measured_deg, 10.0 * i, 0.011);
+    EXPECT_NEAR(views[i].measured_deg, 10.0 * i, 1e-9);  // read in position: no settling jitter
     EXPECT_EQ(views[i].files.size(), 5u);  // pcd, 3 pngs, json
   }
   std::ifstream in(ds.root() + "/mug/builtin/e30/a20.0.json");
@@ -200,6 +200,63 @@ drivers::TofFrame tinyFrame() {
 }
 
 }  // namespace
+
+namespace {
+
+// A drive as a Modbus turntable reports one: after a move it is still (not moving) but settling for
+// a few reads, the encoder 0.01° off, before it raises "in position" on the exact angle.
+class SettlingTable final : public drivers::PoseSource {
+ public:
+  drivers::Pose read() override {
+    drivers::Pose p;
+    const bool settling = reads_since_move_++ < 3;
+    p.turntable_deg = target_ + (settling ? 0.01 : 0.0);
+    p.moving = false;
+    p.in_position = !settling;
+    return p;
+  }
+  bool canMove() const override { return true; }
+  void moveTo(double deg) override {
+    target_ = deg;
+    reads_since_move_ = 0;
+  }
+  std::string describe() const override { return "settling table"; }
+
+ private:
+  double target_ = 0;
+  int reads_since_move_ = 0;
+};
+
+class TinyCamera final : public drivers::TofCamera {
+ public:
+  void configure(const drivers::TofSettings&) override {}
+  drivers::TofSettings settings() const override { return {}; }
+  drivers::TofFrame acquire() override { return tinyFrame(); }
+  std::string deviceString() const override { return "tiny camera"; }
+  std::uint32_t serial() const override { return 1; }
+};
+
+}  // namespace
+
+// The issue-51 flake of cli.modbus_turntable (the 240° row read 239.995): a still table that has not
+// yet reported "in position" was taken as settled, and its settling jitter became the view's angle.
+TEST(Capture, AViewWaitsForInPositionNotJustStill) {
+  const test::ScratchFolder scratch("settling");
+  dataset::Dataset ds(scratch.path.string());
+  SettlingTable table;
+  TinyCamera camera;
+  rig::CaptureOptions o;
+  o.cls = "mug";
+  o.instance = "settling";
+  o.elevation_label = "30";
+  o.step_deg = 120;
+  o.settle_s = 0;  // the pose source's own bit is the settling window
+  o.discard_frames = 0;
+  EXPECT_EQ(rig::runCapture(camera, table, ds, o).written, 3u);
+  const auto views = dataset::Dataset::readManifest(ds.root());
+  ASSERT_EQ(views.size(), 3u);
+  for (const auto& v : views) EXPECT_EQ(v.measured_deg, v.key.commanded_deg) << v.key.commanded_deg;
+}
 
 TEST(Dataset, VerifyFindsMissingCorruptAndOrphanFiles) {
   const keyturn::test::ScratchFolder scratch("ds");
