@@ -145,7 +145,10 @@ void TurntableServer::syncRegisters() {
   map->tab_registers[kRegPosition] = static_cast<std::uint16_t>(counts >> 16);
   map->tab_registers[kRegPosition + 1] = static_cast<std::uint16_t>(counts & 0xFFFF);
   map->tab_registers[kRegStatus] = static_cast<std::uint16_t>((s.moving ? 1 : 0) | (s.in_position ? 2 : 0));
-  if (!o_.world_file.empty() && std::abs(s.angle_deg - last_world_) > 1e-4) {
+  // Every change, however small: a poll 5 µs before arrival read 89.99998°, and with a 1e-4° dead band
+  // the arrival at 90° was never written, so the simulated camera drew that view's noise for 89.99998°
+  // (issue 51: `simulate --camera openni2` twice gave two different 90° views). Still, nothing changes.
+  if (!o_.world_file.empty() && s.angle_deg != last_world_) {
     writeWorldTurntable(o_.world_file, s.angle_deg);
     last_world_ = s.angle_deg;
   }

@@ -173,6 +173,34 @@ TEST(ModbusTurntable, MovesOverTcpWithARealisticProfile) {
   EXPECT_NEAR(end.turntable_deg, 90.0, 0.011);
 }
 
+// The shared world (what the simulated cameras render) ends exactly where the table stops, however
+// close to the goal the last read during the move was: 100 µs before arrival the table is 1.8e-5° short
+// (0.5 · 3600°/s² · (1e-4 s)²), inside the 1e-4° dead band the world file once had, and 90° was then
+// never written.
+TEST(ModbusTurntable, TheWorldEndsExactlyWhereTheTableStops) {
+  const test::ScratchFolder scratch("turntable_world");
+  const std::string world = (scratch.made() / "world.json").string();
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<long> at_us{0};
+  sim::TurntableServerOptions o = fastTable();
+  o.motion.settle_s = 0;
+  o.world_file = world;
+  o.clock = [&] { return start + std::chrono::microseconds(at_us.load()); };
+  sim::TurntableServer server(o);
+  auto table = connectTo(server);
+  table->read();
+  EXPECT_EQ(sim::readWorldTurntable(world, -1.0), 0.0);  // written at the first request
+  table->moveTo(90.0);
+  at_us = 350000 - 100;  // arrival at 0.35 s (see MovesOverTcpWithARealisticProfile)
+  EXPECT_TRUE(table->read().moving);
+  const double last_moving = sim::readWorldTurntable(world, -1.0);
+  EXPECT_GT(last_moving, 90.0 - 1e-4);
+  EXPECT_LT(last_moving, 90.0);
+  at_us = 351000;
+  EXPECT_FALSE(table->read().moving);
+  EXPECT_EQ(sim::readWorldTurntable(world, -1.0), 90.0);
+}
+
 TEST(ModbusTurntable, InPositionIsNeverPairedWithAStaleAngle) {
   // Position and status come from one request, so a table arriving between two reads cannot report
   // "in position" at an angle it had already left. Polled as tightly as a capture does, over many moves.

@@ -7,6 +7,7 @@
 #include <atomic>
 #include <chrono>
 #include <functional>
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <random>
@@ -95,7 +96,7 @@ class TurntableServer {
   std::string pty_;
   std::atomic<bool> stop_{false};
   std::atomic<long> requests_{0}, faults_{0};
-  double last_world_ = -1;
+  double last_world_ = std::nan("");  // none written yet: the first request writes the angle
   std::mt19937_64 fault_rng_;
   std::thread thread_;
   void* ctx_ = nullptr;
