@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -30,7 +31,39 @@ std::pair<unsigned, unsigned> pngSize(const fs::path& p) {
   return {be(16), be(20)};
 }
 
+bool elided(const std::string& t) { return t.find("...") != std::string::npos || t.find("\u2026") != std::string::npos; }
+
+CurvePlot pdfPlot(int width, int height) {
+  CurvePlot c;
+  c.title = "kpd2 of a";
+  c.x_label = "bin";
+  c.y_label = "probability";
+  c.series = {{"mean", {0, 1, 2, 3}, {0.7, 0.1, 0.1, 0.1}}};
+  c.width = width;
+  c.height = height;
+  return c;
+}
+
 }  // namespace
+
+// What the plot shows, not only its size (issue 51: labels elided to "…" were once found by eye).
+// Qt Charts' value axes carry 5 ticks by default: 0 to 3 in steps of 0.75, 0.1 to 0.7 in steps of
+// 0.15, printed with %.3g.
+TEST(ReportPlots, APlotShowsItsTitleAxesTicksAndLegendUncut) {
+  const std::vector<std::string> text = plots::drawnText(pdfPlot(640, 400));
+  for (const char* want : {"kpd2 of a", "bin", "probability", "mean", "0", "0.75", "1.5", "2.25", "3", "0.1", "0.25",
+                           "0.4", "0.55", "0.7"})
+    EXPECT_NE(std::find(text.begin(), text.end(), want), text.end()) << want;
+  for (const auto& t : text) EXPECT_FALSE(elided(t)) << t;
+}
+
+// The check above can fail: the same plot at 150 × 90 has no room for its labels, and they come back cut.
+TEST(ReportPlots, APlotTooSmallForItsLabelsShowsThemCut) {
+  CurvePlot c = pdfPlot(150, 90);
+  c.title = "kpd2 of a view with a long name";
+  const std::vector<std::string> text = plots::drawnText(c);
+  EXPECT_TRUE(std::any_of(text.begin(), text.end(), elided));
+}
 
 TEST(ReportPlots, EachPlotIsAPngOfItsSizeInItsSubFolder) {
   const keyturn::test::ScratchFolder scratch("ui_plots");

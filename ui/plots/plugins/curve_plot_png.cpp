@@ -2,6 +2,8 @@
 
 #include <QApplication>
 #include <QGraphicsScene>
+#include <QGraphicsSimpleTextItem>
+#include <QGraphicsTextItem>
 #include <QImage>
 #include <QPainter>
 #include <QtCharts/QCategoryAxis>
@@ -47,9 +49,10 @@ void setRange(QtCharts::QAbstractAxis* axis, bool log, double lo, double hi) {
   }
   axis->setRange(lo, hi);
 }
-}  // namespace
 
-void saveCurvePng(const CurvePlot& c, const std::string& path) {
+// Lays the chart out at its size and draws it; `text` (when asked) gets every text item Qt Charts
+// placed, as drawn (a label given too little room is elided there, not in the plot's data).
+QImage drawCurve(const CurvePlot& c, std::vector<std::string>* text) {
   const int width = c.width, height = c.height;
   ensureApplication();
   auto* chart = new QtCharts::QChart();
@@ -121,6 +124,28 @@ void saveCurvePng(const CurvePlot& c, const std::string& path) {
     p.setRenderHint(QPainter::Antialiasing);
     scene.render(&p, QRectF(0, 0, width, height), QRectF(0, 0, width, height));
   }
+  if (text) {
+    for (const QGraphicsItem* item : scene.items(Qt::AscendingOrder)) {
+      if (!item->isVisible()) continue;
+      QString t;
+      if (const auto* rich = dynamic_cast<const QGraphicsTextItem*>(item)) t = rich->toPlainText();
+      else if (const auto* plain = dynamic_cast<const QGraphicsSimpleTextItem*>(item)) t = plain->text();
+      if (!t.isEmpty()) text->push_back(t.toStdString());
+    }
+  }
+  return img;
+}
+
+}  // namespace
+
+std::vector<std::string> curvePlotText(const CurvePlot& c) {
+  std::vector<std::string> text;
+  drawCurve(c, &text);
+  return text;
+}
+
+void saveCurvePng(const CurvePlot& c, const std::string& path) {
+  const QImage img = drawCurve(c, nullptr);
   const std::filesystem::path target(path);
   if (target.has_parent_path()) std::filesystem::create_directories(target.parent_path());
   if (!img.save(QString::fromStdString(path), "PNG")) throw Error(path + ": cannot write the chart PNG");

@@ -36,3 +36,14 @@ KEYTURN_PLUGIN_EXPORT bool keyturn_plots_save(const keyturn::ReportPlots& plots,
     return false;
   }
 }
+
+KEYTURN_PLUGIN_EXPORT bool keyturn_plots_text(const keyturn::CurvePlot& plot, std::vector<std::string>& text,
+                                              std::string& error) {
+  try {
+    text = keyturn::plots::curvePlotText(plot);
+    return true;
+  } catch (const std::exception& e) {
+    error = e.what();
+    return false;
+  }
+}

@@ -14,4 +14,13 @@ void saveReportPlots(const ReportPlots& plots, const std::string& dir) {
   if (!save(plots, dir, error)) throw Error(error);
 }
 
+std::vector<std::string> drawnText(const CurvePlot& plot) {
+  using Text = bool(const CurvePlot&, std::vector<std::string>&, std::string&);
+  static auto* text_of = pluginFunction<Text>("plots", "keyturn_plots_text");
+  std::vector<std::string> text;
+  std::string error;
+  if (!text_of(plot, text, error)) throw Error(error);
+  return text;
+}
+
 }  // namespace keyturn::plots
