@@ -12,6 +12,7 @@
 #include <optional>
 
 #include "heap_reuse.h"
+#include "openmp_waiting.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/install_layout.h"
 #include "keyturn/rig/dataset_playback.h"
@@ -34,6 +35,7 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
+  keyturn::app::waitPassivelyInOpenMp(argv);
   keyturn::app::keepFreedHeapForReuse();
   keyturn::studio::catchQuitSignals();
   Args a;

@@ -24,6 +24,14 @@ check "mesh.ply is a binary PLY with faces" grep -aq "element face" "$work/rec/m
 "$KT" reconstruct "$work/rec/poses.txt" --no-refine --poisson-depth 6 -q --out "$work/again" > /dev/null 2>&1
 check "poses.txt reads back as a pose file" test $? -eq 0
 
+# OpenMP's idle threads wait passively in reconstruct (libgomp prints its settings with
+# OMP_DISPLAY_ENV; a spin count of 0 is PASSIVE): set at a second start, unless the user chose a
+# policy; other commands start once.
+spin() { env OMP_DISPLAY_ENV=verbose "$@" 2>&1 >/dev/null | sed -n "s/^ *GOMP_SPINCOUNT = '\([0-9]*\)'/\1/p" | tr '\n' ' '; }
+check "reconstruct: OpenMP threads wait passively" test "$(spin env -u OMP_WAIT_POLICY "$KT" reconstruct --help)" = "300000 0 "
+check "reconstruct: a policy the user chose is kept" test "$(spin env OMP_WAIT_POLICY=active "$KT" reconstruct --help)" = "30000000000 "
+check "another command starts once" test "$(spin env -u OMP_WAIT_POLICY "$KT" --version)" = "300000 "
+
 fails() {  # fails NAME PATTERN ARGS…: exit 1 and one line matching PATTERN on stderr
   local name=$1 pattern=$2; shift 2
   "$KT" reconstruct "$@" -q --out "$work/bad" > /dev/null 2> "$work/err"

@@ -105,6 +105,23 @@ class LoadCloud(unittest.TestCase):
         self.assertIsNone(keyturn.load_cloud(FRAME).amplitude)
 
 
+class OpenMpWaiting(unittest.TestCase):
+    """Importing keyturn makes OpenMP's idle threads wait passively (libgomp's spin count 0), unless
+    the user chose a policy: its default spinning slowed reconstruct() on a busy machine."""
+
+    def spin_counts(self, policy):
+        env = {k: v for k, v in os.environ.items() if k != "OMP_WAIT_POLICY"}
+        env["OMP_DISPLAY_ENV"] = "verbose"
+        if policy:
+            env["OMP_WAIT_POLICY"] = policy
+        out = subprocess.run([sys.executable, "-c", "import keyturn"], env=env, capture_output=True, text=True, check=True)
+        return [line.split("'")[1] for line in out.stderr.splitlines() if "GOMP_SPINCOUNT" in line]
+
+    def test_passive_unless_chosen(self):
+        self.assertEqual(self.spin_counts(None), ["0"])
+        self.assertEqual(self.spin_counts("active"), ["30000000000"])
+
+
 class Describe(unittest.TestCase):
     def assert_matches_cli(self, path, cli_args, **kwargs):
         header, rows = csv_rows(cli("describe", path, "-q", *cli_args).stdout)

@@ -2,7 +2,15 @@
 
 The computing is the extension keyturn._keyturn (the project's C++ libraries, pybind11); this
 package adds Open3D output (to_open3d) and the type stubs (__init__.pyi)."""
-from ._keyturn import (
+import os
+
+# OpenMP threads that sleep while they wait, unless the user chose otherwise: libgomp reads the
+# policy once, when the extension loads it, and its default spinning took the cores reconstruct()
+# needed on a busy machine (docs/benchmarks.md, "OpenMP threads that wait passively"). Only a
+# process that loaded libgomp before importing keyturn keeps its own.
+os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+from ._keyturn import (  # noqa: E402  (after the policy)
     Classification,
     Cloud,
     Dataset,
