@@ -1,6 +1,7 @@
 #pragma once
-#include <string>
 // OpenMP threads that sleep while they wait (docs/benchmarks.md, "OpenMP threads that wait passively").
+#include <string>
+
 namespace keyturn::app {
 
 // libgomp (loaded at start with XGBoost and PCL, used by Open3D's reconstruction) reads

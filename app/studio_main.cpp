@@ -35,6 +35,7 @@ struct Args {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Reconstruct… runs Open3D beside the camera and recognition threads: a second start, once.
   keyturn::app::waitPassivelyInOpenMp(argv);
   keyturn::app::keepFreedHeapForReuse();
   keyturn::studio::catchQuitSignals();
