@@ -6,6 +6,8 @@
 //   openni2_turning_rate MESH DEG_PER_S SECONDS WORKDIR
 #include <OpenNI.h>
 
+#include <nlohmann/json.hpp>
+
 #include <algorithm>
 #include <atomic>
 #include <chrono>
@@ -21,13 +23,14 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-void writeWorld(const std::string& path, double deg) {
-  {
-    std::ofstream out(path + ".tmp");
-    out << "{\"turntable_deg\": " << deg << "}\n";
-  }
+// A client of OpenNI2 only, as a foreign program is: the files are written as keyturn's simulated
+// turntable (writeWorldTurntable) and MesaSrSimConfig write them, not through them.
+void writeJson(const std::string& path, const nlohmann::json& j) {
+  std::ofstream(path + ".tmp") << j.dump() << "\n";
   std::filesystem::rename(path + ".tmp", path);  // as the simulated turntable: never torn
 }
+
+void writeWorld(const std::string& path, double deg) { writeJson(path, {{"turntable_deg", deg}}); }
 
 }  // namespace
 
@@ -42,7 +45,7 @@ int main(int argc, char** argv) {
   const std::string world = std::filesystem::absolute(work + "/world.json").string();
   const std::string config = std::filesystem::absolute(work + "/camera.json").string();
   writeWorld(world, 0.0);
-  std::ofstream(config) << "{\"mesh\": \"" << mesh << "\", \"elevation\": 30, \"world\": \"" << world << "\"}\n";
+  writeJson(config, {{"mesh", mesh}, {"elevation", 30}, {"world", world}});
 
   if (openni::OpenNI::initialize() != openni::STATUS_OK) {
     std::fprintf(stderr, "OpenNI2: %s\n", openni::OpenNI::getExtendedError());
