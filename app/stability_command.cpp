@@ -1,6 +1,6 @@
 // keyturn stability: how far each function's PDF moves when a view moves rigidly, is resampled,
 // jittered, given the sensor's noise or rounded to a depth image's millimetres — against how far
-// apart different views are, with PCL's ESF and VFH on the same views. The study is core's
+// apart different views are, with PCL's ESF and VFH on the same clouds. The study is core's
 // (stability_study.h); this parses, loads, calls, draws and prints.
 #include <filesystem>
 #include <iostream>
@@ -25,7 +25,7 @@ namespace {
 
 struct StabilityArgs {
   std::vector<std::string> inputs;
-  std::string out, perturbations = "all", group_by = "file", functions = "kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2,d1,d2,d3,d4,a3";
+  std::string out, perturbations = "all", pcl_input = "given", group_by = "file", functions = "kpd2,kpd3,kpa3,gkpd1,gkpd2,gkpcd2,d1,d2,d3,d4,a3";
   bool builtin = false, json = false, no_pcl = false, no_scaled = false, quiet = false;
   int draws = 3, jobs = 0;
   unsigned long long seed = 1;
@@ -65,6 +65,7 @@ int runStability(const StabilityArgs& a) {
   o.descriptor.features = parseFeatureList(a.functions);
   o.descriptor.scaled_twin = !a.no_scaled;
   o.pcl_descriptors = !a.no_pcl;
+  o.pcl_input = pclInputNamed(a.pcl_input);
   o.repetitions = a.draws;
   o.seed = a.seed;
   o.jobs = a.jobs;
@@ -115,6 +116,11 @@ Command addStabilityCommand(CLI::App& app) {
                   "distances pair different groups")
       ->capture_default_str();
   cmd->add_flag("--no-pcl", a->no_pcl, "Leave out PCL's ESF and VFH");
+  cmd->add_option("--pcl-input", a->pcl_input,
+                  "What PCL's ESF and VFH describe: given (each view's cloud as it is, as a PCL user computes them) "
+                  "or filtered (the view after keyturn's filter)")
+      ->capture_default_str()
+      ->check(CLI::IsMember({"given", "filtered"}));
   cmd->add_flag("--no-scaled", a->no_scaled, "Leave out the scaled twins (s_kpd2, …)");
   cmd->add_option("--jobs,-j", a->jobs, "Views studied in parallel (0: one per core)");
   cmd->add_option("--out,-o", a->out, "Report folder (Markdown, JSON, PNG plots)");

@@ -210,6 +210,36 @@ TEST(Stability, ReportsRatiosAgainstTheDistanceBetweenViews) {
   EXPECT_TRUE(std::isnan(same.functions.front().betweenMedianL1()));
 }
 
+// Issue 47: the study's ESF is the figure PCL gives on the cloud the user has. On an object cut
+// jittered far below the sensor's noise, PCL's seeded ESF of the given cloud draws the same
+// samples and barely moves; computed after keyturn's filter, whose outlier step keeps another
+// count of points, every sample index shifts and ESF moves by its sampling noise.
+TEST(Stability, PclDescriptorsDescribeTheCloudAsGiven) {
+  StabilityOptions o;
+  o.descriptor.features = {Feature::KPD2};
+  o.descriptor.scaled_twin = false;
+  o.perturbations = {named("jitter-0.1mm")};
+  o.repetitions = 1;
+  const std::vector<StabilityView> views = {{"a", "a", realCrop("learn0_o1")}, {"b", "b", realCrop("learn34_o1")},
+                                            {"c", "c", realCrop("learn8_o2")}, {"d", "d", realCrop("learn40_o2")}};
+  const auto esfRatio = [&](PclInput input) {
+    o.pcl_input = input;
+    const StabilityStudy s = runStabilityStudy(views, o);
+    EXPECT_EQ(s.pcl_input, input);
+    const auto esf = std::find_if(s.functions.begin(), s.functions.end(), [](const auto& f) { return f.name == "esf"; });
+    EXPECT_NE(esf, s.functions.end());
+    EXPECT_NE(stabilityMarkdown(s, "t").find("jitter-0.1mm ratio |"), std::string::npos);
+    EXPECT_EQ(s.maxAbsKeypointChangeUnder("jitter-0.1mm"), s.maxAbsKeypointChange(false));
+    EXPECT_EQ(s.maxAbsKeypointChangeUnder("wobble"), -1);
+    return esf == s.functions.end() ? std::nan("") : esf->ratio(0);
+  };
+  const double given = esfRatio(PclInput::Given), filtered = esfRatio(PclInput::Filtered);
+  EXPECT_LT(given, 0.08);
+  EXPECT_GT(filtered, 2 * given);
+  EXPECT_EQ(pclInputNamed("filtered"), PclInput::Filtered);
+  EXPECT_THROW(pclInputNamed("raw"), Error);
+}
+
 TEST(Stability, NamesWhatItCannotStudy) {
   EXPECT_THROW(perturbationsNamed("wobble"), Error);
   StabilityOptions o;

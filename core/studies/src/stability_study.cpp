@@ -68,7 +68,7 @@ Described describeAll(const Cloud& cloud, const StabilityOptions& o, const std::
   const ViewDescriptor d = describeView(cloud, o.descriptor);
   Described out;
   out.keypoints = d.keypointCount();
-  std::optional<PointSet> filtered;  // PCL's descriptors on the filtered view, without the working resolution
+  std::optional<PointSet> filtered;  // what PCL's descriptors describe (options.pcl_input)
   for (const auto& s : slots) {
     switch (s.source) {
       case FunctionSlot::Pdf: out.pdfs.push_back(d.pdfs[s.feature]); break;
@@ -76,9 +76,13 @@ Described describeAll(const Cloud& cloud, const StabilityOptions& o, const std::
       case FunctionSlot::Esf:
       case FunctionSlot::Vfh: {
         if (!filtered) {
-          DescriptorOptions raw = o.descriptor;
-          raw.working.enabled = false;
-          filtered = prepareView(cloud, raw).points;
+          if (o.pcl_input == PclInput::Given) {
+            filtered = PointSet::fromCloud(cloud);
+          } else {
+            DescriptorOptions raw = o.descriptor;
+            raw.working.enabled = false;
+            filtered = prepareView(cloud, raw).points;
+          }
         }
         try {
           out.pdfs.push_back(normalised(s.source == FunctionSlot::Esf
@@ -149,6 +153,24 @@ double FunctionStability::rigidShareWithin(double limit) const {
   return n ? static_cast<double>(within) / static_cast<double>(n) : std::nan("");
 }
 
+const char* pclInputName(PclInput input) { return input == PclInput::Given ? "given" : "filtered"; }
+
+PclInput pclInputNamed(const std::string& name) {
+  if (name == "given") return PclInput::Given;
+  if (name == "filtered") return PclInput::Filtered;
+  throw Error("PCL's descriptors describe the cloud 'given' or 'filtered', not '" + name + "'");
+}
+
+int StabilityStudy::maxAbsKeypointChangeUnder(const std::string& perturbation) const {
+  for (std::size_t p = 0; p < perturbations.size(); ++p)
+    if (perturbations[p].name == perturbation) {
+      int worst = 0;
+      for (int k : keypoint_change[p]) worst = std::max(worst, std::abs(k));
+      return worst;
+    }
+  return -1;
+}
+
 int StabilityStudy::maxAbsKeypointChange(bool rigid) const {
   int worst = 0;
   for (std::size_t p = 0; p < perturbations.size(); ++p)
@@ -203,6 +225,8 @@ StabilityStudy runStabilityStudy(const std::vector<StabilityView>& views, const 
   StabilityStudy s;
   s.perturbations = o.perturbations;
   s.repetitions = o.repetitions;
+  s.pcl_descriptors = o.pcl_descriptors;
+  s.pcl_input = o.pcl_input;
   s.keypoint_change.resize(P);
   s.not_described.assign(P, 0);
   for (const auto& slot : slots) {
@@ -265,16 +289,27 @@ std::string stabilityMarkdown(const StabilityStudy& s, const std::string& input)
   std::string md = "# Descriptor stability: " + input + "\n\n" + std::to_string(s.views.size()) + " views, " +
                    std::to_string(s.repetitions) + " draws of each perturbation per view. L1 between a view's PDF and "
                    "its perturbed view's (median over draws); between = median L1 between views of different "
-                   "groups; ratio = median non-rigid L1 ÷ between.\n\n";
-  md += "| function | rigid max L1 | rigid draws with L1 ≤ 0.01 | non-rigid median L1 | between L1 | ratio |\n"
-        "|---|---|---|---|---|---|\n";
+                   "groups; ratio = median non-rigid L1 ÷ between.";
+  if (s.pcl_descriptors)
+    md += s.pcl_input == PclInput::Given
+              ? " PCL's ESF and VFH describe each view's cloud as given (its finite points), as a PCL user computes them."
+              : " PCL's ESF and VFH describe each view after keyturn's filter (without the working resolution).";
+  // Jitter far below the sensor's noise moves nothing a view shows: its column stands apart from
+  // the pooled non-rigid ratio, which also holds resampling and the sensor's own noise.
+  std::size_t jitter = s.perturbations.size();
+  for (std::size_t p = 0; p < s.perturbations.size(); ++p)
+    if (s.perturbations[p].name == "jitter-0.1mm") jitter = p;
+  const bool has_jitter = jitter < s.perturbations.size();
+  md += "\n\n| function | rigid max L1 | rigid draws with L1 ≤ 0.01 | non-rigid median L1 | between L1 | ratio |";
+  md += has_jitter ? " jitter-0.1mm ratio |\n|---|---|---|---|---|---|---|\n" : "\n|---|---|---|---|---|---|\n";
   for (const auto& f : s.functions) {
     std::vector<double> all;
     for (std::size_t p = 0; p < s.perturbations.size(); ++p)
       if (!s.perturbations[p].rigid()) all.insert(all.end(), f.l1[p].begin(), f.l1[p].end());
     md += "| " + f.name + " | " + fixed(f.rigidMaxL1(), 4) + " | " + fixed(100 * f.rigidShareWithin(0.01), 1) + " % | " +
           fixed(median(all)) + " | " +
-          fixed(f.betweenMedianL1()) + " | " + fixed(f.ratioOverall()) + " |\n";
+          fixed(f.betweenMedianL1()) + " | " + fixed(f.ratioOverall()) + " |" +
+          (has_jitter ? " " + fixed(f.ratio(jitter)) + " |" : "") + "\n";
   }
   md += "\nRatio per perturbation (median L1 ÷ between):\n\n| function |";
   for (const auto& p : s.perturbations) md += " " + p.name + " |";
@@ -309,6 +344,7 @@ std::string stabilityJson(const StabilityStudy& s, const std::string& input) {
   j["views"] = s.views;
   j["repetitions"] = s.repetitions;
   j["errors"] = s.errors;
+  if (s.pcl_descriptors) j["pcl_input"] = pclInputName(s.pcl_input);
   for (std::size_t p = 0; p < s.perturbations.size(); ++p) {
     std::vector<double> a;
     int worst = 0;

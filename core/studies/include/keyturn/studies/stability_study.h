@@ -21,12 +21,20 @@ struct StabilityView {
   Cloud cloud;
 };
 
+// Which cloud PCL's ESF and VFH describe. Given: the view's finite points as the user has them (an
+// object cut: what a PCL user passes to ESF; the figure PCL gives). Filtered: the view after
+// keyturn's filter, without the working resolution (the study's protocol until 2026-12-06).
+enum class PclInput { Given, Filtered };
+const char* pclInputName(PclInput input);
+PclInput pclInputNamed(const std::string& name);  // throws keyturn::Error naming the choices
+
 struct StabilityOptions {
   DescriptorOptions descriptor;  // its features are the functions studied (and their scaled twins when asked)
   std::vector<Perturbation> perturbations = standardPerturbations();
   int repetitions = 3;           // draws of each perturbation per view (seeds seed, seed+1, …)
   std::uint64_t seed = 1;
-  bool pcl_descriptors = true;   // ESF (seeded) and VFH on the filtered view, as PCL users compute them
+  bool pcl_descriptors = true;   // ESF (seeded) and VFH
+  PclInput pcl_input = PclInput::Given;
   double vfh_normal_radius = 0.012;  // metres, as the learning peers use (kNormalRadius)
   int jobs = 0;                  // views described in parallel (0: one per core)
 };
@@ -54,7 +62,10 @@ struct StabilityStudy {
   std::vector<int> not_described;                 // [perturbation] draws whose perturbed view failed
   std::vector<std::string> errors;                // "VIEW: what was wrong" for views left out
   int repetitions = 0;
+  bool pcl_descriptors = false;
+  PclInput pcl_input = PclInput::Given;
   int maxAbsKeypointChange(bool rigid) const;
+  int maxAbsKeypointChangeUnder(const std::string& perturbation) const;  // -1: no such perturbation
 };
 
 struct StabilityProgress {
