@@ -49,23 +49,29 @@ CaptureOptions viewOptions(const CaptureOptions& base, const dataset::ObjectRow&
 
 std::string elevationLabel(double el) { return std::to_string(static_cast<int>(std::lround(el))); }
 
+// What every simulated rig of a dataset shares: its folder, the object's mesh, the camera and its noise.
+SimulatedRigOptions rigOptions(const DatasetSimulation& s, const dataset::ObjectRow& obj) {
+  SimulatedRigOptions so;
+  so.dir = dataset::datasetPath(s.out, dataset::kSimulatorFolder);
+  so.camera.mesh = obj.mesh;
+  so.camera.seed = s.seed;
+  so.fast = true;
+  so.openni2 = s.camera == SimulatedCamera::OpenNi2;
+  // The same dataset on every run, whichever frame is taken: the OpenNI2 camera's frames come on
+  // its own thread, so its noise is drawn per pose. The SR4000's come in capture order and keep
+  // their per-frame draws (the datasets and models made before the SR4000 honoured noise_per_pose).
+  so.camera.noise_per_pose = so.openni2;
+  return so;
+}
+
 // Without jitter: one rig per object and elevation, the whole turn captured in one sequence.
 void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, const CaptureOptions& base, CaptureReport& total,
                        const std::function<void()>& view_done) {
   for (const auto& obj : s.objects) {
     for (double el : s.elevations) {
       if (s.stop && *s.stop) return;
-      SimulatedRigOptions so;
-      so.dir = dataset::datasetPath(s.out, dataset::kSimulatorFolder);
-      so.camera.mesh = obj.mesh;
+      SimulatedRigOptions so = rigOptions(s, obj);
       so.camera.elevation_deg = el;
-      so.camera.seed = s.seed;
-      so.fast = true;
-      so.openni2 = s.camera == SimulatedCamera::OpenNi2;
-      // The same dataset on every run, whichever frame is taken: the OpenNI2 camera's frames come on
-      // its own thread, so its noise is drawn per pose. The SR4000's come in capture order and keep
-      // their per-frame draws (the datasets and models made before the SR4000 honoured noise_per_pose).
-      so.camera.noise_per_pose = so.openni2;
       SimulatedRig simrig = openSimulatedRig(so);
       CaptureOptions o = viewOptions(base, obj, el, elevationLabel(el));
       o.camera_from_turntable_zero = simrig.camera_from_turntable;
@@ -83,17 +89,12 @@ void simulateSequences(const DatasetSimulation& s, dataset::Dataset& dataset, co
 CaptureReport captureJitteredView(const DatasetSimulation& s, dataset::Dataset& dataset, const CaptureOptions& base,
                                   const dataset::ObjectRow& obj, const sim::Mesh& mesh, const dataset::ViewKey& key, double el) {
   const JitteredView draw = drawJitter(s.jitter, s.seed, key, el);
-  SimulatedRigOptions so;
-  so.dir = dataset::datasetPath(s.out, dataset::kSimulatorFolder);
-  so.camera.mesh = obj.mesh;
+  SimulatedRigOptions so = rigOptions(s, obj);
   so.camera.elevation_deg = draw.elevation_deg;
   so.camera.distance = sim::operatorDistance(sim::scaledMesh(mesh, draw.scale)) * draw.distance_scale;
   so.camera.scale = draw.scale;
   so.camera.roll_deg = draw.roll_deg;
   so.camera.seed = viewHash(s.seed, key);  // each view its own noise
-  so.fast = true;
-  so.openni2 = s.camera == SimulatedCamera::OpenNi2;
-  so.camera.noise_per_pose = so.openni2;  // as above
   SimulatedRig simrig = openSimulatedRig(so);
   if (draw.integration > 0) {
     drivers::TofSettings settings = simrig.camera->settings();
