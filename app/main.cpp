@@ -15,8 +15,6 @@
 #endif
 
 int main(int argc, char** argv) {
-  // Only reconstruct runs OpenMP teams (Open3D): the second start costs any other command 88 ms.
-  if (keyturn::app::commandOf(argc, argv) == "reconstruct") keyturn::app::waitPassivelyInOpenMp(argv);
   keyturn::app::keepFreedHeapForReuse();
   CLI::App app{"keyturn: ToF keypoint shape signatures (KPD/GKPD) and capture tools"};
   app.set_version_flag("--version", KEYTURN_VERSION);
@@ -40,6 +38,9 @@ int main(int argc, char** argv) {
     std::cerr << where << ": " << e.what() << " (see " << where << " --help)\n";
     return 1;
   }
+  // Only reconstruct runs OpenMP teams (Open3D): the second start costs any other command 88 ms.
+  // The parse has no effects, so the second start parses again what the first did.
+  if (app.got_subcommand("reconstruct")) waitPassivelyInOpenMp(argv);
   try {
     for (const auto& c : commands)
       if (c.cli->parsed()) return c.run();

@@ -12,10 +12,4 @@ void waitPassivelyInOpenMp(char** argv) {
   ::execv("/proc/self/exe", argv);  // returns only on failure: run on as it is
 }
 
-std::string commandOf(int argc, char** argv) {
-  for (int i = 1; i < argc; ++i)
-    if (argv[i][0] != '-') return argv[i];
-  return "";
-}
-
 }  // namespace keyturn::app

@@ -1,7 +1,5 @@
 #pragma once
 // OpenMP threads that sleep while they wait (docs/benchmarks.md, "OpenMP threads that wait passively").
-#include <string>
-
 namespace keyturn::app {
 
 // libgomp (loaded at start with XGBoost and PCL, used by Open3D's reconstruction) reads
@@ -14,8 +12,5 @@ namespace keyturn::app {
 // restores the environment after an executable's .preinit_array runs. A failed exec is ignored.
 // Costs a second start (88 ms for `keyturn --version`, 0.104 → 0.192 s).
 void waitPassivelyInOpenMp(char** argv);
-
-// The subcommand named on the command line: the first argument that is not an option ("" if none).
-std::string commandOf(int argc, char** argv);
 
 }  // namespace keyturn::app
