@@ -28,6 +28,7 @@ Command addEvaluateCommand(CLI::App& app);
 Command addTrainCommand(CLI::App& app);
 Command addClassifyCommand(CLI::App& app);
 Command addEnrollCommand(CLI::App& app);
+Command addRecalibrateCommand(CLI::App& app);
 Command addConsistencyCommand(CLI::App& app);
 Command addSlurmCommand(CLI::App& app);
 Command addImportCommand(CLI::App& app);

@@ -1,8 +1,11 @@
 #include "learning_options.h"
 
+#include <cmath>
+#include <iomanip>
 #include <sstream>
 
 #include "keyturn/core/error.h"
+#include "keyturn/learning/turn_fusion.h"
 
 namespace keyturn::app {
 
@@ -59,6 +62,12 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                  "instances' (instances: the nearest view of another of its instances, for category models)")
       ->check(CLI::IsMember(learning::openSetSpreads()))
       ->capture_default_str();
+  cmd.add_option("--open-set-distance", o.distance,
+                 "knn, knn-relative: the distance to the nearest training views: rms (of the features standardised "
+                 "by the training views' spread), or between the PDFs as described: l1 (the mass that moves) or chi2 "
+                 "(the mass that moves, relative to the mass there)")
+      ->check(CLI::IsMember(learning::openSetDistances()))
+      ->capture_default_str();
   cmd.add_option("--false-accept", o.false_accept,
                  "Open-set: the rate of unknown views given a class that the threshold is calibrated for")
       ->check(CLI::Range(0.0, 0.99))
@@ -67,6 +76,22 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                  "Open-set: groups of categories left out in turn to calibrate the threshold (trainings)")
       ->check(CLI::Range(2, 1000))
       ->capture_default_str();
+}
+
+std::string openSetSummary(const learning::OpenSet& os) {
+  if (!os.enabled()) return "";
+  std::ostringstream out;
+  out << std::fixed << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
+      << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
+      << " views of left-out categories, " << os.calibration_groups << " trainings)";
+  if (learning::keepsReferences(os.method) && os.distance != "rms") out << "; distance " << os.distance;
+  for (const auto& [camera, f] : os.camera_scale) out << "; camera " << camera << " × " << std::setprecision(3) << f;
+  if (os.class_scale_power != 1)
+    out << "; class scales drawn toward their median (power " << std::setprecision(2) << os.class_scale_power << ")";
+  if (std::isfinite(os.turn_threshold))
+    out << ", a turn's " << std::setprecision(4) << os.turn_threshold << " (" << os.calibration_turns << " turns of "
+        << learning::kTurnViews << " views)";
+  return out.str();
 }
 
 void setOpenSetFlag(learning::OpenSetOptions& o, const std::string& method) {

@@ -18,6 +18,8 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
 // auto: the default method when the data allows (o.required false); none: closed-set; else the
 // method, checked (keyturn::Error naming --open-set).
 void setOpenSetFlag(learning::OpenSetOptions& o, const std::string& method);
+// "; open-set METHOD threshold T for R % false accepts (…)…" as train and recalibrate print it ("" closed-set).
+std::string openSetSummary(const learning::OpenSet& open_set);
 
 // --shard I/N (I counts from 1, as array jobs do) → {I - 1, N}; throws keyturn::Error naming
 // --shard for text that is not I/N with 1 <= I <= N.

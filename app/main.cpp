@@ -25,7 +25,7 @@ int main(int argc, char** argv) {
                              addTurntableCommand(app), addCaptureCommand(app), addVerifyCommand(app),
                              addSimulateCommand(app), addDemoCommand(app),
                              addCalibrateCommand(app), addRepeatabilityCommand(app),
-                             addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app), addEnrollCommand(app),
+                             addEvaluateCommand(app), addTrainCommand(app), addClassifyCommand(app), addEnrollCommand(app), addRecalibrateCommand(app),
                              addConsistencyCommand(app), addSlurmCommand(app),
                              addImportCommand(app), addStabilityCommand(app), addReconstructCommand(app)};
   try {

@@ -86,19 +86,8 @@ int runTrain(const TrainArgs& a) {
     std::cerr << ", "
               << m.info.classes.size() << " classes, " << std::fixed << std::setprecision(1) << s << " s";
     const learning::OpenSet& os = m.info.open_set;
-    if (os.enabled())
-      std::cerr << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
-                << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
-                << " views of left-out categories, " << os.calibration_groups << " trainings)";
-    for (const auto& [camera, f] : os.camera_scale)
-      std::cerr << "; camera " << camera << " × " << std::setprecision(3) << f;
-    if (os.class_scale_power != 1)
-      std::cerr << "; class scales drawn toward their median (power " << std::setprecision(2) << os.class_scale_power
-                << ")";
-    if (std::isfinite(os.turn_threshold))
-      std::cerr << ", a turn's " << std::setprecision(4) << os.turn_threshold << " (" << os.calibration_turns
-                << " turns of " << learning::kTurnViews << " views)";
-    else if (!open_set.methods.empty())
+    std::cerr << openSetSummary(os);
+    if (!std::isfinite(os.turn_threshold) && !open_set.methods.empty())
       std::cerr << "; closed-set (open-set calibration leaves categories out: it needs at least "
                 << learning::kOpenSetMinCategories << " categories)";
     std::cerr << (posed ? "; pose references for fusion" : "; no pose references (a view without its turntable angle)");

@@ -7,6 +7,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/learning/model_fusion.h"
 #include "keyturn/learning/model_predictions.h"
+#include "keyturn/learning/model_recalibration.h"
 #include "keyturn/learning/model_training.h"
 #include "reference_value_json.h"
 
@@ -127,16 +128,7 @@ Enrollment enrollObject(const Model& m, const FeatureTable& views, const std::ve
   appendRows(all.table, described, "the object's views");
 
   const ModelInfo& info = m.info;
-  OpenSetOptions o;
-  o.methods = {info.open_set.method};
-  o.false_accept = info.open_set.false_accept;
-  o.neighbours = info.open_set.neighbours;
-  o.scale_by = info.open_set.scale_by;  // a model calibrated with the pooled scale stays pooled
-  o.class_scale_power = info.open_set.class_scale_power;
-  o.class_spread = info.open_set.class_spread;
-  o.groups = info.training_views.open_set_groups;
-  o.seed = info.training_views.open_set_seed;
-  o.required = true;
+  const OpenSetOptions o = openSetOptionsOf(m);
   const LabelKind kind = info.training_views.label;
   out.model = trainModel(all.table, info.blocks, kind, info.params, &out.fit_s, o, all.azimuth_deg);
   const bool posed = std::all_of(all.azimuth_deg.begin(), all.azimuth_deg.end(), [](double a) { return std::isfinite(a); });

@@ -10,6 +10,27 @@
 
 namespace keyturn::learning {
 
+OpenSet calibrateModelOpenSet(const FeatureTable& t, const Matrix& x, const std::vector<int>& y,
+                              const std::vector<std::string>& blocks, const ClassifierParams& params,
+                              const OpenSetOptions& options, const std::vector<double>& azimuth_deg) {
+  OpenSetOptions o = options;
+  o.methods.resize(1);
+  checkOpenSetDistanceFor(o.distance, blocks);
+  std::vector<std::string> categories;
+  for (const auto& row : t.rows) categories.push_back(row.cls);
+  // Turns need every view's angle (a view without one would leave holes the turns skip silently).
+  const bool posed = !azimuth_deg.empty() && std::all_of(azimuth_deg.begin(), azimuth_deg.end(),
+                                                         [](double a) { return std::isfinite(a); });
+  TurnRows turns;
+  if (posed) {
+    turns.azimuth_deg = azimuth_deg;
+    for (const auto& row : t.rows) turns.group.push_back(detail::captureGroupOf(row));
+  }
+  std::vector<std::string> cameras, instances;  // each view's camera ("" : none known) and instance
+  for (const auto& row : t.rows) cameras.push_back(row.camera), instances.push_back(row.instance);
+  return calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras, &instances).front();
+}
+
 Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, LabelKind kind,
                  const ClassifierParams& params, double* fit_s, const std::optional<OpenSetOptions>& open_set,
                  const std::vector<double>& azimuth_deg) {
@@ -32,24 +53,11 @@ Model trainModel(const FeatureTable& t, const std::vector<std::string>& blocks, 
   m.classifier->fit(x, y, static_cast<int>(m.info.classes.size()));
   if (fit_s) *fit_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   if (open_set && !open_set->methods.empty()) {
-    OpenSetOptions o = *open_set;
-    o.methods.resize(1);
-    std::vector<std::string> categories;
-    for (const auto& row : t.rows) categories.push_back(row.cls);
-    const std::set<std::string> distinct(categories.begin(), categories.end());
-    // Turns need every view's angle (a view without one would leave holes the turns skip silently).
-    const bool posed = !azimuth_deg.empty() && std::all_of(azimuth_deg.begin(), azimuth_deg.end(),
-                                                           [](double a) { return std::isfinite(a); });
-    TurnRows turns;
-    if (posed) {
-      turns.azimuth_deg = azimuth_deg;
-      for (const auto& row : t.rows) turns.group.push_back(detail::captureGroupOf(row));
-    }
-    std::vector<std::string> cameras, instances;  // each view's camera ("" : none known) and instance
-    for (const auto& row : t.rows) cameras.push_back(row.camera), instances.push_back(row.instance);
+    const OpenSetOptions& o = *open_set;
+    std::set<std::string> distinct;
+    for (const auto& row : t.rows) distinct.insert(row.cls);
     if (o.required || distinct.size() >= kOpenSetMinCategories)
-      m.info.open_set =
-          calibrateOpenSets(x, y, categories, params, o, posed ? &turns : nullptr, &cameras, &instances).front();
+      m.info.open_set = calibrateModelOpenSet(t, x, y, blocks, params, o, azimuth_deg);
     // The references are the training rows: with what else each row was trained by, the model can
     // be retrained with an object added (model_enrollment.h).
     if (keepsReferences(m.info.open_set.method)) {

@@ -6,6 +6,8 @@
 #include <map>
 
 #include "keyturn/core/error.h"
+#include "keyturn/learning/feature_cache.h"
+#include "reference_value_json.h"
 #include "standardised_views.h"
 
 namespace keyturn::learning {
@@ -31,6 +33,49 @@ void checkOpenSetMethod(const std::string& method) {
 }
 
 bool keepsReferences(const std::string& method) { return method == "knn" || method == "knn-relative"; }
+
+const std::vector<std::string>& openSetDistances() {
+  static const std::vector<std::string> distances = {"rms", "l1", "chi2"};
+  return distances;
+}
+
+void checkOpenSetDistance(const std::string& distance) {
+  const auto& d = openSetDistances();
+  if (std::find(d.begin(), d.end(), distance) == d.end())
+    throw Error("open-set distance '" + distance + "' is not one of rms, l1, chi2");
+}
+
+void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std::string>& blocks) {
+  checkOpenSetDistance(distance);
+  if (distance == "rms") return;
+  for (const auto& b : blocks) {
+    const auto kind = parseBlockName(b).kind;
+    if (kind == BlockName::Peer || kind == BlockName::Size)
+      throw Error("open-set distance '" + distance + "' compares PDFs, and block '" + b +
+                  "' is not one: use --open-set-distance rms");
+  }
+}
+
+double openSetDistance(const OpenSet& s, const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
+  if (s.distance == "rms") return detail::rmsDistance(a, b);
+  // The rows as described: a standardised value times the column's spread plus its mean (a missing
+  // value stands at the mean in both forms). A value the model file keeps as 0's (4 decimals,
+  // reference_value_json.h) is 0: an empty bin came back as ±5e-5 spreads, which L1 and χ² count in
+  // full, and a training view then lay farther from its own reference than from its neighbours.
+  const bool l1 = s.distance == "l1";
+  const auto described = [&](float v, std::size_t k) {
+    if (referenceValue(v) == referenceValue((0.f - s.mean[k]) / s.scale[k])) return 0.0;
+    return std::max(0.0, static_cast<double>(v) * s.scale[k] + s.mean[k]);
+  };
+  double sum = 0;
+  for (Eigen::Index k = 0; k < a.size(); ++k) {
+    const auto kk = static_cast<std::size_t>(k);
+    const double p = described(a(k), kk), q = described(b(k), kk);
+    if (l1) sum += std::abs(p - q);
+    else if (p + q > 0) sum += 0.5 * (p - q) * (p - q) / (p + q);
+  }
+  return sum;
+}
 
 const std::vector<std::string>& openSetScales() {
   static const std::vector<std::string> scales = {"pooled", "camera"};
@@ -62,7 +107,8 @@ namespace {
 // (another instance or elevation) instead, known views were accepted more often but the
 // calibrated rate held worse (docs/results.md, "Open-set answers"). A class with one view takes
 // the median of the others. nearest (optional) receives each row's distance (NaN: its class has no other).
-std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y, std::vector<double>* nearest_of = nullptr) {
+std::vector<float> classScales(const OpenSet& s, const std::vector<int>& y, std::vector<double>* nearest_of = nullptr) {
+  const Matrix& refs = s.references;
   const int classes = y.empty() ? 0 : *std::max_element(y.begin(), y.end()) + 1;
   std::vector<std::vector<Eigen::Index>> rows_of(static_cast<std::size_t>(classes));
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
@@ -74,7 +120,7 @@ std::vector<float> classScales(const Matrix& refs, const std::vector<int>& y, st
     for (Eigen::Index a : rows_of[c]) {
       double best = std::numeric_limits<double>::infinity();
       for (Eigen::Index b : rows_of[c])
-        if (b != a) best = std::min(best, detail::rmsDistance(refs.row(a), refs.row(b)));
+        if (b != a) best = std::min(best, openSetDistance(s, refs.row(a), refs.row(b)));
       if (std::isfinite(best)) nearest.push_back(best);
       if (nearest_of && std::isfinite(best)) (*nearest_of)[static_cast<std::size_t>(a)] = best;
     }
@@ -114,8 +160,9 @@ std::map<std::string, float> cameraScales(const std::vector<std::string>& camera
 // view scale `own`. A category model's unseen instance lies at the first distance from the references,
 // not at the second (the sensor noise and the turntable step between neighbouring views of one
 // instance). A single-instance class takes the median ratio of the others (1 when no class has two).
-std::vector<double> instanceSpreadRatios(const Matrix& refs, const std::vector<int>& y,
+std::vector<double> instanceSpreadRatios(const OpenSet& s, const std::vector<int>& y,
                                          const std::vector<std::string>& instances, const std::vector<float>& own) {
+  const Matrix& refs = s.references;
   std::vector<std::vector<Eigen::Index>> rows_of(own.size());
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
   std::vector<double> ratio(own.size(), std::nan("")), measured;
@@ -125,7 +172,7 @@ std::vector<double> instanceSpreadRatios(const Matrix& refs, const std::vector<i
       double best = std::numeric_limits<double>::infinity();
       for (Eigen::Index b : rows_of[c])
         if (instances[static_cast<std::size_t>(b)] != instances[static_cast<std::size_t>(a)])
-          best = std::min(best, detail::rmsDistance(refs.row(a), refs.row(b)));
+          best = std::min(best, openSetDistance(s, refs.row(a), refs.row(b)));
       if (std::isfinite(best)) nearest.push_back(best);
     }
     if (nearest.empty()) continue;  // one instance
@@ -143,8 +190,9 @@ std::vector<double> instanceSpreadRatios(const Matrix& refs, const std::vector<i
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours,
                          const std::string& scale_by, const std::vector<std::string>* cameras,
                          double class_scale_power, const std::string& class_spread,
-                         const std::vector<std::string>* instances) {
+                         const std::vector<std::string>* instances, const std::string& distance) {
   checkOpenSetMethod(method);
+  checkOpenSetDistance(distance);
   checkOpenSetScale(scale_by);
   checkOpenSetSpread(class_spread);
   if (class_spread == "instances" && method == "knn-relative" && (!instances || instances->size() != y.size()))
@@ -160,12 +208,13 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   if (neighbours < 1) throw Error("knn open-set scores need at least one neighbour (not " + std::to_string(neighbours) + ")");
   if (static_cast<std::size_t>(x.rows()) != y.size()) throw Error("knn open-set scores: rows and labels differ in number");
   s.neighbours = neighbours;
+  s.distance = distance;
   detail::fitStandardisation(x, s.mean, s.scale);
   s.references = detail::standardisedRows(x, s.mean, s.scale);
   s.reference_class = y;
   if (method != "knn-relative") return s;
   std::vector<double> nearest;
-  s.class_scale = classScales(s.references, y, &nearest);
+  s.class_scale = classScales(s, y, &nearest);
   const std::vector<float> own = s.class_scale;
   drawTowardMedian(s.class_scale, class_scale_power);
   s.class_scale_power = class_scale_power;
@@ -173,7 +222,7 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
   if (scale_by == "camera" && cameras) s.camera_scale = cameraScales(*cameras, y, nearest, s.class_scale);
   s.class_spread = class_spread;
   if (class_spread == "instances") {  // after the camera factors: they compare cameras, not instances
-    const std::vector<double> ratio = instanceSpreadRatios(s.references, y, *instances, own);
+    const std::vector<double> ratio = instanceSpreadRatios(s, y, *instances, own);
     for (std::size_t c = 0; c < s.class_scale.size(); ++c) s.class_scale[c] *= static_cast<float>(ratio[c]);
   }
   return s;
@@ -181,16 +230,16 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
 
 namespace {
 
-// Mean RMS distance from standardised row v to the `k` nearest references of class c; NaN without any.
+// Mean distance from standardised row v to the `k` nearest references of class c; NaN without any.
 double nearestDistance(const OpenSet& s, const Eigen::RowVectorXf& v, int c) {
   std::vector<double> d;
   for (Eigen::Index r = 0; r < s.references.rows(); ++r)
-    if (s.reference_class[static_cast<std::size_t>(r)] == c) d.push_back((s.references.row(r) - v).squaredNorm());
+    if (s.reference_class[static_cast<std::size_t>(r)] == c) d.push_back(openSetDistance(s, s.references.row(r), v));
   if (d.empty()) return std::nan("");
   const std::size_t k = std::min(d.size(), static_cast<std::size_t>(s.neighbours));
   std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(k), d.end());
   double sum = 0;
-  for (std::size_t i = 0; i < k; ++i) sum += std::sqrt(d[i] / static_cast<double>(std::max<Eigen::Index>(1, v.size())));
+  for (std::size_t i = 0; i < k; ++i) sum += d[i];
   return sum / static_cast<double>(k);
 }
 

@@ -52,6 +52,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   for (const auto& m : o.methods) checkOpenSetMethod(m);
   checkOpenSetScale(o.scale_by);
   checkOpenSetSpread(o.class_spread);
+  checkOpenSetDistance(o.distance);
   if (instances && instances->size() != y.size())
     throw Error("open-set calibration: " + std::to_string(y.size()) + " rows but " + std::to_string(instances->size()) +
                 " instances");
@@ -106,7 +107,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
       const OpenSet scorer =
           fitOpenSetScorer(o.methods[m], xtrain, compact, o.neighbours, o.scale_by, cameras ? &camtrain : nullptr,
-                           o.class_scale_power, o.class_spread, instances ? &insttrain : nullptr);
+                           o.class_scale_power, o.class_spread, instances ? &insttrain : nullptr, o.distance);
       const std::vector<double> s = openSetScores(scorer, xheld, p, cameras ? &camheld : nullptr);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
       for (const auto& seq : held_turns) {
@@ -119,7 +120,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   std::vector<OpenSet> out;
   for (std::size_t m = 0; m < o.methods.size(); ++m) {
     OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras, o.class_scale_power,
-                                 o.class_spread, instances);
+                                 o.class_spread, instances, o.distance);
     s.threshold = thresholdForFalseAccept(unknown[m], o.false_accept);
     s.false_accept = o.false_accept;
     s.calibration_views = static_cast<int>(unknown[m].size());

@@ -34,6 +34,7 @@ json openSetJson(const OpenSet& s) {
     j["camera_scale"] = s.camera_scale;
   }
   j["neighbours"] = s.neighbours;
+  if (s.distance != "rms") j["distance"] = s.distance;  // absent: rms (every model before 2026-12-06)
   j["mean"] = s.mean;
   j["scale"] = s.scale;
   json refs = json::array();
@@ -104,6 +105,14 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
       }
     }
     s.neighbours = jsonInteger(j, "neighbours", 1, 1 << 16, where);
+    if (j.contains("distance")) {
+      s.distance = j.at("distance").get<std::string>();
+      try {
+        checkOpenSetDistance(s.distance);
+      } catch (const Error& e) {
+        throw Error(where + ": " + e.what());
+      }
+    }
     s.mean = j.at("mean").get<std::vector<float>>();
     s.scale = j.at("scale").get<std::vector<float>>();
     const auto& refs = j.at("references");

@@ -19,6 +19,14 @@ namespace keyturn::learning {
 // calibrated: an error, or a closed-set model when open_set->required is false.
 // azimuth_deg: each row's turntable angle (or empty); with every angle known, the open set's turn
 // threshold is calibrated too (turn_fusion.h). Throws keyturn::Error when it is not one per row.
+// The open set trainModel calibrates, on the rows x (the table's rows in `blocks`) labelled y with
+// `params`' classifier: the first of options.methods, each row's category, camera and instance from
+// the table, turns when every row has its angle. Throws keyturn::Error as calibrateOpenSets does, and
+// for a distance that cannot measure the blocks (checkOpenSetDistanceFor).
+OpenSet calibrateModelOpenSet(const FeatureTable& table, const Matrix& x, const std::vector<int>& y,
+                              const std::vector<std::string>& blocks, const ClassifierParams& params,
+                              const OpenSetOptions& options, const std::vector<double>& azimuth_deg);
+
 Model trainModel(const FeatureTable& table, const std::vector<std::string>& blocks, LabelKind kind,
                  const ClassifierParams& params, double* fit_s = nullptr,
                  const std::optional<OpenSetOptions>& open_set = std::nullopt,

@@ -19,6 +19,11 @@
 //   (a category model's) is scaled by how far its instances' views lie from each other's (the nearest
 //   view of another instance), so a view of an instance it never saw is judged by the spread between
 //   instances, not by the sensor noise between neighbouring views of one.
+// The distance d (knn, knn-relative) is the RMS of the standardised differences ("rms") or one between
+// the rows as described, PDF blocks only: "l1" (the sum of their L1 distances, each within [0, 2]) or
+// "chi2" (½Σ(p−q)²/(p+q), each within [0, 1]). Standardising weighs a PDF bin by its spread over the
+// training views, so the sparse tail bins that a few keypoint pairs move weigh most; L1 and χ² weigh
+// the mass that moves, χ² relative to the mass there (docs/results.md, "The open-set distance").
 // Higher is more like a trained class for all three; a view is accepted when score >= threshold.
 // The threshold is calibrated (open_set_calibration.h) for a stated false-accept rate on
 // views of categories the classifier never saw.
@@ -43,6 +48,12 @@ const std::vector<std::string>& openSetMethods();
 void checkOpenSetMethod(const std::string& method);
 // Whether the method's scorer keeps the standardised training views (knn, knn-relative).
 bool keepsReferences(const std::string& method);
+// The distances a knn score can measure: rms, l1 (OpenSet::distance).
+const std::vector<std::string>& openSetDistances();
+// Throws keyturn::Error naming the distance when it is not one of openSetDistances().
+void checkOpenSetDistance(const std::string& distance);
+// As above, and l1 or chi2 (which compare PDFs) over a block that is not a PDF (size, a peer) too.
+void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std::string>& blocks);
 
 struct OpenSet {
   std::string method;          // "" : closed-set (every view gets a class)
@@ -62,6 +73,7 @@ struct OpenSet {
   }
   // knn: the training views, standardised (rows), their class, and the standardisation.
   int neighbours = 1;
+  std::string distance = "rms";  // rms or l1 (above); a model file without one measured rms
   std::vector<float> mean, scale;
   Matrix references;
   std::vector<int> reference_class;
@@ -108,7 +120,10 @@ void checkOpenSetSpread(const std::string& spread);
 OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::vector<int>& y, int neighbours = 1,
                          const std::string& scale_by = "pooled", const std::vector<std::string>* cameras = nullptr,
                          double class_scale_power = 1, const std::string& class_spread = "views",
-                         const std::vector<std::string>* instances = nullptr);
+                         const std::vector<std::string>* instances = nullptr, const std::string& distance = "rms");
+
+// The distance between two standardised rows as the scorer measures it (its `distance`).
+double openSetDistance(const OpenSet& scorer, const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b);
 
 // One score per row of x (probabilities: the classifier's rows for x; cameras: each row's camera, or
 // none: every view at the pooled scale). A row whose score cannot be computed (non-finite

@@ -31,6 +31,8 @@ struct OpenSetOptions {
   // knn-relative: a class's scale from its views' spread, or its instances' (open_set.h's class_spread;
   // docs/results.md, "A category model's unseen instances").
   std::string class_spread = "views";
+  // knn, knn-relative: the distance measured (open_set.h): rms or l1. Fitting and the calibration alike.
+  std::string distance = "rms";
   std::uint64_t seed = 7;                      // the categories' shuffle
   // false: data of fewer than three categories (nothing to leave out) gives a closed-set model
   // instead of an error (trainModel).
