@@ -268,9 +268,10 @@ class StudioTest : public QObject {
     QTRY_COMPARE_WITH_TIMEOUT(w.fusedClass(), QString("unknown"), waitMs(10000));
     auto* verdict = w.findChild<QLabel*>("verdict");
     QVERIFY(verdict);
-    // Its score under the threshold the built-in model's file states (0.40 since issue 47's model).
+    // Its score under the threshold the built-in model's file states (0.40 with issue 47's first
+    // model, 0.28 since its open set measures the χ² distance).
     const double threshold = builtInOpenSet()["threshold"].toDouble();
-    QVERIFY2(threshold > 0.3 && threshold < 0.5, qPrintable(QString::number(threshold)));
+    QVERIFY2(threshold > 0.2 && threshold < 0.5, qPrintable(QString::number(threshold)));
     QVERIFY2(verdict->text().contains(" &lt; " + QString::number(threshold, 'f', 2)), qPrintable(verdict->text()));
     QVERIFY(verdict->toolTip().contains("last 20 frames"));  // which part is the verdict, which this frame's test
   }
