@@ -267,7 +267,9 @@ void StudioWindow::connectDevices(RigFactory& factory) {
       devices_panel_->setPlayback(c.playback);
     if (c.kind == rig::CameraSpec::Kind::OpenNi2) devices_panel_->setOpenNi2Uri(QString::fromStdString(c.openni2_uri));
     if (c.kind == rig::CameraSpec::Kind::Ethernet) devices_panel_->setAddress(QString::fromStdString(c.address));
-    devices_panel_->setCameraChoice(c.kind, QString());
+    // The simulated OpenNI2 camera's default device looks at the studio's simulated object: the one
+    // asked for (--object), else the one used last.
+    devices_panel_->setCameraChoice(c.kind, QString::fromStdString(options_.sim_object));
     devices_panel_->setPoseChoice(DevicesPanel::PoseChoice::None);
     emit devices_panel_->connectCamera();
   }
