@@ -146,9 +146,9 @@ TEST(OpenSetDistance, TheDistanceSurvivesTheModelFileAndABadOneIsNamed) {
 
   // l1 and chi2 compare PDFs: a size block or a peer descriptor is refused, with what to use instead.
   EXPECT_EQ(errorOf([] { checkOpenSetDistanceFor("l1", {"kpd2", "size"}); }),
-            "open-set distance 'l1' compares PDFs, and block 'size' is not one: use --open-set-distance rms");
+            "open-set distance 'l1' compares PDFs, and block 'size' is not one: use the rms distance");
   EXPECT_EQ(errorOf([] { checkOpenSetDistanceFor("chi2", {"esf"}); }),
-            "open-set distance 'chi2' compares PDFs, and block 'esf' is not one: use --open-set-distance rms");
+            "open-set distance 'chi2' compares PDFs, and block 'esf' is not one: use the rms distance");
   EXPECT_NO_THROW(checkOpenSetDistanceFor("rms", {"kpd2", "size", "esf"}));
   EXPECT_NO_THROW(checkOpenSetDistanceFor("chi2", {"kpd2", "kpa3", "s_kpd2"}));
 }

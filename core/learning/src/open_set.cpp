@@ -52,7 +52,7 @@ void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std:
     const auto kind = parseBlockName(b).kind;
     if (kind == BlockName::Peer || kind == BlockName::Size)
       throw Error("open-set distance '" + distance + "' compares PDFs, and block '" + b +
-                  "' is not one: use --open-set-distance rms");
+                  "' is not one: use the rms distance");
   }
 }
 
