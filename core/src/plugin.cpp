@@ -38,7 +38,7 @@ void* openPlugin(const std::string& name) {
   const fs::path path = pluginFile("libkeyturn_" + name + ".so", "plugin '" + name + "'");
   if (void* handle = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL)) return handle;
   const char* why = dlerror();
-  throw Error("plugin '" + name + "' (" + path.string() + ") cannot be loaded: " + (why ? why : "unknown reason"));
+  throw InstallError("plugin '" + name + "' (" + path.string() + ") cannot be loaded: " + (why ? why : "unknown reason"));
 }
 
 }  // namespace
@@ -51,7 +51,7 @@ fs::path pluginFile(const std::string& file, const std::string& what) {
     if (fs::exists(path, ec)) return path;
     searched += (searched.empty() ? "" : ", ") + folder.string();
   }
-  throw Error(what + " (" + file + ") not found in " + (searched.empty() ? "no folder" : searched) +
+  throw InstallError(what + " (" + file + ") not found in " + (searched.empty() ? "no folder" : searched) +
               " (set KEYTURN_PLUGIN_PATH to the folder that holds it)");
 }
 
@@ -65,7 +65,7 @@ void* pluginSymbol(const std::string& name, const char* symbol) {
   void* address = dlsym(handle, symbol);
   if (!address) {
     const char* why = dlerror();
-    throw Error("plugin '" + name + "' has no entry point '" + symbol + "'" + (why ? std::string(": ") + why : ""));
+    throw InstallError("plugin '" + name + "' has no entry point '" + symbol + "'" + (why ? std::string(": ") + why : ""));
   }
   return address;
 }

@@ -19,6 +19,7 @@
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/filter.h"
 #include "keyturn/core/pcl_baselines.h"
+#include "keyturn/core/plugin.h"
 #include "keyturn/dataset/feature_cache_files.h"
 #include "keyturn/learning/feature_spec.h"
 
@@ -97,6 +98,8 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
     } catch (const EmptyViewError& e) {
       row.no_object = true;
       note(row, e.what());
+    } catch (const InstallError&) {
+      throw;
     } catch (const Error& e) {
       note(row, e.what());
     }
@@ -114,6 +117,8 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
       const std::vector<float> v = compute();
       if (v.empty()) return note(row, block + " found nothing");
       put(row, layout, block, std::vector<double>(v.begin(), v.end()));
+    } catch (const InstallError&) {
+      throw;
     } catch (const Error& e) {
       note(row, block + ": " + e.what());
     }
@@ -138,6 +143,8 @@ std::vector<FeatureRow> describeRows(const std::vector<LabelledView>& views, con
       // A wrong depth scale empties the view too, but it is the user's to fix, not "no object".
       if (options.filter && isDepthImagePath(v.path)) checkDepthScale("", cloud, v.depth.depth_scale, options.filter_options);
       rows[k] = describeCloud(cloud, options, layout);
+    } catch (const InstallError&) {
+      throw;  // the machine's, not the view's: a cached row would keep it for every run after
     } catch (const Error& e) {
       rows[k].values.assign(static_cast<std::size_t>(layout.width()), std::nanf(""));
       rows[k].keypoints = -1;

@@ -12,14 +12,25 @@
 #include <filesystem>
 #include <string>
 
+#include "keyturn/core/error.h"
+
 namespace keyturn {
 
-// The address of `symbol` in plugin `name`. Throws keyturn::Error naming the plugin, the folders
+// keyturn's own installation is incomplete: a plugin or the worker program missing or not loadable.
+// A property of the machine, not of any input: code that records an error per view (a feature
+// cache's rows) lets this one through, so a run with a broken install stops instead of caching
+// every view as failed for the runs after it.
+class InstallError : public Error {
+ public:
+  using Error::Error;
+};
+
+// The address of `symbol` in plugin `name`. Throws InstallError naming the plugin, the folders
 // searched and the loader's reason when the module or the symbol cannot be found.
 void* pluginSymbol(const std::string& name, const char* symbol);
 
 // The path of `file` in the first of the folders above that holds it (plugins, and the worker
-// program of worker_process.h). Throws keyturn::Error naming `what`, the file and the folders searched.
+// program of worker_process.h). Throws InstallError naming `what`, the file and the folders searched.
 std::filesystem::path pluginFile(const std::string& file, const std::string& what);
 
 template <class Function>
