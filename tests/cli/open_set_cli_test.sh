@@ -83,6 +83,21 @@ check "auto is knn-relative, with a scale per class" \
 check "  and the pose references name the open set's rows instead of repeating them" \
   test "$(jq -r '.pose_references | "\(.rows_of) \(.reference_bins | length) \(has("references"))"' "$work/mrel/model.json")" = "open_set 64 false"
 
+# recalibrate: the open set calibrated anew from the kept views, the classifier kept; the options left
+# out keep the model's own; the pose references still share the open set's rows.
+"$KT" recalibrate "$work/mrel" --open-set-distance chi2 --false-accept 0.2 --out "$work/mrel-chi2" 2> "$work/recal.err"
+check "recalibrate exits 0" test $? -eq 0
+check "  with chi2 and 20 %, knn-relative kept" \
+  test "$(jq -r '.open_set | "\(.method) \(.distance) \(.false_accept)"' "$work/mrel-chi2/model.json")" = "knn-relative chi2 0.2"
+check "  the classifier byte for byte" cmp -s "$work/mrel/model.xgb.json" "$work/mrel-chi2/model.xgb.json"
+check "  the pose references still the open set's rows" \
+  test "$(jq -r '.pose_references.rows_of' "$work/mrel-chi2/model.json")" = open_set
+check "  and says so" grep -q "the classifier kept (threshold before .*distance chi2" "$work/recal.err"
+"$KT" recalibrate "$work/mrel" --out "$work/mrel-again" -q
+check "recalibrate with no option gives the model's threshold back (to 1e-3)" \
+  jq -e --slurpfile a "$work/mrel/model.json" '(.open_set.threshold - $a[0].open_set.threshold | fabs) < 1e-3' \
+  "$work/mrel-again/model.json" > /dev/null
+
 # Two categories cannot be calibrated: asked for, an error; with auto, a closed-set model.
 "$KT" simulate --objects "$data/objects-two-categories.csv" --elevations 30 --step 90 -q --out "$work/two"
 "$KT" train "$work/two" --features kpd2 --open-set knn $fast -q --out "$work/m2" 2> "$work/m2.err"
@@ -93,6 +108,10 @@ check "train --open-set auto on two categories gives a closed-set model" grep -q
 check "  without open_set in its sidecar" test "$(jq '.open_set' "$work/m3/model.json")" = null
 "$KT" train "$work/ds" --features kpd2 $fast -q --out "$work/m5"
 check "train without --open-set is closed-set (the default)" test "$(jq '.open_set' "$work/m5/model.json")" = null
+"$KT" recalibrate "$work/m5" --out "$work/m6" 2> "$work/m6.err"
+check "recalibrate refuses a closed-set model in one line" \
+  test "$?:$(wc -l < "$work/m6.err")" = "1:1"
+check "  naming it and why" grep -q "m5: a closed-set model has no open set to recalibrate" "$work/m6.err"
 "$KT" train "$work/ds" --features kpd2 --open-set entropy --out "$work/m4" 2> "$work/m4.err"
 check "an unknown method is named" grep -q -- "--open-set: open-set method 'entropy' is not one of auto, max-probability, knn, knn-relative, none" "$work/m4.err"
 
