@@ -37,10 +37,34 @@ std::vector<float> pdfOf(int c, std::mt19937_64& rng, bool trace) {
   return p;
 }
 
-Matrix rowsOf(const std::vector<std::vector<float>>& v) {
-  Matrix x(static_cast<Eigen::Index>(v.size()), static_cast<Eigen::Index>(v[0].size()));
-  for (std::size_t r = 0; r < v.size(); ++r)
-    for (std::size_t k = 0; k < v[r].size(); ++k) x(static_cast<Eigen::Index>(r), static_cast<Eigen::Index>(k)) = v[r][k];
+// `per` views of each of the six classes, a trace in bin 7 on every `trace_every`-th (0: none), as a
+// feature table of one kpd2 block of 8 bins: rows c0/0, c0/1, … (class and instance alike), 30°.
+FeatureTable pdfTable(std::uint64_t seed, int per, int trace_every) {
+  std::mt19937_64 rng(seed);
+  FeatureTable t;
+  t.blocks = {"kpd2"};
+  t.sizes = {8};
+  DescriptorOptions d;
+  d.histogram.bins = 8;
+  t.spec = featureSpec(d);
+  for (int c = 0; c < 6; ++c)
+    for (int v = 0; v < per; ++v) {
+      FeatureRow row;
+      row.cls = "c" + std::to_string(c), row.instance = row.cls, row.id = row.cls + "/" + std::to_string(v);
+      row.elevation = "30", row.keypoints = 40;
+      row.values = pdfOf(c, rng, trace_every > 0 && v % trace_every == 0);
+      t.rows.push_back(row);
+    }
+  return t;
+}
+
+// The table's rows as a matrix, and their classes (c0 → 0, …).
+Matrix rowsOf(const FeatureTable& t, std::vector<int>& y) {
+  Matrix x(static_cast<Eigen::Index>(t.rows.size()), 8);
+  for (std::size_t r = 0; r < t.rows.size(); ++r) {
+    for (int k = 0; k < 8; ++k) x(static_cast<Eigen::Index>(r), k) = t.rows[r].values[static_cast<std::size_t>(k)];
+    y.push_back(std::stoi(t.rows[r].cls.substr(1)));
+  }
   return x;
 }
 
@@ -53,12 +77,8 @@ Eigen::RowVectorXf standardised(const OpenSet& s, const std::vector<float>& p) {
 }  // namespace
 
 TEST(OpenSetDistance, L1AndChi2MeasureThePdfsAsDescribed) {
-  std::mt19937_64 rng(3);
-  std::vector<std::vector<float>> rows;
   std::vector<int> y;
-  for (int c = 0; c < 6; ++c)
-    for (int v = 0; v < 30; ++v) rows.push_back(pdfOf(c, rng, v % 10 == 0)), y.push_back(c);
-  const Matrix x = rowsOf(rows);
+  const Matrix x = rowsOf(pdfTable(3, 30, 10), y);
   // Worked by hand: [.5 .5 0 0 …] against [.25 .25 .5 0 …]: L1 = .25 + .25 + .5 = 1;
   // χ² = ½ (.25²/.75 + .25²/.75 + .5²/.5) = 1/3.
   const std::vector<float> a = {0.5f, 0.5f, 0, 0, 0, 0, 0, 0}, b = {0.25f, 0.25f, 0.5f, 0, 0, 0, 0, 0};
@@ -79,12 +99,8 @@ TEST(OpenSetDistance, L1AndChi2MeasureThePdfsAsDescribed) {
 // 0.02 there counts as thousands of spreads and it lies far beyond the new object (rms); as described,
 // it moved 0.04 of its mass and the new object 0.3 (l1, chi2).
 TEST(OpenSetDistance, AKnownViewWithATraceInAnEmptyBinStaysNearerThanANewObjectUnderL1) {
-  std::mt19937_64 rng(5);
-  std::vector<std::vector<float>> rows;
   std::vector<int> y;
-  for (int c = 0; c < 6; ++c)
-    for (int v = 0; v < 30; ++v) rows.push_back(pdfOf(c, rng, v % 10 == 0)), y.push_back(c);
-  const Matrix x = rowsOf(rows);
+  const Matrix x = rowsOf(pdfTable(5, 30, 10), y);
   const std::vector<float> known = {0.49f, 0.49f, 0, 0, 0, 0, 0, 0.02f};
   const std::vector<float> unseen = {0.30f, 0.70f, 0, 0, 0, 0, 0, 0};
   Matrix p = Matrix::Zero(2, 6);
@@ -101,21 +117,7 @@ TEST(OpenSetDistance, AKnownViewWithATraceInAnEmptyBinStaysNearerThanANewObjectU
 }
 
 TEST(OpenSetDistance, TheDistanceSurvivesTheModelFileAndABadOneIsNamed) {
-  std::mt19937_64 rng(7);
-  FeatureTable t;
-  t.blocks = {"kpd2"};
-  t.sizes = {8};
-  DescriptorOptions d;
-  d.histogram.bins = 8;
-  t.spec = featureSpec(d);
-  for (int c = 0; c < 6; ++c)
-    for (int v = 0; v < 20; ++v) {
-      FeatureRow row;
-      row.cls = "c" + std::to_string(c), row.instance = row.cls, row.id = row.cls + "/" + std::to_string(v);
-      row.elevation = "30", row.keypoints = 40;
-      row.values = pdfOf(c, rng, false);
-      t.rows.push_back(row);
-    }
+  const FeatureTable t = pdfTable(7, 20, 0);
   OpenSetOptions o;
   o.methods = {"knn-relative"};
   o.scale_by = "pooled";
@@ -157,23 +159,9 @@ TEST(OpenSetDistance, TheDistanceSurvivesTheModelFileAndABadOneIsNamed) {
 // kept. With the model's own options it comes back as train calibrated it (the kept values are the
 // training values to 4 decimals of a spread); with another rate or distance, as asked.
 TEST(OpenSetDistance, AModelRecalibratesFromItsKeptViews) {
-  std::mt19937_64 rng(11);
-  FeatureTable t;
-  t.blocks = {"kpd2"};
-  t.sizes = {8};
-  DescriptorOptions d;
-  d.histogram.bins = 8;
-  t.spec = featureSpec(d);
-  std::vector<double> azimuth;
-  for (int c = 0; c < 6; ++c)
-    for (int v = 0; v < 24; ++v) {
-      FeatureRow row;
-      row.cls = "c" + std::to_string(c), row.instance = row.cls, row.id = row.cls + "/" + std::to_string(v);
-      row.elevation = "30", row.keypoints = 40;
-      row.values = pdfOf(c, rng, v % 6 == 0);
-      t.rows.push_back(row);
-      azimuth.push_back(15.0 * v);
-    }
+  const FeatureTable t = pdfTable(11, 24, 6);
+  std::vector<double> azimuth;  // each class's 24 views a turn, 15° apart
+  for (std::size_t r = 0; r < t.rows.size(); ++r) azimuth.push_back(15.0 * static_cast<double>(r % 24));
   OpenSetOptions o;
   o.methods = {"knn-relative"};
   o.scale_by = "pooled";

@@ -21,16 +21,24 @@ std::string answerName(Answer a) {
   return "?";
 }
 
+namespace {
+
+// Throws "open-set WHAT 'VALUE' is not one of A, B, C" unless value is one of `choices`.
+void checkChoice(const std::vector<std::string>& choices, const std::string& value, const std::string& what) {
+  if (std::find(choices.begin(), choices.end(), value) != choices.end()) return;
+  std::string list;
+  for (const auto& c : choices) list += (list.empty() ? "" : ", ") + c;
+  throw Error("open-set " + what + " '" + value + "' is not one of " + list);
+}
+
+}  // namespace
+
 const std::vector<std::string>& openSetMethods() {
   static const std::vector<std::string> methods = {"max-probability", "knn", "knn-relative"};
   return methods;
 }
 
-void checkOpenSetMethod(const std::string& method) {
-  const auto& m = openSetMethods();
-  if (std::find(m.begin(), m.end(), method) == m.end())
-    throw Error("open-set method '" + method + "' is not one of max-probability, knn, knn-relative");
-}
+void checkOpenSetMethod(const std::string& method) { checkChoice(openSetMethods(), method, "method"); }
 
 bool keepsReferences(const std::string& method) { return method == "knn" || method == "knn-relative"; }
 
@@ -39,11 +47,7 @@ const std::vector<std::string>& openSetDistances() {
   return distances;
 }
 
-void checkOpenSetDistance(const std::string& distance) {
-  const auto& d = openSetDistances();
-  if (std::find(d.begin(), d.end(), distance) == d.end())
-    throw Error("open-set distance '" + distance + "' is not one of rms, l1, chi2");
-}
+void checkOpenSetDistance(const std::string& distance) { checkChoice(openSetDistances(), distance, "distance"); }
 
 void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std::string>& blocks) {
   checkOpenSetDistance(distance);
@@ -82,22 +86,14 @@ const std::vector<std::string>& openSetScales() {
   return scales;
 }
 
-void checkOpenSetScale(const std::string& scale_by) {
-  const auto& s = openSetScales();
-  if (std::find(s.begin(), s.end(), scale_by) == s.end())
-    throw Error("open-set scale '" + scale_by + "' is not one of pooled, camera");
-}
+void checkOpenSetScale(const std::string& scale_by) { checkChoice(openSetScales(), scale_by, "scale"); }
 
 const std::vector<std::string>& openSetSpreads() {
   static const std::vector<std::string> spreads = {"views", "instances"};
   return spreads;
 }
 
-void checkOpenSetSpread(const std::string& spread) {
-  const auto& s = openSetSpreads();
-  if (std::find(s.begin(), s.end(), spread) == s.end())
-    throw Error("open-set class spread '" + spread + "' is not one of views, instances");
-}
+void checkOpenSetSpread(const std::string& spread) { checkChoice(openSetSpreads(), spread, "class spread"); }
 
 namespace {
 

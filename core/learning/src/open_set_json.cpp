@@ -47,16 +47,26 @@ json openSetJson(const OpenSet& s) {
   return j;
 }
 
+namespace {
+
+// A named choice of the sidecar, checked: its error names the file and the open_set object.
+std::string choiceOf(const json& j, const char* key, void (*check)(const std::string&), const std::string& where) {
+  const std::string value = j.at(key).get<std::string>();
+  try {
+    check(value);
+  } catch (const Error& e) {
+    throw Error(where + ": " + e.what());
+  }
+  return value;
+}
+
+}  // namespace
+
 OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::string& source) {
   const std::string where = source + ": open_set";
   OpenSet s;
   try {
-    s.method = j.at("method").get<std::string>();
-    try {
-      checkOpenSetMethod(s.method);
-    } catch (const Error& e) {
-      throw Error(where + ": " + e.what());
-    }
+    s.method = choiceOf(j, "method", checkOpenSetMethod, where);
     s.threshold = j.at("threshold").get<double>();
     s.false_accept = j.at("false_accept").get<double>();
     if (!std::isfinite(s.threshold) || !(s.false_accept >= 0 && s.false_accept < 1))
@@ -84,35 +94,16 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
         if (!(s.class_scale_power >= 0 && s.class_scale_power <= 1))
           throw Error(where + ": class_scale_power must be within [0, 1]");
       }
-      if (j.contains("class_spread")) {
-        s.class_spread = j.at("class_spread").get<std::string>();
-        try {
-          checkOpenSetSpread(s.class_spread);
-        } catch (const Error& e) {
-          throw Error(where + ": " + e.what());
-        }
-      }
+      if (j.contains("class_spread")) s.class_spread = choiceOf(j, "class_spread", checkOpenSetSpread, where);
       if (j.contains("scale_by")) {
-        s.scale_by = j.at("scale_by").get<std::string>();
-        try {
-          checkOpenSetScale(s.scale_by);
-        } catch (const Error& e) {
-          throw Error(where + ": " + e.what());
-        }
+        s.scale_by = choiceOf(j, "scale_by", checkOpenSetScale, where);
         if (j.contains("camera_scale")) s.camera_scale = j.at("camera_scale").get<std::map<std::string, float>>();
         for (const auto& [camera, v] : s.camera_scale)
           if (!(v > 0) || !std::isfinite(v)) throw Error(where + ": camera_scale of '" + camera + "' must be positive");
       }
     }
     s.neighbours = jsonInteger(j, "neighbours", 1, 1 << 16, where);
-    if (j.contains("distance")) {
-      s.distance = j.at("distance").get<std::string>();
-      try {
-        checkOpenSetDistance(s.distance);
-      } catch (const Error& e) {
-        throw Error(where + ": " + e.what());
-      }
-    }
+    if (j.contains("distance")) s.distance = choiceOf(j, "distance", checkOpenSetDistance, where);
     s.mean = j.at("mean").get<std::vector<float>>();
     s.scale = j.at("scale").get<std::vector<float>>();
     const auto& refs = j.at("references");
