@@ -137,9 +137,9 @@ std::string TurntableServer::endpoint() const {
   return "modbus-tcp:" + o_.tcp_address + ":" + std::to_string(port_) + "@" + std::to_string(o_.unit_id);
 }
 
-void TurntableServer::syncRegisters() {
+void TurntableServer::syncRegisters(TurntableModel::Clock::time_point now) {
   auto* map = static_cast<modbus_mapping_t*>(mapping_);
-  const auto s = model_.state(o_.clock ? o_.clock() : TurntableModel::Clock::now());
+  const auto s = model_.state(now);
   const auto counts = static_cast<std::uint32_t>(std::llround(s.angle_deg / 360.0 * kCountsPerRev)) %
                       static_cast<std::uint32_t>(kCountsPerRev);
   map->tab_registers[kRegPosition] = static_cast<std::uint16_t>(counts >> 16);
@@ -154,11 +154,10 @@ void TurntableServer::syncRegisters() {
   }
 }
 
-void TurntableServer::applyCommands() {
+void TurntableServer::applyCommands(TurntableModel::Clock::time_point now) {
   auto* map = static_cast<modbus_mapping_t*>(mapping_);
   const std::uint16_t cmd = map->tab_registers[kRegCommand];
   if (cmd == 0) return;
-  const auto now = o_.clock ? o_.clock() : TurntableModel::Clock::now();
   const std::uint32_t target = (std::uint32_t(map->tab_registers[kRegTarget]) << 16) | map->tab_registers[kRegTarget + 1];
   if (cmd == 1) model_.moveTo(target / kCountsPerRev * 360.0, now);
   else if (cmd == 2) model_.home(now);
@@ -187,10 +186,14 @@ bool TurntableServer::handle(void* ctxp, const std::uint8_t* query, int length, 
     modbus_reply_exception(ctx, query, MODBUS_EXCEPTION_SLAVE_OR_SERVER_FAILURE);
     return true;
   }
-  syncRegisters();
+  // One instant per request, taken when it arrives: a command applied after the reply read the clock
+  // whenever this thread got to it, so a client that moved on at once (a test stepping its clock, a
+  // loaded machine) saw the move begin late (the hardening CI's 0.002° instead of 90°).
+  const auto now = o_.clock ? o_.clock() : TurntableModel::Clock::now();
+  syncRegisters(now);
   modbus_reply(ctx, query, length, static_cast<modbus_mapping_t*>(mapping_));
-  applyCommands();
-  syncRegisters();
+  applyCommands(now);
+  syncRegisters(now);
   return true;
 }
 

@@ -201,6 +201,33 @@ TEST(ModbusTurntable, TheWorldEndsExactlyWhereTheTableStops) {
   EXPECT_EQ(sim::readWorldTurntable(world, -1.0), 90.0);
 }
 
+// A command takes effect at the instant its request arrives. The simulator once read its clock for a
+// command after sending the reply, whenever its thread got there: the hardening CI's run of the test
+// above stepped the clock to 100 µs before arrival first, so the move began then (0° "moving", then
+// 0.002178° = ½ · 3600°/s² · (1.1 ms)² where 90° was due). Here the clock holds every read until the
+// test has stepped it (or 300 ms): a read after the reply sees 0.2 s, one on arrival 0.
+TEST(ModbusTurntable, AMoveBeginsWhenItsRequestArrives) {
+  const auto start = std::chrono::steady_clock::now();
+  std::atomic<long> at_us{0};
+  std::atomic<bool> held{false}, stepped{false};
+  sim::TurntableServerOptions o = fastTable();
+  o.clock = [&] {
+    const auto limit = Clock::now() + std::chrono::milliseconds(300);
+    while (held && !stepped && Clock::now() < limit) std::this_thread::sleep_for(std::chrono::milliseconds(1));
+    return start + std::chrono::microseconds(at_us.load());
+  };
+  sim::TurntableServer server(o);
+  ModbusOptions patient;
+  patient.timeout_ms = 2000;  // a held read must not time the request out
+  ModbusTurntable table(ModbusEndpoint::parse(server.endpoint()), ModbusTurntableProfile::load("keyturn-sim"), patient);
+  table.read();
+  held = true;
+  table.moveTo(90.0);
+  at_us = 200000;
+  stepped = true;
+  EXPECT_NEAR(table.read().turntable_deg, 54.0, 0.01);  // 0.2 s into the move (the profile above)
+}
+
 TEST(ModbusTurntable, InPositionIsNeverPairedWithAStaleAngle) {
   // Position and status come from one request, so a table arriving between two reads cannot report
   // "in position" at an angle it had already left. Polled as tightly as a capture does, over many moves.

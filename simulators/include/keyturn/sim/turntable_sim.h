@@ -86,8 +86,8 @@ class TurntableServer {
   void serveTcp();
   void serveRtu();
   bool handle(void* ctx, const std::uint8_t* query, int length, int socket);  // false: drop connection
-  void syncRegisters();
-  void applyCommands();
+  void syncRegisters(TurntableModel::Clock::time_point now);
+  void applyCommands(TurntableModel::Clock::time_point now);
 
   TurntableServerOptions o_;
   TurntableModel model_;
