@@ -16,9 +16,9 @@ namespace {
 
 struct ReconstructArgs {
   std::string input, out, pose_format = "auto", poses_file, views, object, elevations, model = "auto";
-  std::string reference_poses, reference_mesh, perturb;
+  std::string reference_poses, reference_mesh, perturb, misset_axis;
   unsigned seed = 1;
-  bool no_refine = false, no_filter = false, quiet = false;
+  bool no_refine = false, no_filter = false, free_tilt = false, quiet = false;
   PoseReadOptions poses;
   reconstruction::ReconstructionOptions options;
 };
@@ -62,13 +62,22 @@ int runReconstruct(ReconstructArgs a) {
     for (const auto& e : readPoses(a.reference_poses, ref)) o.reference_poses.push_back(e.world_from_view);
   }
   if (!a.reference_mesh.empty()) o.reference_surface = reconstruction::loadMesh(a.reference_mesh);
+  o.registration.level_on_support = !a.free_tilt;
+  const auto degreesAndMillimetres = [](const std::string& text, const char* option) {
+    const auto p = parseNumberList(text, option);
+    if (p.size() != 2 || p[0] < 0 || p[1] < 0) throw Error(std::string(option) + ": '" + text + "' is not DEGREES,MILLIMETRES");
+    return p;
+  };
   if (!a.perturb.empty()) {
-    const auto p = parseNumberList(a.perturb, "--perturb");
-    if (p.size() != 2 || p[0] < 0 || p[1] < 0) throw Error("--perturb: '" + a.perturb + "' is not DEGREES,MILLIMETRES");
+    const auto p = degreesAndMillimetres(a.perturb, "--perturb");
     std::vector<Eigen::Matrix4d> poses;
     for (const auto& v : views) poses.push_back(v.world_from_view);
     poses = reconstruction::perturbPoses(poses, p[0], p[1] / 1000.0, a.seed);
     for (std::size_t i = 0; i < views.size(); ++i) views[i].world_from_view = poses[i];
+  }
+  if (!a.misset_axis.empty()) {
+    const auto p = degreesAndMillimetres(a.misset_axis, "--misset-axis");
+    reconstruction::missetAxis(views, p[0], p[1] / 1000.0, a.seed);
   }
 
   std::unique_ptr<Progress> bar;
@@ -101,6 +110,9 @@ Command addReconstructCommand(CLI::App& app) {
       ->capture_default_str();
   cmd->add_flag("--no-refine", a->no_refine, "Keep the poses as given (fuse and mesh only)");
   cmd->add_flag("--no-filter", a->no_filter, "Use the views as they are (no support-plane or background removal)");
+  cmd->add_flag("--free-tilt", a->free_tilt,
+                "Turntable: refine each camera's tilt from the object alone, not from the support plane (a support "
+                "not square to the axis)");
   auto& r = a->options.registration;
   cmd->add_option("--voxel", r.voxel_m, "Registration resolution in metres (0: 1/250 of the object's size)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
@@ -110,7 +122,10 @@ Command addReconstructCommand(CLI::App& app) {
   cmd->add_option("--reference-poses", a->reference_poses, "True poses (keyturn pose list or .conf, one per view, same order): pose errors in the report");
   cmd->add_option("--reference-mesh", a->reference_mesh, "A true surface: fused-cloud distance and the mesh's F-score in the report");
   cmd->add_option("--perturb", a->perturb, "DEGREES,MILLIMETRES: move every pose but the first by this much first (tests)");
-  cmd->add_option("--seed", a->seed, "Seed of --perturb")->capture_default_str();
+  cmd->add_option("--misset-axis", a->misset_axis,
+                  "DEGREES,MILLIMETRES: mis-set each rig camera's axis calibration by this much first (a tilt and a "
+                  "horizontal shift; tests)");
+  cmd->add_option("--seed", a->seed, "Seed of --perturb and --misset-axis")->capture_default_str();
   cmd->add_flag("--quiet,-q", a->quiet, "No progress lines");
   cmd->add_option("--out,-o", a->out, "Output folder: cloud.ply, mesh.ply, poses.txt, report.json")->required();
   return {cmd, [a] { return runReconstruct(*a); }};

@@ -17,6 +17,7 @@
 #include <cmath>
 #include <memory>
 #include <numeric>
+#include <optional>
 #include <sstream>
 
 #include "../src/open3d_plugin.h"
@@ -210,12 +211,27 @@ Eigen::Matrix<double, 6, 6> adjoint(const Eigen::Matrix4d& T) {
 void jointRefine(const std::vector<Level>& lv, const std::vector<RegistrationPair>& pairs,
                  const std::vector<RegistrationView>& views, const RegistrationOptions& o,
                  const std::vector<double>& schedule, int iterations, double huber, std::vector<Eigen::Matrix4d>& poses,
-                 const RegistrationProgress& progress) {
+                 std::optional<bool>& turns_kept, const RegistrationProgress& progress) {
   const int n = int(lv.size());
   int cameras = 0;
   for (const auto& v : views) cameras = std::max(cameras, v.rig_camera + 1);
   const bool rig = o.model == PoseModel::Turntable;
-  const int params = rig ? 6 * cameras : 6 * n;
+  // The parameters: per rig camera its correction's twist; per view otherwise. A camera whose support
+  // was levelled moves only as the table lets it: about the turntable's axis (the common z through
+  // the origin) and along the table, expressed in the table's frame, so that a symmetric object's free
+  // turn about the axis is one parameter of its own (in the camera's frame it mixes with a shift).
+  std::vector<int> first(rig ? cameras : 0, -1);
+  std::vector<bool> level(rig ? cameras : 0, false);
+  for (int i = 0; i < n && rig; ++i) {
+    const int k = views[i].rig_camera;
+    if (first[k] < 0) first[k] = i;
+    if (views[i].support.head<3>().norm() > 0) level[k] = true;
+  }
+  Eigen::Matrix<double, 6, 3> table_motions = Eigen::Matrix<double, 6, 3>::Zero();  // (ω, v): turn about z, shift x, y
+  table_motions(2, 0) = table_motions(3, 1) = table_motions(4, 2) = 1;
+  std::vector<int> offset(first.size() + 1, 0);
+  for (std::size_t k = 0; k < first.size(); ++k) offset[k + 1] = offset[k] + (level[k] ? 3 : 6);
+  const int params = rig ? offset.back() : 6 * n;
   const std::vector<Eigen::Matrix4d> initial = poses;
   std::vector<Eigen::Matrix4d> corrections(rig ? cameras : 0, Eigen::Matrix4d::Identity());
   auto normals = [&](const std::vector<Eigen::Matrix4d>& at, double distance) {
@@ -226,6 +242,22 @@ void jointRefine(const std::vector<Level>& lv, const std::vector<RegistrationPai
     }
     return ne;
   };
+  // Levelled cameras' turns about the axis are refined only where the object fixes them: where turning
+  // one would move the correspondences along their normals by at least `min_turn_information` of a
+  // turn that moved every point fully (the points' mean squared distance from the axis per
+  // correspondence), on average over the cameras. A body of revolution does not fix the turn between
+  // two cameras at all: the tomato can's noise turned one by 1.4°, the plate's by 7°
+  // (docs/reconstruction.md). Decided once, at the coarsest level (finer normals carry more of the
+  // sensor's noise), and only with two levelled cameras or more: one camera's turn is the gauge.
+  double lever2 = 0;
+  std::size_t lever_points = 0;
+  for (int i = 0; i < n && rig; ++i)
+    for (const auto& p : lv[i].cloud->points_) {
+      const Eigen::Vector3d w = poses[i].topLeftCorner<3, 3>() * p + poses[i].topRightCorner<3, 1>();
+      lever2 += w.x() * w.x() + w.y() * w.y(), ++lever_points;
+    }
+  lever2 /= double(std::max<std::size_t>(1, lever_points));
+
   auto meanCost = [](const Normal& ne) { return ne.count ? ne.cost / double(ne.count) : 1e300; };
   progress.begin("joint refinement", schedule.size() * std::size_t(iterations));
   for (double distance : schedule) {
@@ -233,13 +265,29 @@ void jointRefine(const std::vector<Level>& lv, const std::vector<RegistrationPai
     for (int it = 0; it < iterations; ++it) {
       Eigen::MatrixXd M = Eigen::MatrixXd::Zero(6 * n, params);
       for (int i = 0; i < n; ++i) {
-        if (rig)
-          M.block<6, 6>(6 * i, 6 * views[i].rig_camera) = adjoint(poses[i]);
+        if (rig) {
+          const int k = views[i].rig_camera;
+          if (level[k])  // W_i · P⁻¹ exp(ξ) P, P the camera's first view: ξ in the table's frame
+            M.block<6, 3>(6 * i, offset[k]) = adjoint(poses[i] * poses[first[k]].inverse()) * table_motions;
+          else
+            M.block<6, 6>(6 * i, offset[k]) = adjoint(poses[i]);
+        }
         else if (i != o.reference)
           M.block<6, 6>(6 * i, 6 * i).setIdentity();
       }
-      const Eigen::MatrixXd H = M.transpose() * ne.H * M;
-      const Eigen::VectorXd gp = M.transpose() * ne.g;
+      Eigen::MatrixXd H = M.transpose() * ne.H * M;
+      Eigen::VectorXd gp = M.transpose() * ne.g;
+      if (!turns_kept) {  // one decision for the object, so that no camera turns against a held one
+        double information = 0;
+        int levelled = 0;
+        for (std::size_t k = 0; k < first.size(); ++k)
+          if (level[k]) information += H(offset[k], offset[k]) / (double(ne.count) * lever2), ++levelled;
+        turns_kept = levelled >= 2 && information / levelled < o.min_turn_information;
+      }
+      for (std::size_t k = 0; k < first.size() && *turns_kept; ++k) {
+        const int t = offset[k];  // the turn's parameter
+        if (level[k]) H.row(t).setZero(), H.col(t).setZero(), H(t, t) = 1, gp(t) = 0;
+      }
       // Levenberg–Marquardt: a step is kept only when the mean robust cost at the new poses'
       // correspondences falls without losing correspondences; else a larger λ (shorter step). The
       // smallest λ also holds the gauge (the reference's parameters, or the rotation about and the
@@ -253,7 +301,10 @@ void jointRefine(const std::vector<Level>& lv, const std::vector<RegistrationPai
         std::vector<Eigen::Matrix4d> candidate = poses, candidate_corrections = corrections;
         if (rig) {
           for (int k = 0; k < cameras; ++k)
-            candidate_corrections[k] = corrections[k] * expTwist(dp.segment<6>(6 * k));
+            candidate_corrections[k] =
+                level[k] ? Eigen::Matrix4d(corrections[k] * poses[first[k]].inverse() *
+                                           expTwist(table_motions * dp.segment<3>(offset[k])) * poses[first[k]])
+                         : Eigen::Matrix4d(corrections[k] * expTwist(dp.segment<6>(offset[k])));
           for (int i = 0; i < n; ++i) candidate[i] = initial[i] * candidate_corrections[views[i].rig_camera];
         } else {
           for (int i = 0; i < n; ++i) candidate[i] = expTwist(M.block(6 * i, 0, 6, params) * dp) * poses[i];
@@ -463,11 +514,14 @@ RegistrationResult registerAll(const std::vector<RegistrationView>& views, const
     } else {
       // The rig has few parameters: the joint problem converges from the calibrated poses without
       // a pose graph, coarse to fine.
+      for (int i = 0; i < n; ++i) poses[i] = poses[i] * views[i].level;
       std::vector<Level>& mid = coarse;
       std::vector<double> sched{initial, std::max(initial / 3, 3 * voxel)};
-      jointRefine(mid, res.pairs, views, o, sched, 4, voxel, poses, progress);
+      std::optional<bool> turns_kept;
+      jointRefine(mid, res.pairs, views, o, sched, 4, voxel, poses, turns_kept, progress);
       jointRefine(fine, res.pairs, views, o, {3 * voxel, 1.5 * voxel}, std::max(2, o.joint_rounds), voxel, poses,
-                  progress);
+                  turns_kept, progress);
+      res.turns_kept = turns_kept.value_or(false);
     }
   }
   measureResiduals(fine, res.pairs, poses, measure_radius > initial ? measure_radius : initial, res.residual_after_m,

@@ -128,6 +128,29 @@ std::vector<Eigen::Matrix4d> perturbPoses(std::vector<Eigen::Matrix4d> poses, do
   return poses;
 }
 
+void missetAxis(std::vector<PosedView>& views, double degrees, double metres, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> turn(0, 2 * M_PI);
+  std::map<std::string, Eigen::Matrix4d> correction;  // per rig camera, on the right of its poses
+  for (auto& v : views) {
+    if (!v.turntable) throw Error(v.file + ": no turntable angle; a mis-set axis needs a calibrated dataset's views");
+    auto it = correction.find(v.elevation);
+    if (it == correction.end()) {
+      // The table frame as this camera's first view has it: a tilt about a horizontal axis through
+      // the origin (where the axis meets the table) and a horizontal shift, one draw per statement.
+      const double tilt_direction = turn(rng);
+      const double shift_direction = turn(rng);
+      Eigen::Matrix4d miss = Eigen::Matrix4d::Identity();
+      miss.topLeftCorner<3, 3>() =
+          Eigen::AngleAxisd(degrees * M_PI / 180, Eigen::Vector3d(std::cos(tilt_direction), std::sin(tilt_direction), 0))
+              .toRotationMatrix();
+      miss.topRightCorner<3, 1>() = metres * Eigen::Vector3d(std::cos(shift_direction), std::sin(shift_direction), 0);
+      it = correction.emplace(v.elevation, v.world_from_view.inverse() * miss * v.world_from_view).first;
+    }
+    v.world_from_view = v.world_from_view * it->second;
+  }
+}
+
 PoseDifference poseDifference(const Eigen::Matrix4d& a, const Eigen::Matrix4d& b) {
   // atan2 of sin and cos: acos alone turns a rotation's float-precision non-orthonormality into
   // hundredths of a degree near 0°.

@@ -6,6 +6,7 @@
 #include <cmath>
 #include <filesystem>
 #include <map>
+#include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <iomanip>
 #include <sstream>
@@ -113,8 +114,24 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
     rv[i] = {views[i].file, points[i], views[i].world_from_view, cameras[views[i].elevation]};
   RegistrationOptions ro = options.registration;
   ro.model = r.model;
+  std::optional<RigLevelling> levelling;
+  if (r.model == PoseModel::Turntable && ro.refine && ro.level_on_support && options.filter) {
+    std::vector<SupportView> sv;
+    std::vector<int> rig_camera;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      sv.push_back({filtered[i].plane_found, filtered[i].plane, filtered[i].plane_band, rv[i].world_from_view});
+      rig_camera.push_back(rv[i].rig_camera);
+    }
+    levelling = levelRigOnSupport(sv, rig_camera);
+    for (std::size_t i = 0; i < views.size(); ++i)
+      if (const auto& plane = levelling->camera_plane[rv[i].rig_camera]) {
+        rv[i].support = *plane;
+        rv[i].level = rv[i].world_from_view.inverse() * levelling->world_from_view[i];
+      }
+  }
   const RegistrationResult reg = registerViews(rv, ro, progress.stages);
   r.refined = ro.refine;
+  r.turns_kept = reg.turns_kept;
   r.voxel_m = reg.voxel_m;
   r.pairs = reg.pairs;
   for (auto& v : rv) v.points.clear(), v.points.shrink_to_fit();
@@ -155,7 +172,9 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
       for (std::size_t i = 0; i < views.size(); ++i)
         if (views[i].elevation == camera) before.push_back(r.initial_poses[i]), after.push_back(views[i].world_from_view);
       try {
-        r.axes.push_back({camera, impliedAxis(before), impliedAxis(after)});
+        AxisReport a{camera, impliedAxis(before), impliedAxis(after), std::nullopt};
+        if (levelling && levelling->camera_plane[index]) a.levelled_deg = levelling->tilt_deg[index];
+        r.axes.push_back(a);
       } catch (const Error&) {  // one camera's views span less than 10°: it implies no axis
       }
     }
@@ -190,10 +209,24 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
   r.views = std::move(views);
 
   if (options.reference_surface) {
+    // In the reference's frame through the reference view, as the pose errors are: a mis-set axis
+    // moves every view, the reference's too, and the model's own frame with it.
+    Eigen::Matrix4d g0 = Eigen::Matrix4d::Identity(), g1 = g0;
+    if (!options.reference_poses.empty()) {
+      g0 = options.reference_poses[ro.reference] * r.initial_poses[ro.reference].inverse();
+      g1 = options.reference_poses[ro.reference] * reg.world_from_view[ro.reference].inverse();
+    }
+    const auto moved = [](std::vector<Eigen::Vector3f> points, const Eigen::Matrix4d& g) {
+      const Eigen::Matrix4f gf = g.cast<float>();
+      for (auto& p : points) p = (gf * p.homogeneous()).head<3>();
+      return points;
+    };
     const auto before = fuse(points, r.initial_poses, fuse_voxel);
-    r.cloud_distance_before_m = median(distancesToMesh(before.points, *options.reference_surface));
-    r.cloud_distance_after_m = median(distancesToMesh(r.cloud.points, *options.reference_surface));
-    r.mesh_comparison = compareSurfaces(r.mesh, *options.reference_surface, options.fscore_tau_m);
+    r.cloud_distance_before_m = median(distancesToMesh(moved(before.points, g0), *options.reference_surface));
+    r.cloud_distance_after_m = median(distancesToMesh(moved(r.cloud.points, g1), *options.reference_surface));
+    Mesh surface = r.mesh;
+    surface.vertices = moved(surface.vertices, g1);
+    r.mesh_comparison = compareSurfaces(surface, *options.reference_surface, options.fscore_tau_m);
     clock.done("evaluation", "fused cloud to the reference surface " +
                                  formatNumber(*r.cloud_distance_before_m * 1000, 3) + " mm → " +
                                  formatNumber(*r.cloud_distance_after_m * 1000, 3) + " mm (median), mesh F-score at " +
@@ -212,6 +245,7 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
   j["input"] = input;
   j["model"] = poseModelName(r.model);
   j["refined"] = r.refined;
+  j["turns_about_axis_kept"] = r.turns_kept;
   j["voxel_m"] = r.voxel_m;
   std::vector<double> before, after, err_r0, err_t0, err_r1, err_t1;
   for (const auto& o : r.outcomes) {
@@ -245,7 +279,8 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
     j["axes"].push_back({{"camera", a.camera},
                          {"calibrated", {{"direction", vec(a.initial.direction)}, {"point_m", vec(a.initial.point)}}},
                          {"refined", {{"direction", vec(a.refined.direction)}, {"point_m", vec(a.refined.point)}}},
-                         {"angle_between_deg", std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI}});
+                         {"angle_between_deg", std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI},
+                         {"levelled_by_support_deg", a.levelled_deg ? nlohmann::json(*a.levelled_deg) : nlohmann::json()}});
   if (r.support)
     j["support"] = {{"plane", {(*r.support)[0], (*r.support)[1], (*r.support)[2], (*r.support)[3]}},
                     {"band_m", r.support_band_m},
@@ -288,7 +323,11 @@ std::string reconstructionSummary(const Reconstruction& r) {
       << formatNumber(a.initial.direction.z(), 4) << "], refined [" << formatNumber(a.refined.direction.x(), 4) << ", "
       << formatNumber(a.refined.direction.y(), 4) << ", " << formatNumber(a.refined.direction.z(), 4) << "], "
       << formatNumber(std::acos(std::clamp(a.initial.direction.dot(a.refined.direction), -1.0, 1.0)) * 180 / M_PI, 3)
-      << "° apart; point moved " << formatNumber((a.initial.point - a.refined.point).norm() * 1000, 3) << " mm\n";
+      << "° apart; point moved " << formatNumber((a.initial.point - a.refined.point).norm() * 1000, 3) << " mm"
+      << (a.levelled_deg ? "; tilt held by the support plane (levelled " + formatNumber(*a.levelled_deg, 3) + "°)" : "")
+      << "\n";
+  if (r.turns_kept)
+    s << "the cameras' turns about the axis kept as calibrated: the object does not fix them (a body of revolution)\n";
   if (r.cloud_distance_after_m)
     s << "reference surface: fused cloud " << formatNumber(*r.cloud_distance_before_m * 1000, 3) << " mm → "
       << formatNumber(*r.cloud_distance_after_m * 1000, 3) << " mm (median), mesh F-score at "

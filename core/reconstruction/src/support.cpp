@@ -46,6 +46,67 @@ std::optional<Support> commonSupport(const std::vector<SupportView>& views) {
   return s;
 }
 
+RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std::vector<int>& rig_camera) {
+  int cameras = 0;
+  for (int k : rig_camera) cameras = std::max(cameras, k + 1);
+  RigLevelling out;
+  for (const auto& v : views) out.world_from_view.push_back(v.world_from_view);
+  out.camera_plane.assign(cameras, std::nullopt);
+  out.tilt_deg.assign(cameras, 0.0);
+  std::vector<int> first(cameras, -1), count(cameras, 0);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    ++count[rig_camera[i]];
+    if (first[rig_camera[i]] < 0) first[rig_camera[i]] = int(i);
+  }
+  // The camera's plane, and where the axis meets it in the common frame (through its first view).
+  std::vector<double> pivot(cameras, 0), heights;
+  std::vector<Eigen::Vector3d> up(cameras);
+  for (int k = 0; k < cameras; ++k) {
+    std::vector<Eigen::Vector4d> planes;
+    for (std::size_t i = 0; i < views.size(); ++i) {
+      const auto& v = views[i];
+      if (rig_camera[i] != k || !v.found || !(v.plane.head<3>().norm() > 0)) continue;
+      Eigen::Vector4d q = v.plane.cast<double>() / double(v.plane.head<3>().norm());
+      planes.push_back(q[3] < 0 ? Eigen::Vector4d(-q) : q);  // normal towards the camera
+    }
+    if (2 * planes.size() <= std::size_t(count[k])) continue;
+    Eigen::Vector4d m;
+    for (int c = 0; c < 4; ++c) {
+      std::vector<double> values;
+      for (const auto& q : planes) values.push_back(q[c]);
+      m[c] = median(values);
+    }
+    const Eigen::Vector3d n = m.head<3>().normalized();
+    std::vector<double> offsets;
+    for (const auto& q : planes)
+      if (q.head<3>().dot(n) > std::cos(2 * M_PI / 180)) offsets.push_back(q[3]);
+    if (2 * offsets.size() <= std::size_t(count[k])) continue;  // its views disagree: not one platter
+    const Eigen::Matrix4d& W = views[first[k]].world_from_view;
+    const Eigen::Vector3d nw = W.topLeftCorner<3, 3>() * n;
+    const double dw = median(offsets) - nw.dot(W.topRightCorner<3, 1>());
+    if (nw.z() < std::cos(30 * M_PI / 180)) continue;  // not square to the calibrated axis: no platter
+    out.camera_plane[k] = Eigen::Vector4d(n.x(), n.y(), n.z(), median(offsets));
+    up[k] = nw;
+    pivot[k] = -dw / nw.z();
+    heights.push_back(pivot[k]);
+  }
+  if (heights.empty()) return out;
+  out.height_m = median(heights);
+  for (int k = 0; k < cameras; ++k) {
+    if (!out.camera_plane[k]) continue;
+    // Turn the plane level about where the axis meets it, then lift it to the common height.
+    Eigen::Matrix4d G = Eigen::Matrix4d::Identity();
+    G.topLeftCorner<3, 3>() = Eigen::Quaterniond::FromTwoVectors(up[k], Eigen::Vector3d::UnitZ()).toRotationMatrix();
+    G.topRightCorner<3, 1>() = Eigen::Vector3d(0, 0, out.height_m) - G.topLeftCorner<3, 3>() * Eigen::Vector3d(0, 0, pivot[k]);
+    const Eigen::Matrix4d& W = views[first[k]].world_from_view;
+    const Eigen::Matrix4d C = W.inverse() * G * W;
+    out.tilt_deg[k] = std::acos(std::clamp(up[k].z(), -1.0, 1.0)) * 180 / M_PI;
+    for (std::size_t i = 0; i < views.size(); ++i)
+      if (rig_camera[i] == k) out.world_from_view[i] = views[i].world_from_view * C;
+  }
+  return out;
+}
+
 OrientedPoints footOnSupport(const OrientedPoints& cloud, const Support& support, double cell_m) {
   const Eigen::Vector3d n = support.plane.head<3>();
   const Eigen::Vector3d a = (std::abs(n.x()) < 0.9 ? Eigen::Vector3d::UnitX() : Eigen::Vector3d::UnitY()).cross(n).normalized();

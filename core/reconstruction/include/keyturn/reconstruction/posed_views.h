@@ -49,6 +49,12 @@ std::string poseListText(const std::vector<std::string>& files, const std::vecto
 std::vector<Eigen::Matrix4d> perturbPoses(std::vector<Eigen::Matrix4d> poses, double degrees, double metres,
                                           unsigned seed, int reference = 0);
 
+// A turntable dataset's poses as an axis calibration mis-set by `degrees` (a tilt about a horizontal
+// axis) and `metres` (a horizontal shift) gives them: per rig camera (elevation) one such error of
+// that camera's pose on the table, in a seeded random direction, the same for all its views.
+// Throws keyturn::Error when a view has no turntable angle.
+void missetAxis(std::vector<PosedView>& views, double degrees, double metres, unsigned seed);
+
 // The rotation (degrees) and translation (metres) between two poses.
 struct PoseDifference {
   double rotation_deg = 0, translation_m = 0;

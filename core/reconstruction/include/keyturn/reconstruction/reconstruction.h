@@ -55,6 +55,7 @@ struct ViewOutcome {
 struct AxisReport {
   std::string camera;  // the elevation
   ImpliedAxis initial, refined;  // from the initial (calibrated) and the refined poses
+  std::optional<double> levelled_deg;  // the tilt the support plane corrected, when it held this camera's tilt
 };
 
 struct Reconstruction {
@@ -65,6 +66,7 @@ struct Reconstruction {
   std::vector<AxisReport> axes;
   PoseModel model = PoseModel::Free;
   bool refined = true;
+  bool turns_kept = false;  // the rig cameras' turns about the axis kept as calibrated (registration.h)
   double voxel_m = 0;
   OrientedPoints cloud;
   Mesh mesh;

@@ -27,6 +27,12 @@ struct RegistrationView {
   std::vector<Eigen::Vector3f> points;  // valid points, the view's own frame (metres)
   Eigen::Matrix4d world_from_view = Eigen::Matrix4d::Identity();
   int rig_camera = 0;  // Turntable: which rig camera (e.g. elevation) took it
+  // Turntable: the rig camera's support plane in the view's frame (n·x + d = 0) and the correction
+  // that levels it (levelRigOnSupport), applied on the right of the pose before refining; that
+  // camera's correction then only turns about the plane's normal and slides along it, so the plane
+  // stays level. Zero plane: none, all six degrees of freedom refined.
+  Eigen::Vector4d support = Eigen::Vector4d::Zero();
+  Eigen::Matrix4d level = Eigen::Matrix4d::Identity();
 };
 
 struct RegistrationOptions {
@@ -38,6 +44,10 @@ struct RegistrationOptions {
   int max_partners = 8;          // per view, the best-overlapping partners kept as pairs
   int joint_rounds = 2;          // Free: rounds of fine pairwise ICP and graph optimisation after the first
   int reference = 0;             // the view whose pose is kept
+  bool level_on_support = true;  // Turntable: the support plane holds each rig camera's tilt and height (support.h)
+  // Turntable, levelled: a camera's turn about the axis is refined only when the object fixes it this
+  // well (a fraction of what the turn would cost if every point moved with it); else the calibration's.
+  double min_turn_information = 0.02;
 };
 
 struct RegistrationPair {
@@ -53,6 +63,7 @@ struct RegistrationResult {
   std::vector<double> overlap_before, overlap_after;          // per view: fraction of points with a close neighbour
   std::vector<RegistrationPair> pairs;
   double voxel_m = 0;
+  bool turns_kept = false;  // Turntable, levelled: the cameras' turns about the axis kept as calibrated (the object does not fix them)
 };
 
 struct RegistrationProgress {

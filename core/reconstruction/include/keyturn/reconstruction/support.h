@@ -28,6 +28,20 @@ struct Support {
 // views found one and their normals agree (within 10° of the median): none otherwise.
 std::optional<Support> commonSupport(const std::vector<SupportView>& views);
 
+// A turntable's platter is square to its axis, so each rig camera's support plane, the same in all
+// of that camera's views, must lie level (normal along the common frame's z, the axis) and at one
+// height in the common frame. Per rig camera: the median of its views' planes (in the camera's
+// frame) when more than half of its views found one and agree within 2°; the correction that puts it
+// level, pivoting where the axis meets it, at the median height of the cameras' planes; applied on the
+// right of each of that camera's poses (the camera's pose on the table is what a calibration mis-sets).
+struct RigLevelling {
+  std::vector<Eigen::Matrix4d> world_from_view;            // the views' poses, levelled
+  std::vector<std::optional<Eigen::Vector4d>> camera_plane;  // per rig camera: its plane in the camera's frame
+  std::vector<double> tilt_deg;                            // per rig camera: the tilt corrected (0 when not levelled)
+  double height_m = 0;                                     // the level planes' height in the common frame
+};
+RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std::vector<int>& rig_camera);
+
 // Points on the support under the object's lowest points (those within 1.5 bands + 2 cells of it),
 // one per occupied cell of `cell_m` holding at least two of them, with normals facing the support.
 OrientedPoints footOnSupport(const OrientedPoints& cloud, const Support& support, double cell_m);
