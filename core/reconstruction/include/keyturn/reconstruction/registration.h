@@ -8,7 +8,8 @@
 //   Turntable  views from a turntable (poses = a rig camera's pose ∘ the table's angle): only the
 //              rig is refined, one rigid correction per rig camera (the axis direction, a point on
 //              it and the angle offset, as seen by that camera), so views cannot drift along an
-//              object's symmetry the way free poses do.
+//              object's symmetry the way free poses do. Where a camera's views found the table,
+//              its plane holds that camera's tilt and height (the platter is square to the axis).
 // The reference view keeps its pose in both (the common frame's gauge).
 #include <Eigen/Core>
 #include <functional>
@@ -29,8 +30,8 @@ struct RegistrationView {
   int rig_camera = 0;  // Turntable: which rig camera (e.g. elevation) took it
   // Turntable: the rig camera's support plane in the view's frame (n·x + d = 0) and the correction
   // that levels it (levelRigOnSupport), applied on the right of the pose before refining; that
-  // camera's correction then only turns about the plane's normal and slides along it, so the plane
-  // stays level. Zero plane: none, all six degrees of freedom refined.
+  // camera then only turns about the turntable's axis and slides along the table, so the plane stays
+  // level. Zero plane: none, all six degrees of freedom refined.
   Eigen::Vector4d support = Eigen::Vector4d::Zero();
   Eigen::Matrix4d level = Eigen::Matrix4d::Identity();
 };
