@@ -33,6 +33,20 @@ Eigen::Matrix4d rz(double deg) {
   return T;
 }
 
+// A simulated SR4000 view of `mesh` on the turntable, saved as `file`, with its true pose.
+PosedView renderedView(sim::TofViewRenderer& renderer, const sim::Mesh& mesh, const sim::SceneView& v,
+                       const std::string& file, const std::string& object) {
+  PosedView pv;
+  pv.file = file;
+  saveCloud(pv.file, renderer.render(v));
+  pv.object = object;
+  pv.elevation = std::to_string(int(v.elevation_deg));
+  pv.angle_deg = v.turntable_deg;
+  pv.turntable = true;
+  pv.world_from_view = (sim::cameraFromTurntable(mesh, v) * rz(v.turntable_deg)).inverse();
+  return pv;
+}
+
 struct SimulatedTurn {
   sim::Mesh mesh;
   std::vector<PosedView> views;           // with the mis-set axis
@@ -144,15 +158,8 @@ SymmetricOutcome symmetricTurn(bool level_on_support) {
         v.elevation_deg = e;
         v.turntable_deg = 45.0 * k;
         v.seed = 200 + e + k;
-        PosedView pv;
-        pv.file = (folder.made() / ("e" + std::to_string(e) + "_" + std::to_string(k) + ".pcd")).string();
-        saveCloud(pv.file, renderer.render(v));
-        pv.object = "can/ycb";
-        pv.elevation = std::to_string(e);
-        pv.angle_deg = v.turntable_deg;
-        pv.turntable = true;
-        pv.world_from_view = (sim::cameraFromTurntable(mesh, v) * rz(v.turntable_deg)).inverse();
-        out.push_back(pv);
+        const auto file = folder.made() / ("e" + std::to_string(e) + "_" + std::to_string(k) + ".pcd");
+        out.push_back(renderedView(renderer, mesh, v, file.string(), "can/ycb"));
       }
     return out;
   }();
@@ -269,15 +276,8 @@ TEST(Reconstruction, ThinObjectOnTheTableKeepsItsSize) {
       v.elevation_deg = e;
       v.turntable_deg = 60.0 * k + (e == 45 ? 30 : 0);
       v.seed = 100 + e + k;
-      PosedView pv;
-      pv.file = dir + "/e" + std::to_string(e) + "_" + std::to_string(k) + ".pcd";
-      saveCloud(pv.file, renderer.render(v));
-      pv.object = "scissors/ycb";
-      pv.elevation = std::to_string(e);
-      pv.angle_deg = v.turntable_deg;
-      pv.turntable = true;
-      pv.world_from_view = (sim::cameraFromTurntable(mesh, v) * rz(v.turntable_deg)).inverse();
-      views.push_back(pv);
+      views.push_back(renderedView(renderer, mesh, v, dir + "/e" + std::to_string(e) + "_" + std::to_string(k) + ".pcd",
+                                   "scissors/ycb"));
     }
   ReconstructionOptions o;
   o.registration.refine = false;  // the surface on true poses: what the filter and Poisson make of them

@@ -14,6 +14,27 @@ double median(std::vector<double> v) {
   return v[v.size() / 2];
 }
 
+// The median of `planes` (unit normals, n·x + d = 0): its normal the component-wise median, its
+// offset the median over the planes within `agree_deg` of that normal; none unless more than half of
+// the `views` found a plane and that many agree. `agreeing`: how many did.
+std::optional<Eigen::Vector4d> medianPlane(const std::vector<Eigen::Vector4d>& planes, std::size_t views,
+                                           double agree_deg, int* agreeing = nullptr) {
+  if (planes.empty() || 2 * planes.size() <= views) return std::nullopt;
+  Eigen::Vector3d m;
+  for (int k = 0; k < 3; ++k) {
+    std::vector<double> c;
+    for (const auto& p : planes) c.push_back(p[k]);
+    m[k] = median(c);
+  }
+  const Eigen::Vector3d n = m.normalized();
+  std::vector<double> offsets;
+  for (const auto& p : planes)
+    if (p.head<3>().dot(n) > std::cos(agree_deg * M_PI / 180)) offsets.push_back(p[3]);
+  if (2 * offsets.size() <= views) return std::nullopt;  // the views disagree on it
+  if (agreeing) *agreeing = int(offsets.size());
+  return Eigen::Vector4d(n.x(), n.y(), n.z(), median(offsets));
+}
+
 }  // namespace
 
 std::optional<Support> commonSupport(const std::vector<SupportView>& views) {
@@ -28,21 +49,11 @@ std::optional<Support> commonSupport(const std::vector<SupportView>& views) {
     planes.emplace_back(n.x(), n.y(), n.z(), double(v.plane[3]) / v.plane.head<3>().norm() - n.dot(t));
     bands.push_back(v.band_m);
   }
-  if (planes.empty() || 2 * planes.size() <= views.size()) return std::nullopt;
   Support s;
-  for (int k = 0; k < 3; ++k) {
-    std::vector<double> c;
-    for (const auto& p : planes) c.push_back(p[k]);
-    s.plane[k] = median(c);
-  }
-  const Eigen::Vector3d n = s.plane.head<3>().normalized();
-  std::vector<double> offsets;
-  for (const auto& p : planes)
-    if (p.head<3>().dot(n) > std::cos(10 * M_PI / 180)) offsets.push_back(p[3]);
-  if (2 * offsets.size() <= views.size()) return std::nullopt;  // the views disagree on it
-  s.plane << n, median(offsets);
+  const auto plane = medianPlane(planes, views.size(), 10, &s.views);
+  if (!plane) return std::nullopt;
+  s.plane = *plane;
   s.band_m = median(bands);
-  s.views = int(offsets.size());
   return s;
 }
 
@@ -69,23 +80,14 @@ RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std:
       Eigen::Vector4d q = v.plane.cast<double>() / double(v.plane.head<3>().norm());
       planes.push_back(q[3] < 0 ? Eigen::Vector4d(-q) : q);  // normal towards the camera
     }
-    if (2 * planes.size() <= std::size_t(count[k])) continue;
-    Eigen::Vector4d m;
-    for (int c = 0; c < 4; ++c) {
-      std::vector<double> values;
-      for (const auto& q : planes) values.push_back(q[c]);
-      m[c] = median(values);
-    }
-    const Eigen::Vector3d n = m.head<3>().normalized();
-    std::vector<double> offsets;
-    for (const auto& q : planes)
-      if (q.head<3>().dot(n) > std::cos(2 * M_PI / 180)) offsets.push_back(q[3]);
-    if (2 * offsets.size() <= std::size_t(count[k])) continue;  // its views disagree: not one platter
+    const auto plane = medianPlane(planes, std::size_t(count[k]), 2);
+    if (!plane) continue;  // too few views found one, or they disagree: not one platter
+    const Eigen::Vector3d n = plane->head<3>();
     const Eigen::Matrix4d& W = views[first[k]].world_from_view;
     const Eigen::Vector3d nw = W.topLeftCorner<3, 3>() * n;
-    const double dw = median(offsets) - nw.dot(W.topRightCorner<3, 1>());
+    const double dw = (*plane)[3] - nw.dot(W.topRightCorner<3, 1>());
     if (nw.z() < std::cos(30 * M_PI / 180)) continue;  // not square to the calibrated axis: no platter
-    out.camera_plane[k] = Eigen::Vector4d(n.x(), n.y(), n.z(), median(offsets));
+    out.camera_plane[k] = *plane;
     up[k] = nw;
     pivot[k] = -dw / nw.z();
     heights.push_back(pivot[k]);
