@@ -15,7 +15,7 @@ namespace keyturn::app {
 namespace {
 
 struct ReconstructArgs {
-  std::string input, out, pose_format = "auto", poses_file, views, object, elevations, model = "auto";
+  std::string input, out, pose_format = "auto", poses_file, views, object, elevations, model = "auto", surface = "auto";
   std::string reference_poses, reference_mesh, perturb, misset_axis;
   unsigned seed = 1;
   bool no_refine = false, no_filter = false, free_tilt = false, quiet = false;
@@ -28,6 +28,13 @@ reconstruction::ModelChoice parseModel(const std::string& m) {
   if (m == "free") return reconstruction::ModelChoice::Free;
   if (m == "turntable") return reconstruction::ModelChoice::Turntable;
   throw Error("--model: '" + m + "' is not auto, free or turntable");
+}
+
+reconstruction::SurfaceChoice parseSurface(const std::string& m) {
+  if (m == "auto") return reconstruction::SurfaceChoice::Auto;
+  if (m == "poisson") return reconstruction::SurfaceChoice::Poisson;
+  if (m == "tsdf") return reconstruction::SurfaceChoice::Tsdf;
+  throw Error("--surface: '" + m + "' is not auto, poisson or tsdf");
 }
 
 int runReconstruct(ReconstructArgs a) {
@@ -55,6 +62,7 @@ int runReconstruct(ReconstructArgs a) {
 
   auto& o = a.options;
   o.model = parseModel(a.model);
+  o.surface = parseSurface(a.surface);
   o.registration.refine = !a.no_refine;
   o.filter = !a.no_filter;
   if (!a.reference_poses.empty()) {
@@ -118,6 +126,14 @@ Command addReconstructCommand(CLI::App& app) {
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--min-overlap", r.min_overlap, "Fraction of a view a pair must share to be registered")
       ->capture_default_str()->check(CLI::Range(0.01, 1.0));
+  cmd->add_option("--surface", a->surface,
+                  "auto (TSDF when every view is an organized depth frame, else Poisson), poisson or tsdf")
+      ->capture_default_str();
+  cmd->add_option("--tsdf-voxel", a->options.tsdf.voxel_m, "TSDF voxel in metres (0: the fused cloud's)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
+  cmd->add_option("--tsdf-truncation", a->options.tsdf.truncation_m,
+                  "TSDF truncation in metres (0: two σ of the noise on the support plane)")
+      ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--poisson-depth", a->options.poisson.depth, "Poisson octree depth")->capture_default_str()->check(CLI::Range(5, 12));
   cmd->add_option("--reference-poses", a->reference_poses, "True poses (keyturn pose list or .conf, one per view, same order): pose errors in the report");
   cmd->add_option("--reference-mesh", a->reference_mesh, "A true surface: fused-cloud distance and the mesh's F-score in the report");

@@ -35,6 +35,15 @@ check "--misset-axis: levelled by 2°" jq -e '(.axes[0].levelled_by_support_deg 
 check "--misset-axis: the refined axis is the rig's" rig_axis "$work/missed/report.json" refined 0.001
 check "a progress line per stage" test "$(grep -cE '^(views|registration|fusion|surface): ' "$work/rec.err")" -eq 4
 check "mesh.ply is a binary PLY with faces" grep -aq "element face" "$work/rec/mesh.ply"
+# The simulated SR4000's views are depth frames: the surface is a TSDF's, truncated at 1.5 σ of the
+# table's noise (σ 0.8–1.0 mm on the SR4000 simulator's captures: 1.25–1.5 mm), its voxel half that;
+# --surface poisson asks for Poisson.
+check "a capture's surface is a TSDF" test "$(jq -r .mesh.method "$work/rec/report.json")" = tsdf
+check "the TSDF's truncation comes from the support's noise" grep -q "truncated at .* mm (1.5 σ of the support's noise)" "$work/rec.err"
+check "the TSDF's truncation and voxel fit the SR4000's noise" \
+  jq -e '.mesh.tsdf_truncation_m > 0.0009 and .mesh.tsdf_truncation_m < 0.00225 and .mesh.tsdf_voxel_m <= .mesh.tsdf_truncation_m / 2 + 1e-9' "$work/rec/report.json"
+"$KT" reconstruct "$work/ds" --surface poisson --poisson-depth 6 -q --out "$work/poisson" > /dev/null 2>&1
+check "--surface poisson" test "$(jq -r .mesh.method "$work/poisson/report.json")" = poisson
 # poses.txt is keyturn's pose list: reconstruct reads it back as a pose file.
 "$KT" reconstruct "$work/rec/poses.txt" --no-refine --poisson-depth 6 -q --out "$work/again" > /dev/null 2>&1
 check "poses.txt reads back as a pose file" test $? -eq 0
@@ -71,4 +80,11 @@ printf '%s\n%s\n' "$first" "$second" > "$work/apart.txt"
 fails "non-overlapping views" "do not overlap" "$work/apart.txt"
 fails "a mis-set axis without turntable angles" "no turntable angle" "$work/rec/poses.txt" --misset-axis 2,5
 fails "a mis-set axis that is not two numbers" "is not DEGREES,MILLIMETRES" "$work/rec/poses.txt" --misset-axis 2
+# Range scans are not depth frames: auto gives them Poisson and says why; a TSDF is refused.
+bunny="$(cd "$(dirname "$0")/../data/stanford-bunny-decimated" && pwd)/bun.conf"
+"$KT" reconstruct "$bunny" --no-refine --poisson-depth 6 --out "$work/bunny" > /dev/null 2> "$work/bunny.err"
+check "scans: auto makes a Poisson surface" test "$(jq -r .mesh.method "$work/bunny/report.json")" = poisson
+check "scans: and says why" grep -q "^Poisson, not TSDF: .*bun000.ply: not an organized depth frame" "$work/bunny.err"
+fails "a TSDF of range scans" "bun000.ply: not an organized depth frame .*; a TSDF surface needs every view" "$bunny" --surface tsdf
+fails "an unknown surface" "'marching' is not auto, poisson or tsdf" "$work/rec/poses.txt" --surface marching
 finish

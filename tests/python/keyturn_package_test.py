@@ -365,9 +365,15 @@ class Reconstruct(unittest.TestCase):
         self.assertIn("turntable poses refined", self.r.summary)
 
     def test_options(self):
-        kept = keyturn.reconstruct(self.ds, refine=False, poisson_depth=6, elevations=[30])
+        kept = keyturn.reconstruct(self.ds, refine=False, poisson_depth=6, elevations=[30], surface="poisson")
         self.assertFalse(kept.report["refined"])
         self.assertEqual(len(kept.views), 8)
+        self.assertEqual((kept.surface, kept.report["mesh"]["method"]), ("poisson", "poisson"))
+        self.assertEqual(self.r.surface, "tsdf")  # auto: the simulated SR4000's frames are depth frames
+        # free_tilt: the support no longer holds the tilt, so the report says no camera was levelled.
+        free = keyturn.reconstruct(self.ds, free_tilt=True, surface="poisson", poisson_depth=6)
+        self.assertIsNone(free.report["axes"][0]["levelled_by_support_deg"])
+        self.assertIsNotNone(self.r.report["axes"][0]["levelled_by_support_deg"])
         with self.assertRaisesRegex(keyturn.Error, "no views|elevation"):
             keyturn.reconstruct(self.ds, elevations=[45])
 
@@ -379,6 +385,8 @@ class Reconstruct(unittest.TestCase):
             keyturn.reconstruct(WORK / "nothing-here")
         with self.assertRaises(ValueError):
             keyturn.reconstruct(self.ds, poisson_depth=3)
+        with self.assertRaisesRegex(ValueError, "surface must be"):
+            keyturn.reconstruct(self.ds, surface="marching")
 
     @needs_open3d
     def test_open3d(self):

@@ -32,7 +32,8 @@ std::string pathOf(const py::object& p) { return py::str(py::module_::import("os
 
 PyReconstruction reconstructViews(const py::object& source, const std::optional<std::string>& object,
                                   const std::optional<std::vector<double>>& elevations, bool refine, bool filter,
-                                  std::optional<int> poisson_depth, const py::object& out) {
+                                  std::optional<int> poisson_depth, const std::string& surface, bool free_tilt,
+                                  const py::object& out) {
   PyReconstruction result;
   result.source = pathOf(source);
   requireFile(result.source);
@@ -46,6 +47,11 @@ PyReconstruction reconstructViews(const py::object& source, const std::optional<
   reconstruction::ReconstructionOptions options;
   options.registration.refine = refine;
   options.filter = filter;
+  options.registration.level_on_support = !free_tilt;
+  if (surface == "auto") options.surface = reconstruction::SurfaceChoice::Auto;
+  else if (surface == "poisson") options.surface = reconstruction::SurfaceChoice::Poisson;
+  else if (surface == "tsdf") options.surface = reconstruction::SurfaceChoice::Tsdf;
+  else throw py::value_error("reconstruct: surface must be 'auto', 'poisson' or 'tsdf', not '" + surface + "'");
   if (poisson_depth) {
     if (*poisson_depth < 5 || *poisson_depth > 12)
       throw py::value_error("reconstruct: poisson_depth must be within 5 and 12, not " + std::to_string(*poisson_depth));
@@ -87,6 +93,9 @@ void bindReconstruct(py::module_& m) {
           }, "The views' files, in the order of poses")
       .def_property_readonly("model", [](const PyReconstruction& p) { return std::string(reconstruction::poseModelName(p.r.model)); },
                              "The pose model refined: 'turntable' or 'free'")
+      .def_property_readonly("surface", [](const PyReconstruction& p) {
+            return std::string(p.r.surface == reconstruction::SurfaceChoice::Tsdf ? "tsdf" : "poisson");
+          }, "How the surface was made: 'tsdf' or 'poisson'")
       .def_property_readonly("report", [](const PyReconstruction& p) {
             return py::module_::import("json").attr("loads")(reconstruction::reconstructionJson(p.r, p.source));
           }, "report.json's contents: per-view residuals before and after, the axes, the stages' times")
@@ -105,10 +114,13 @@ void bindReconstruct(py::module_& m) {
 
   m.def("reconstruct", &reconstructViews, py::arg("source"), py::kw_only(), py::arg("object") = py::none(),
         py::arg("elevations") = py::none(), py::arg("refine") = true, py::arg("filter") = true,
-        py::arg("poisson_depth") = py::none(), py::arg("out") = py::none(),
+        py::arg("poisson_depth") = py::none(), py::arg("surface") = "auto", py::arg("free_tilt") = false,
+        py::arg("out") = py::none(),
         "The views of one object joined into its model, as `keyturn reconstruct` joins them: SOURCE a calibrated "
         "dataset or a pose file; object 'CLASS/INSTANCE' when the dataset holds several; elevations a subset of the "
-        "dataset's; refine=False keeps the poses as given; out also writes the CLI's folder. Returns a "
+        "dataset's; refine=False keeps the poses as given; surface 'auto' (TSDF when every view is an organized "
+        "depth frame, else Poisson), 'poisson' or 'tsdf'; free_tilt=True refines each rig camera's tilt from the "
+        "object, not the support plane; out also writes the CLI's folder. Returns a "
         "keyturn.Reconstruction (keyturn.to_open3d makes it an Open3D TriangleMesh). Raises keyturn.Error with "
         "one line for no poses, views of two objects, a single view or views that do not overlap.");
 }

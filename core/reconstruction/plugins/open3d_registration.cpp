@@ -554,11 +554,14 @@ std::string poissonEntry(const OrientedPoints& cloud, const PoissonOptions& opti
 std::string loadMeshEntry(const std::string& path, Mesh& out);
 std::string distancesEntry(const std::vector<Eigen::Vector3f>& points, const Mesh& reference, std::vector<double>& out);
 std::string sampleEntry(const Mesh& mesh, std::size_t samples, std::vector<Eigen::Vector3f>& out);
+std::string tsdfEntry(const std::vector<DepthFrame>& frames, const OrientedPoints& points, const TsdfOptions& options,
+                      Mesh& out);
 
 }  // namespace keyturn::reconstruction::detail
 
 KEYTURN_PLUGIN_EXPORT const keyturn::reconstruction::detail::Open3dFunctions* keyturn_open3d() {
   using namespace keyturn::reconstruction::detail;
-  static const Open3dFunctions table{registerEntry, fuseEntry, poissonEntry, loadMeshEntry, distancesEntry, sampleEntry};
+  static const Open3dFunctions table{registerEntry, fuseEntry, poissonEntry, loadMeshEntry, distancesEntry, sampleEntry,
+                                    tsdfEntry};
   return &table;
 }

@@ -6,10 +6,15 @@
 #include <open3d/geometry/BoundingVolume.h>
 #include <open3d/geometry/KDTreeFlann.h>
 #include <open3d/utility/Logging.h>
+#include <open3d/camera/PinholeCameraIntrinsic.h>
+#include <open3d/geometry/Image.h>
+#include <open3d/geometry/RGBDImage.h>
+#include <open3d/pipelines/integration/ScalableTSDFVolume.h>
 
 #include <Eigen/Eigenvalues>
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <limits>
 
@@ -42,6 +47,29 @@ std::string guarded(F&& f) {
     return f();
   } catch (const std::exception& e) {
     return std::string("Open3D: ") + e.what();
+  }
+}
+
+// The cleanup every surface gets (surface.h's SurfaceCleanup); `points` are the fused points.
+void cleanUp(std::shared_ptr<o3g::TriangleMesh>& mesh, const o3g::PointCloud& points, const SurfaceCleanup& options) {
+  if (options.max_distance_m > 0 || options.floor) {
+    const o3g::KDTreeFlann tree(points);
+    std::vector<bool> remove(mesh->vertices_.size(), false);
+    std::vector<int> idx(1);
+    std::vector<double> d2(1);
+    const double reach2 = options.max_distance_m * options.max_distance_m;
+    for (std::size_t i = 0; i < mesh->vertices_.size(); ++i) {
+      const Eigen::Vector3d& v = mesh->vertices_[i];
+      if (options.floor && options.floor->head<3>().dot(v) + (*options.floor)[3] < -options.floor_tolerance_m)
+        remove[i] = true;
+      else if (options.max_distance_m > 0 && (tree.SearchKNN(v, 1, idx, d2) < 1 || d2[0] > reach2))
+        remove[i] = true;
+    }
+    mesh->RemoveVerticesByMask(remove);
+  }
+  if (options.max_triangles > 0 && mesh->triangles_.size() > options.max_triangles) {
+    mesh = mesh->SimplifyQuadricDecimation(int(options.max_triangles), std::numeric_limits<double>::infinity(), 1.0);
+    mesh->RemoveUnreferencedVertices();
   }
 }
 
@@ -105,26 +133,35 @@ std::string poissonEntry(const OrientedPoints& cloud, const PoissonOptions& opti
       for (std::size_t i = 0; i < density.size(); ++i) remove[i] = density[i] < sorted[q];
       mesh->RemoveVerticesByMask(remove);
     }
-    if (options.max_distance_m > 0 || options.floor) {
-      const o3g::KDTreeFlann tree(pc);
-      std::vector<bool> remove(mesh->vertices_.size(), false);
-      std::vector<int> idx(1);
-      std::vector<double> d2(1);
-      const double reach2 = options.max_distance_m * options.max_distance_m;
-      for (std::size_t i = 0; i < mesh->vertices_.size(); ++i) {
-        const Eigen::Vector3d& v = mesh->vertices_[i];
-        if (options.floor && options.floor->head<3>().dot(v) + (*options.floor)[3] < -options.floor_tolerance_m)
-          remove[i] = true;
-        else if (options.max_distance_m > 0 && (tree.SearchKNN(v, 1, idx, d2) < 1 || d2[0] > reach2))
-          remove[i] = true;
-      }
-      mesh->RemoveVerticesByMask(remove);
-    }
-    if (options.max_triangles > 0 && mesh->triangles_.size() > options.max_triangles) {
-      mesh = mesh->SimplifyQuadricDecimation(int(options.max_triangles), std::numeric_limits<double>::infinity(), 1.0);
-      mesh->RemoveUnreferencedVertices();
-    }
+    cleanUp(mesh, pc, options.cleanup);
     if (mesh->triangles_.empty()) return "Poisson reconstruction gave no surface";
+    out = fromOpen3d(*mesh);
+    return "";
+  });
+}
+
+std::string tsdfEntry(const std::vector<DepthFrame>& frames, const OrientedPoints& points, const TsdfOptions& options,
+                      Mesh& out) {
+  return guarded([&]() -> std::string {
+    namespace integration = open3d::pipelines::integration;
+    integration::ScalableTSDFVolume volume(options.voxel_m, options.truncation_m,
+                                           integration::TSDFVolumeColorType::NoColor);
+    for (const auto& f : frames) {
+      o3g::Image depth, color;
+      depth.Prepare(f.width, f.height, 1, 4);
+      std::memcpy(depth.data_.data(), f.depth_m.data(), f.depth_m.size() * sizeof(float));
+      color.Prepare(f.width, f.height, 3, 1);  // unused (NoColor), but the image pair is checked for size
+      const o3g::RGBDImage rgbd(color, depth);
+      const open3d::camera::PinholeCameraIntrinsic intrinsic(f.width, f.height, f.fx, f.fy, f.cx, f.cy);
+      volume.Integrate(rgbd, intrinsic, f.world_from_view.inverse());
+    }
+    auto mesh = volume.ExtractTriangleMesh();
+    mesh->RemoveDuplicatedVertices();
+    mesh->RemoveDegenerateTriangles();
+    o3g::PointCloud pc;
+    for (const auto& p : points.points) pc.points_.push_back(p.cast<double>());
+    cleanUp(mesh, pc, options.cleanup);
+    if (mesh->triangles_.empty()) return "TSDF integration gave no surface (do the frames' depths overlap?)";
     out = fromOpen3d(*mesh);
     return "";
   });

@@ -21,6 +21,8 @@ struct Open3dFunctions {
   std::string (*distances_to_mesh)(const std::vector<Eigen::Vector3f>& points, const Mesh& reference,
                                    std::vector<double>& out);
   std::string (*sample_mesh)(const Mesh& mesh, std::size_t samples, std::vector<Eigen::Vector3f>& out);
+  std::string (*tsdf)(const std::vector<DepthFrame>& frames, const OrientedPoints& points, const TsdfOptions& options,
+                      Mesh& out);
 };
 
 const Open3dFunctions& open3d();

@@ -71,6 +71,30 @@ OrientedPoints fuse(const std::vector<std::vector<Eigen::Vector3f>>& points, con
   return fuseViews(fv, FuseOptions{voxel});
 }
 
+// The TSDF's truncation and voxel where the options leave them to the data (reconstruction.h);
+// `from` says where the truncation came from.
+TsdfOptions tsdfOptionsFor(const ReconstructionOptions& options, const std::vector<FilterReport>& filtered,
+                           double fuse_voxel, std::string& from) {
+  TsdfOptions tsdf = options.tsdf;
+  if (tsdf.truncation_m <= 0) {
+    std::vector<double> sigmas;  // each frame's table noise: its band is plane_band_sigmas σ
+    const float band_sigmas = options.filter_options.plane_band_sigmas;
+    for (const auto& f : filtered)
+      if (band_sigmas > 0 && f.plane_found && f.plane_band > 0) sigmas.push_back(f.plane_band / band_sigmas);
+    const double sigma = median(sigmas);
+    if (std::isfinite(sigma)) {
+      tsdf.truncation_m = 1.5 * sigma;
+      from = " (1.5 σ of the support's noise)";
+    } else {
+      tsdf.truncation_m = 4 * (tsdf.voxel_m > 0 ? tsdf.voxel_m : fuse_voxel);
+      from = " (4 voxels: no support to measure the noise on)";
+    }
+  }
+  if (tsdf.voxel_m <= 0) tsdf.voxel_m = std::min(fuse_voxel, tsdf.truncation_m / 2);
+  tsdf.truncation_m = std::max(tsdf.truncation_m, 2 * tsdf.voxel_m);
+  return tsdf;
+}
+
 }  // namespace
 
 Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOptions& options,
@@ -85,21 +109,39 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
   // Views: read and filtered as describe filters them (a frame's support plane and background go).
   std::vector<std::vector<Eigen::Vector3f>> points(views.size());
   std::vector<FilterReport> filtered(views.size());
+  // Depth frames for a TSDF surface, when one may be made (poses set after registration).
+  std::vector<std::optional<DepthFrame>> frames(views.size());
+  std::vector<std::string> not_a_frame(views.size());
   progress.stages.begin("reading views", views.size());
   parallelFor(views.size(), 0, [&](std::size_t i) {
-    Cloud c = loadCloud(views[i].file);
-    if (options.filter) c = filterCloud(c, options.filter_options, &filtered[i]);
-    points[i] = validPoints(c);
+    const Cloud c = loadCloud(views[i].file);
+    const Cloud f = options.filter ? filterCloud(c, options.filter_options, &filtered[i]) : c;
+    points[i] = validPoints(f);
     if (points[i].size() < 100)
       throw Error(views[i].file + ": " + std::to_string(points[i].size()) +
                   " valid points after filtering, a view needs 100");
+    if (options.surface != SurfaceChoice::Poisson)
+      frames[i] = depthFrameFromCloud(c, f, views[i].world_from_view, &not_a_frame[i]);
     progress.stages.step();
   });
   progress.stages.end();
+  const auto first_not_a_frame = std::find(frames.begin(), frames.end(), std::nullopt) - frames.begin();
+  r.surface = SurfaceChoice::Tsdf;
+  if (options.surface == SurfaceChoice::Poisson) {
+    r.surface = SurfaceChoice::Poisson;
+  } else if (first_not_a_frame < std::ptrdiff_t(views.size())) {
+    const std::string why = views[first_not_a_frame].file + ": " + not_a_frame[first_not_a_frame];
+    if (options.surface == SurfaceChoice::Tsdf)
+      throw Error(why + "; a TSDF surface needs every view to be an organized depth frame (a Poisson surface does not)");
+    r.surface = SurfaceChoice::Poisson;
+    r.surface_note = "Poisson, not TSDF: " + why;
+    frames.clear();
+  }
   std::size_t total = 0;
   for (const auto& p : points) total += p.size();
   clock.done("views", std::to_string(views.size()) + " views, " + std::to_string(total) + " points" +
                           (options.filter ? " after filtering" : ""));
+  if (!r.surface_note.empty()) progress.line(r.surface_note);
 
   const bool all_turntable = std::all_of(views.begin(), views.end(), [](const auto& v) { return v.turntable; });
   if (options.model == ModelChoice::Turntable && !all_turntable)
@@ -182,9 +224,9 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
 
   const double fuse_voxel = options.fuse_voxel_m > 0 ? options.fuse_voxel_m : reg.voxel_m / 2;
   r.cloud = fuse(points, reg.world_from_view, fuse_voxel);
-  PoissonOptions poisson = options.poisson;
-  if (options.surface_reach_voxels > 0 && poisson.max_distance_m <= 0)
-    poisson.max_distance_m = options.surface_reach_voxels * reg.voxel_m;
+  SurfaceCleanup cleanup = options.cleanup;
+  if (options.surface_reach_voxels > 0 && cleanup.max_distance_m <= 0)
+    cleanup.max_distance_m = options.surface_reach_voxels * reg.voxel_m;
   OrientedPoints surface_points = r.cloud;
   if (options.close_on_support) {
     std::vector<SupportView> sv;
@@ -193,18 +235,39 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
     if (const auto support = commonSupport(sv)) {
       r.support = support->plane;
       r.support_band_m = support->band_m;
-      const auto foot = footOnSupport(r.cloud, *support, 2 * fuse_voxel);
-      r.support_points = foot.points.size();
-      surface_points.points.insert(surface_points.points.end(), foot.points.begin(), foot.points.end());
-      surface_points.normals.insert(surface_points.normals.end(), foot.normals.begin(), foot.normals.end());
-      poisson.floor = support->plane;
+      cleanup.floor = support->plane;
+      if (r.surface == SurfaceChoice::Poisson) {  // a TSDF leaves open what no frame saw
+        const auto foot = footOnSupport(r.cloud, *support, 2 * fuse_voxel);
+        r.support_points = foot.points.size();
+        surface_points.points.insert(surface_points.points.end(), foot.points.begin(), foot.points.end());
+        surface_points.normals.insert(surface_points.normals.end(), foot.normals.begin(), foot.normals.end());
+      }
     }
   }
   clock.done("fusion", std::to_string(r.cloud.points.size()) + " points at " + formatNumber(fuse_voxel * 1000, 3) +
-                           " mm" + (r.support ? ", " + std::to_string(r.support_points) + " closing the foot on the support" : ""));
-  r.mesh = poissonSurface(surface_points, poisson);
-  clock.done("surface", "Poisson depth " + std::to_string(options.poisson.depth) + ", " +
-                            std::to_string(r.mesh.vertices.size()) + " vertices, " +
+                           " mm" + (r.support_points ? ", " + std::to_string(r.support_points) + " closing the foot on the support" : ""));
+  std::string surface_line;
+  if (r.surface == SurfaceChoice::Tsdf) {
+    std::vector<DepthFrame> posed;
+    for (std::size_t i = 0; i < frames.size(); ++i) {
+      posed.push_back(std::move(*frames[i]));
+      posed.back().world_from_view = reg.world_from_view[i];
+    }
+    frames.clear();
+    std::string truncation_from;
+    TsdfOptions tsdf = tsdfOptionsFor(options, filtered, fuse_voxel, truncation_from);
+    tsdf.cleanup = cleanup;
+    r.tsdf_voxel_m = tsdf.voxel_m, r.tsdf_truncation_m = tsdf.truncation_m;
+    r.mesh = tsdfSurface(posed, r.cloud, tsdf);
+    surface_line = "TSDF at " + formatNumber(tsdf.voxel_m * 1000, 3) + " mm, truncated at " +
+                   formatNumber(tsdf.truncation_m * 1000, 3) + " mm" + truncation_from;
+  } else {
+    PoissonOptions poisson = options.poisson;
+    poisson.cleanup = cleanup;
+    r.mesh = poissonSurface(surface_points, poisson);
+    surface_line = "Poisson depth " + std::to_string(options.poisson.depth);
+  }
+  clock.done("surface", surface_line + ", " + std::to_string(r.mesh.vertices.size()) + " vertices, " +
                             std::to_string(r.mesh.triangles.size()) + " triangles");
   r.views = std::move(views);
 
@@ -286,7 +349,11 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
                     {"band_m", r.support_band_m},
                     {"foot_points", r.support_points}};
   j["cloud_points"] = r.cloud.points.size();
-  j["mesh"] = {{"vertices", r.mesh.vertices.size()}, {"triangles", r.mesh.triangles.size()}};
+  j["mesh"] = {{"method", r.surface == SurfaceChoice::Tsdf ? "tsdf" : "poisson"},
+               {"vertices", r.mesh.vertices.size()},
+               {"triangles", r.mesh.triangles.size()}};
+  if (!r.surface_note.empty()) j["mesh"]["note"] = r.surface_note;
+  if (r.surface == SurfaceChoice::Tsdf) j["mesh"]["tsdf_voxel_m"] = r.tsdf_voxel_m, j["mesh"]["tsdf_truncation_m"] = r.tsdf_truncation_m;
   if (r.cloud_distance_after_m) {
     j["reference_surface"] = {{"cloud_distance_median_before_m", *r.cloud_distance_before_m},
                               {"cloud_distance_median_after_m", *r.cloud_distance_after_m},

@@ -36,6 +36,15 @@ Mesh poissonSurface(const OrientedPoints& cloud, const PoissonOptions& options) 
   return out;
 }
 
+Mesh tsdfSurface(const std::vector<DepthFrame>& frames, const OrientedPoints& points, const TsdfOptions& options) {
+  if (frames.empty()) throw Error("a TSDF surface needs at least one depth frame");
+  if (!(options.voxel_m > 0) || !(options.truncation_m >= options.voxel_m))
+    throw Error("a TSDF surface needs a positive voxel and a truncation of at least one voxel");
+  Mesh out;
+  check(detail::open3d().tsdf(frames, points, options, out));
+  return out;
+}
+
 Mesh loadMesh(const std::string& path) {
   Mesh out;
   check(detail::open3d().load_mesh(path, out));

@@ -267,6 +267,8 @@ class Reconstruction:
     @property
     def model(self) -> Literal["turntable", "free"]: ...
     @property
+    def surface(self) -> Literal["tsdf", "poisson"]: ...
+    @property
     def report(self) -> Dict[str, Any]: ...
     @property
     def summary(self) -> str: ...
@@ -280,5 +282,7 @@ def reconstruct(
     refine: bool = True,
     filter: bool = True,
     poisson_depth: Optional[int] = None,
+    surface: str = "auto",
+    free_tilt: bool = False,
     out: Optional[PathLike] = None,
 ) -> Reconstruction: ...

@@ -1,7 +1,7 @@
 #pragma once
 // From posed views of one object to its model: the views' points (filtered as describe filters
 // them), their poses refined (registration.h: free or turntable model), the fused cloud and its
-// Poisson surface (surface.h), with what changed and how well the views agree, per view.
+// surface (surface.h: Poisson, or TSDF for depth frames), with what changed and how well the views agree, per view.
 #include <optional>
 #include <string>
 #include <vector>
@@ -14,6 +14,8 @@
 namespace keyturn::reconstruction {
 
 enum class ModelChoice { Auto, Free, Turntable };  // Auto: Turntable when every view is a turntable view
+// Auto: TSDF when every view is an organized depth frame (depthFrameFromCloud), else Poisson.
+enum class SurfaceChoice { Auto, Poisson, Tsdf };
 
 // describe's filter, but the band removed with the support is 3 σ of each frame's own table noise
 // (within 1–8 mm) instead of a fixed 8 mm: a thin object keeps its lower half.
@@ -29,10 +31,22 @@ struct ReconstructionOptions {
   bool filter = true;
   FilterOptions filter_options = reconstructionFilterOptions();
   double fuse_voxel_m = 0;  // 0: half the registration voxel
-  PoissonOptions poisson = [] {
-    PoissonOptions p;
-    p.max_triangles = 50000;  // enough for 1 mm detail on a 25 cm object; the simulated cameras render it quickly
-    return p;
+  SurfaceChoice surface = SurfaceChoice::Auto;
+  PoissonOptions poisson;  // its cleanup is `cleanup` below
+  // truncation 0: 1.5 σ of the sensor's noise, measured on the support plane the views stood on
+  // (the band the filter removed with it is plane_band_sigmas σ; median over views), or 4 voxels
+  // without one; voxel 0: half the truncation, at most the fused cloud's voxel. (Chosen on the
+  // simulated mug and bowl through both cameras: docs/reconstruction.md, "TSDF or Poisson".)
+  TsdfOptions tsdf = [] {
+    TsdfOptions t;
+    t.voxel_m = 0;
+    t.truncation_m = 0;
+    return t;
+  }();
+  SurfaceCleanup cleanup = [] {
+    SurfaceCleanup c;
+    c.max_triangles = 50000;  // enough for 1 mm detail on a 25 cm object; the simulated cameras render it quickly
+    return c;
   }();
   double surface_reach_voxels = 4;  // the surface's vertices kept within this many registration voxels of the points
   // When most views stood on a support (the filter found and removed it): the object's foot is closed
@@ -70,6 +84,9 @@ struct Reconstruction {
   double voxel_m = 0;
   OrientedPoints cloud;
   Mesh mesh;
+  SurfaceChoice surface = SurfaceChoice::Poisson;  // how `mesh` was made
+  std::string surface_note;                          // why Auto chose Poisson, when it did
+  double tsdf_voxel_m = 0, tsdf_truncation_m = 0;    // the TSDF's, when it made the surface
   std::optional<Eigen::Vector4d> support;  // the support plane in the common frame (median of the views'), when found
   double support_band_m = 0;               // the height above it the filter removed (median over views)
   std::size_t support_points = 0;          // points added on it to close the object's foot
