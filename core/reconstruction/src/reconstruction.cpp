@@ -9,6 +9,7 @@
 #include <Eigen/Geometry>
 #include <nlohmann/json.hpp>
 #include <iomanip>
+#include <limits>
 #include <sstream>
 
 #include "keyturn/core/cloud_io.h"
@@ -95,6 +96,57 @@ TsdfOptions tsdfOptionsFor(const ReconstructionOptions& options, const std::vect
   return tsdf;
 }
 
+// A turntable's platter is one plane in every view of one rig camera (it turns within that plane).
+// A view whose filter kept it (a flat object, the table's far side and the floor outnumbering it:
+// "the rest lies behind it") has it cut with the plane its camera's other views found, and is
+// filtered again without the plane step. Returns those views.
+std::vector<std::size_t> supportFromRigCamera(const std::vector<PosedView>& views, const ReconstructionOptions& options,
+                                 std::vector<FilterReport>& filtered, std::vector<std::vector<Eigen::Vector3f>>& points,
+                                 std::vector<std::optional<DepthFrame>>& frames, std::vector<std::string>& not_a_frame) {
+  if (!options.support_from_rig_camera || !options.filter || !options.filter_options.remove_plane ||
+      !std::all_of(views.begin(), views.end(), [](const auto& v) { return v.turntable; }))
+    return {};
+  std::map<std::string, int> cameras;
+  std::vector<int> rig(views.size());
+  std::vector<SupportView> sv;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    rig[i] = cameras.emplace(views[i].elevation, int(cameras.size())).first->second;
+    sv.push_back({filtered[i].plane_found, filtered[i].plane, filtered[i].plane_band, views[i].world_from_view});
+  }
+  const auto planes = rigCameraPlanes(sv, rig);
+  std::vector<double> band(planes.size());  // each camera's median band, for the views given its plane
+  for (std::size_t k = 0; k < planes.size(); ++k) {
+    std::vector<double> b;
+    for (std::size_t i = 0; i < views.size(); ++i)
+      if (rig[i] == int(k) && filtered[i].plane_found) b.push_back(filtered[i].plane_band);
+    band[k] = median(b);
+  }
+  std::vector<std::size_t> redo;
+  for (std::size_t i = 0; i < views.size(); ++i)
+    if (!filtered[i].plane_found && planes[rig[i]]) redo.push_back(i);
+  parallelFor(redo.size(), 0, [&](std::size_t j) {
+    const std::size_t i = redo[j];
+    const Eigen::Vector4f plane = planes[rig[i]]->cast<float>();
+    const Cloud c = loadCloud(views[i].file);
+    Cloud cut = c;
+    for (auto& p : cut.points)  // the band above the plane and everything behind it, as the plane step removes them
+      if (Cloud::isValid(p) && plane.head<3>().dot(p) + plane[3] < options.filter_options.plane_distance)
+        p = Eigen::Vector3f::Constant(std::numeric_limits<float>::quiet_NaN());
+    FilterOptions without_plane = options.filter_options;
+    without_plane.remove_plane = false;
+    FilterReport report;
+    const Cloud f = filterCloud(cut, without_plane, &report);
+    points[i] = validPoints(f);
+    if (points[i].size() < 100)
+      throw Error(views[i].file + ": " + std::to_string(points[i].size()) +
+                  " valid points after its rig camera's support plane was cut, a view needs 100");
+    report.plane_found = true, report.plane = plane, report.plane_band = float(band[rig[i]]);
+    filtered[i] = report;
+    if (options.surface != SurfaceChoice::Poisson) frames[i] = depthFrameFromCloud(c, f, views[i].world_from_view, &not_a_frame[i]);
+  });
+  return redo;
+}
+
 }  // namespace
 
 Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOptions& options,
@@ -125,6 +177,7 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
     progress.stages.step();
   });
   progress.stages.end();
+  const auto from_rig = supportFromRigCamera(views, options, filtered, points, frames, not_a_frame);
   const auto first_not_a_frame = std::find(frames.begin(), frames.end(), std::nullopt) - frames.begin();
   r.surface = SurfaceChoice::Tsdf;
   if (options.surface == SurfaceChoice::Poisson) {
@@ -142,6 +195,9 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
   clock.done("views", std::to_string(views.size()) + " views, " + std::to_string(total) + " points" +
                           (options.filter ? " after filtering" : ""));
   if (!r.surface_note.empty()) progress.line(r.surface_note);
+  if (!from_rig.empty())
+    progress.line(std::to_string(from_rig.size()) + " view" + (from_rig.size() == 1 ? "" : "s") +
+                  ": the support cut with the plane their rig camera's other views found (their own filter kept it)");
 
   const bool all_turntable = std::all_of(views.begin(), views.end(), [](const auto& v) { return v.turntable; });
   if (options.model == ModelChoice::Turntable && !all_turntable)
@@ -196,6 +252,7 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
     o.overlap_before = reg.overlap_before[i];
     o.overlap_after = reg.overlap_after[i];
     o.change = poseDifference(views[i].world_from_view, reg.world_from_view[i]);
+    o.support_from_rig_camera = std::find(from_rig.begin(), from_rig.end(), i) != from_rig.end();
     if (!options.reference_poses.empty()) {
       // Both sets in the reference's frame through the reference view (the gauge registration
       // keeps): the identity when that view's pose was right, as in a perturbation test.
@@ -318,7 +375,8 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
            {"residual_after_m", num(o.residual_after_m)},
            {"overlap_before", o.overlap_before},
            {"overlap_after", o.overlap_after},
-           {"pose_change", diff(o.change)}};
+           {"pose_change", diff(o.change)},
+           {"support_from_rig_camera", o.support_from_rig_camera}};
     before.push_back(o.residual_before_m), after.push_back(o.residual_after_m);
     if (o.error_before) {
       v["pose_error_before"] = diff(*o.error_before), v["pose_error_after"] = diff(*o.error_after);

@@ -57,30 +57,39 @@ std::optional<Support> commonSupport(const std::vector<SupportView>& views) {
   return s;
 }
 
-RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std::vector<int>& rig_camera) {
+std::vector<std::optional<Eigen::Vector4d>> rigCameraPlanes(const std::vector<SupportView>& views,
+                                                             const std::vector<int>& rig_camera) {
   int cameras = 0;
   for (int k : rig_camera) cameras = std::max(cameras, k + 1);
+  std::vector<std::vector<Eigen::Vector4d>> planes(cameras);
+  std::vector<std::size_t> count(cameras, 0);
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    ++count[rig_camera[i]];
+    const auto& v = views[i];
+    if (!v.found || !(v.plane.head<3>().norm() > 0)) continue;
+    Eigen::Vector4d q = v.plane.cast<double>() / double(v.plane.head<3>().norm());
+    planes[rig_camera[i]].push_back(q[3] < 0 ? Eigen::Vector4d(-q) : q);  // normal towards the camera
+  }
+  std::vector<std::optional<Eigen::Vector4d>> out(cameras);
+  for (int k = 0; k < cameras; ++k) out[k] = medianPlane(planes[k], count[k], 2);
+  return out;
+}
+
+RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std::vector<int>& rig_camera) {
+  const auto planes = rigCameraPlanes(views, rig_camera);
+  const int cameras = int(planes.size());
   RigLevelling out;
   for (const auto& v : views) out.world_from_view.push_back(v.world_from_view);
   out.camera_plane.assign(cameras, std::nullopt);
   out.tilt_deg.assign(cameras, 0.0);
-  std::vector<int> first(cameras, -1), count(cameras, 0);
-  for (std::size_t i = 0; i < views.size(); ++i) {
-    ++count[rig_camera[i]];
+  std::vector<int> first(cameras, -1);
+  for (std::size_t i = 0; i < views.size(); ++i)
     if (first[rig_camera[i]] < 0) first[rig_camera[i]] = int(i);
-  }
-  // The camera's plane, and where the axis meets it in the common frame (through its first view).
+  // Where the axis meets each camera's plane in the common frame (through its first view).
   std::vector<double> pivot(cameras, 0), heights;
   std::vector<Eigen::Vector3d> up(cameras);
   for (int k = 0; k < cameras; ++k) {
-    std::vector<Eigen::Vector4d> planes;
-    for (std::size_t i = 0; i < views.size(); ++i) {
-      const auto& v = views[i];
-      if (rig_camera[i] != k || !v.found || !(v.plane.head<3>().norm() > 0)) continue;
-      Eigen::Vector4d q = v.plane.cast<double>() / double(v.plane.head<3>().norm());
-      planes.push_back(q[3] < 0 ? Eigen::Vector4d(-q) : q);  // normal towards the camera
-    }
-    const auto plane = medianPlane(planes, std::size_t(count[k]), 2);
+    const auto& plane = planes[k];
     if (!plane) continue;  // too few views found one, or they disagree: not one platter
     const Eigen::Vector3d n = plane->head<3>();
     const Eigen::Matrix4d& W = views[first[k]].world_from_view;

@@ -52,6 +52,9 @@ struct ReconstructionOptions {
   // When most views stood on a support (the filter found and removed it): the object's foot is closed
   // on it (points on the support under the lowest fused points, facing down) and nothing is kept below it.
   bool close_on_support = true;
+  // Turntable views: a view whose filter kept the support (a flat object) has it cut with the plane
+  // its rig camera's other views found (the platter is one plane in every view of one camera).
+  bool support_from_rig_camera = true;
   // Evaluation against known truth (docs/reconstruction.md's tables), all optional.
   std::vector<Eigen::Matrix4d> reference_poses;  // one per view, the true world_from_view (compared through the reference view)
   std::optional<Mesh> reference_surface;
@@ -63,6 +66,7 @@ struct ViewOutcome {
   std::size_t points = 0;
   double residual_before_m = 0, residual_after_m = 0, overlap_before = 0, overlap_after = 0;
   PoseDifference change;                          // refined against initial
+  bool support_from_rig_camera = false;           // its support cut with its rig camera's plane (its filter kept it)
   std::optional<PoseDifference> error_before, error_after;  // against the reference poses
 };
 

@@ -28,6 +28,12 @@ struct Support {
 // views found one and their normals agree (within 10° of the median): none otherwise.
 std::optional<Support> commonSupport(const std::vector<SupportView>& views);
 
+// Per rig camera, the support plane in that camera's frame (normal towards the camera): the platter
+// turns within its own plane, so every view of one camera sees the same plane. The median of its
+// views' planes when more than half of them found one and agree within 2°; none otherwise.
+std::vector<std::optional<Eigen::Vector4d>> rigCameraPlanes(const std::vector<SupportView>& views,
+                                                             const std::vector<int>& rig_camera);
+
 // A turntable's platter is square to its axis, so each rig camera's support plane, the same in all
 // of that camera's views, must lie level (normal along the common frame's z, the axis) and at one
 // height in the common frame. Per rig camera: the median of its views' planes (in the camera's
