@@ -6,6 +6,7 @@
 #include <cmath>
 #include <limits>
 
+#include "keyturn/core/error.h"
 #include "keyturn/reconstruction/surface.h"
 
 using namespace keyturn;
@@ -86,4 +87,17 @@ TEST(DepthFrame, RefusesWhatIsNotACamerasGrid) {
   for (auto& p : empty.points) p = Eigen::Vector3f::Constant(kNaN);
   EXPECT_FALSE(depthFrameFromCloud(empty, empty, Eigen::Matrix4d::Identity(), &why).has_value());
   EXPECT_EQ(why, "0 points in front of the camera, a depth frame needs 100");
+}
+
+TEST(DepthFrame, AFrameWhoseDepthsDoNotFillItsGridIsRefusedByTheTsdf) {
+  DepthFrame f;
+  f.width = 4, f.height = 3, f.fx = f.fy = 100;
+  f.depth_m.assign(11, 0.5f);  // one short
+  OrientedPoints points;
+  try {
+    tsdfSurface({f}, points, TsdfOptions());
+    FAIL() << "no error";
+  } catch (const keyturn::Error& e) {
+    EXPECT_STREQ(e.what(), "a depth frame of 4 × 3 holds 11 depths and needs positive focal lengths");
+  }
 }

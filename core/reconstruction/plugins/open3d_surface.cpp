@@ -1,5 +1,6 @@
 // The plugin "open3d"'s surfaces (src/open3d_plugin.h): fusing registered views into oriented
-// points, Poisson reconstruction, mesh files and distances to a mesh, all Open3D's.
+// points, Poisson reconstruction, TSDF integration of depth frames, mesh files and distances to a
+// mesh, all Open3D's.
 #include <open3d/geometry/PointCloud.h>
 #include <open3d/geometry/TriangleMesh.h>
 #include <open3d/io/TriangleMeshIO.h>

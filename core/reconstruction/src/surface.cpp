@@ -40,6 +40,11 @@ Mesh tsdfSurface(const std::vector<DepthFrame>& frames, const OrientedPoints& po
   if (frames.empty()) throw Error("a TSDF surface needs at least one depth frame");
   if (!(options.voxel_m > 0) || !(options.truncation_m >= options.voxel_m))
     throw Error("a TSDF surface needs a positive voxel and a truncation of at least one voxel");
+  for (const auto& f : frames)
+    if (f.width <= 0 || f.height <= 0 || f.depth_m.size() != std::size_t(f.width) * std::size_t(f.height) ||
+        !(f.fx > 0) || !(f.fy > 0))
+      throw Error("a depth frame of " + std::to_string(f.width) + " × " + std::to_string(f.height) + " holds " +
+                  std::to_string(f.depth_m.size()) + " depths and needs positive focal lengths");
   Mesh out;
   check(detail::open3d().tsdf(frames, points, options, out));
   return out;
