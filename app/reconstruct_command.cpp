@@ -129,10 +129,10 @@ Command addReconstructCommand(CLI::App& app) {
   cmd->add_option("--surface", a->surface,
                   "auto (TSDF when every view is an organized depth frame, else Poisson), poisson or tsdf")
       ->capture_default_str();
-  cmd->add_option("--tsdf-voxel", a->options.tsdf.voxel_m, "TSDF voxel in metres (0: the fused cloud's)")
+  cmd->add_option("--tsdf-voxel", a->options.tsdf.voxel_m, "TSDF voxel in metres (0: half the truncation, at most the fused cloud's)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--tsdf-truncation", a->options.tsdf.truncation_m,
-                  "TSDF truncation in metres (0: two σ of the noise on the support plane)")
+                  "TSDF truncation in metres (0: 1.5 σ of the noise on the support plane)")
       ->capture_default_str()->check(CLI::NonNegativeNumber);
   cmd->add_option("--poisson-depth", a->options.poisson.depth, "Poisson octree depth")->capture_default_str()->check(CLI::Range(5, 12));
   cmd->add_option("--reference-poses", a->reference_poses, "True poses (keyturn pose list or .conf, one per view, same order): pose errors in the report");

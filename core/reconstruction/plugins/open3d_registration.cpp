@@ -251,7 +251,7 @@ void jointRefine(const std::vector<Level>& lv, const std::vector<RegistrationPai
   // sensor's noise), and only with two levelled cameras or more: one camera's turn is the gauge.
   double lever2 = 0;
   std::size_t lever_points = 0;
-  for (int i = 0; i < n && rig; ++i)
+  for (int i = 0; i < n && rig && !turns_kept; ++i)  // only where the decision is still to be made
     for (const auto& p : lv[i].cloud->points_) {
       const Eigen::Vector3d w = poses[i].topLeftCorner<3, 3>() * p + poses[i].topRightCorner<3, 1>();
       lever2 += w.x() * w.x() + w.y() * w.y(), ++lever_points;

@@ -96,6 +96,13 @@ TsdfOptions tsdfOptionsFor(const ReconstructionOptions& options, const std::vect
   return tsdf;
 }
 
+// Each rig camera (a dataset's elevation) numbered in the order its first view comes.
+std::map<std::string, int> rigCameras(const std::vector<PosedView>& views) {
+  std::map<std::string, int> cameras;
+  for (const auto& v : views) cameras.emplace(v.elevation, int(cameras.size()));
+  return cameras;
+}
+
 // A turntable's platter is one plane in every view of one rig camera (it turns within that plane).
 // A view whose filter kept it (a flat object, the table's far side and the floor outnumbering it:
 // "the rest lies behind it") has it cut with the plane its camera's other views found, and is
@@ -106,11 +113,11 @@ std::vector<std::size_t> supportFromRigCamera(const std::vector<PosedView>& view
   if (!options.support_from_rig_camera || !options.filter || !options.filter_options.remove_plane ||
       !std::all_of(views.begin(), views.end(), [](const auto& v) { return v.turntable; }))
     return {};
-  std::map<std::string, int> cameras;
+  const auto cameras = rigCameras(views);
   std::vector<int> rig(views.size());
   std::vector<SupportView> sv;
   for (std::size_t i = 0; i < views.size(); ++i) {
-    rig[i] = cameras.emplace(views[i].elevation, int(cameras.size())).first->second;
+    rig[i] = cameras.at(views[i].elevation);
     sv.push_back({filtered[i].plane_found, filtered[i].plane, filtered[i].plane_band, views[i].world_from_view});
   }
   const auto planes = rigCameraPlanes(sv, rig);
@@ -205,11 +212,10 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
   r.model = options.model == ModelChoice::Free ? PoseModel::Free
             : all_turntable                    ? PoseModel::Turntable
                                                : PoseModel::Free;
-  std::map<std::string, int> cameras;
-  for (const auto& v : views) cameras.emplace(v.elevation, int(cameras.size()));
+  const auto cameras = rigCameras(views);
   std::vector<RegistrationView> rv(views.size());
   for (std::size_t i = 0; i < views.size(); ++i)
-    rv[i] = {views[i].file, points[i], views[i].world_from_view, cameras[views[i].elevation]};
+    rv[i] = {views[i].file, points[i], views[i].world_from_view, cameras.at(views[i].elevation)};
   RegistrationOptions ro = options.registration;
   ro.model = r.model;
   std::optional<RigLevelling> levelling;
