@@ -159,10 +159,10 @@ Command addEvaluateCommand(CLI::App& app) {
   cmd->add_option("dataset", a->dataset, "Dataset folder (manifest.csv)")->required();
   cmd->add_option("--features", a->features,
                   "Feature sets, comma-separated (or one quoted argument, space-separated); '+' concatenates blocks (kpd2 kpd3 kpa3 gkpd1 gkpd2 "
-                  "gkpcd2, u_* on random keypoints, d2 d3 a3, s_* in RMS radii, size, esf vfh ourcvfh); "
+                  "gkpcd2, u_* on random keypoints, d2 d3 a3, s_* in RMS radii, size, esf vfh ourcvfh, kpset: the keypoints, for setnet); "
                   "'A|B' chooses A or B per fold by nested validation on the training views")
       ->capture_default_str();
-  cmd->add_option("--classifier", a->classifiers, "xgboost, mlp or both")->capture_default_str();
+  cmd->add_option("--classifier", a->classifiers, "xgboost, mlp, setnet (a set network over the keypoints: features kpset or kpset+…), comma-separated")->capture_default_str();
   cmd->add_option("--protocol", a->protocols,
                   "kfoldN, leave-elevation, leave-instance, open-set[N] (N groups of categories held out as unknowns, "
                   "default 5), open-set-instance[N] (the same, and of every other category with two or more instances "

@@ -88,7 +88,7 @@ void checkOneFeatureSetAndClassifier(const FusionEvaluateArgs& a, const std::str
     throw Error("--protocol " + protocol + " measures one feature set: give --features one ('+' concatenates blocks), not '" +
                 a.features + "'");
   if (a.classifier.find(',') != std::string::npos)
-    throw Error("--protocol " + protocol + " measures one classifier: give --classifier xgboost or mlp, not '" +
+    throw Error("--protocol " + protocol + " measures one classifier: give --classifier xgboost, mlp or setnet, not '" +
                 a.classifier + "'");
 }
 

@@ -35,6 +35,24 @@ void addClassifierOptions(CLI::App& cmd, learning::ClassifierParams& p) {
   cmd.add_option("--batch", p.mlp.batch, "Network: mini-batch size")->capture_default_str();
   cmd.add_flag("--sigmoid-output", p.mlp.sigmoid_output,
                "Network: the paper's sigmoid output layer (default: softmax with cross-entropy)");
+  cmd.add_option("--set-width", p.setnet.width, "Set network (--classifier setnet): width of each keypoint pair's embedding")
+      ->check(CLI::Range(1, 4096))
+      ->capture_default_str();
+  cmd.add_option("--set-epochs", p.setnet.epochs, "Set network: training epochs (Adam)")
+      ->check(CLI::Range(1, 100000))
+      ->capture_default_str();
+  cmd.add_option("--set-min-steps", p.setnet.min_steps,
+                 "Set network: at least this many mini-batches in all, however few the views (more epochs)")
+      ->check(CLI::Range(0, 10000000))
+      ->capture_default_str();
+  cmd.add_option("--set-keypoint-dropout", p.setnet.keypoint_dropout,
+                 "Set network training: each keypoint left out of a mini-batch with this probability")
+      ->check(CLI::Range(0.0, 0.9))
+      ->capture_default_str();
+  cmd.add_option("--set-jitter", p.setnet.jitter_m,
+                 "Set network training: each keypoint moved by Gaussian noise of this sigma (metres)")
+      ->check(CLI::Range(0.0, 0.1))
+      ->capture_default_str();
 }
 
 void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* method) {

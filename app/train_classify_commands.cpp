@@ -183,7 +183,7 @@ Command addTrainCommand(CLI::App& app) {
                   "--camera sr4000 and openni2)")
       ->required();
   cmd->add_option("--features", a->features, "Feature set ('+' concatenates blocks)")->capture_default_str();
-  cmd->add_option("--classifier", a->classifier, "xgboost or mlp")->capture_default_str();
+  cmd->add_option("--classifier", a->classifier, "xgboost, mlp or setnet (a set network over the keypoints: features kpset or kpset+…)")->capture_default_str();
   cmd->add_option("--label", a->label, "instance or category")->capture_default_str();
   cmd->add_option("--out,-o", a->out, "Model folder")->required();
   cmd->add_option("--jobs,-j", a->jobs, "Parallel views when describing");

@@ -33,7 +33,8 @@ for camera in sim openni2; do
 done
 for features in "${sets[@]}"; do
   for camera in sim openni2; do
-    for classifier in xgboost mlp; do
+    case $features in kpset*) classifiers=(setnet) ;; *) classifiers=(xgboost mlp) ;; esac
+    for classifier in "${classifiers[@]}"; do
       model="$out/model-$camera-$classifier-$features"
       "$KT" train "$out/$camera" --label category --features "$features" --classifier $classifier --out "$model" -q
       "$KT" classify "$model" "$root"/tests/data/real/mosd/crop/*.pcd --json -q > "$out/$features-$camera-$classifier.json"
@@ -45,14 +46,17 @@ import json, os, re, sys
 out, sets = sys.argv[1], sys.argv[2:]
 def truth(path):  # mOSD's scene ranges: learn0–16 boxes, 33–44 cylindric objects
     return "box" if int(re.match(r"learn(\d+)_", os.path.basename(path)).group(1)) <= 16 else "cylinder"
-print("| features | SR4000 · xgboost | SR4000 · mlp | OpenNI2 · xgboost | OpenNI2 · mlp |")
+print("| features | SR4000 · xgboost | SR4000 · network | OpenNI2 · xgboost | OpenNI2 · network |")
 print("|---|---:|---:|---:|---:|")
 for f in sets:
     cells = []
     for cam in ("sim", "openni2"):
-        for cl in ("xgboost", "mlp"):
+        for cl in (("-", "setnet") if f.startswith("kpset") else ("xgboost", "mlp")):
+            if cl == "-":
+                cells.append("–")
+                continue
             views = json.load(open(f"{out}/{f}-{cam}-{cl}.json"))
             right = sum(truth(v["view"]) == v["best"] for v in views)
-            cells.append(f"{100 * right / len(views):.1f}")
+            cells.append(f"{100 * right / len(views):.1f}" + (" (setnet)" if cl == "setnet" else ""))
     print(f"| {f} | " + " | ".join(cells) + " |")
 PY

@@ -110,6 +110,28 @@ sed 's/^# bins=32$/# bins=16/' "$cache" > "$work/bins16.csv"
 check "features with other bins are refused" test $? -ne 0
 check "the mismatch names the parameter" grep -q "bins: model 32, features 16" "$work/mismatch.err"
 
+# The set network over the keypoints: trained, saved, and a view classified from its file as from its
+# cached row; features that are not the keypoints, and a nearest-reference open set over them, are one line.
+"$KT" train "$work/ds" --features kpset --classifier setnet --set-epochs 20 -q --out "$work/setnet"
+check "train --classifier setnet writes the sidecar and the network" \
+  test "$(jq -r '.classifier + " " + .weights + " " + (.inputs | tostring)' "$work/setnet/model.json")" = "setnet model.pt 193"
+"$KT" classify "$work/setnet" "$cache" -q > "$work/setnet_cache.txt"
+"$KT" classify "$work/setnet" "$work/ds/bottle/ycb_006_mustard_bottle/e60/a90.0.pcd" -q > "$work/setnet_one.txt"
+check "the set network: a view and its cached row classify alike" test \
+  "$(cut -f2,3 "$work/setnet_one.txt")" = \
+  "$(grep '^bottle/ycb_006_mustard_bottle/e60/a90.0	' "$work/setnet_cache.txt" | cut -f2,3)"
+check "the set network names most of its 96 training views (chance 1 in 4)" \
+  test "$(awk -F'\t' '{split($1, p, "/"); if (p[2] == $2) n++} END {print n + 0}' "$work/setnet_cache.txt")" -ge 72
+"$KT" train "$work/ds" --features kpd2 --classifier setnet -q --out "$work/setnet_pdf" 2> "$work/setnet_pdf.err"
+check "setnet on PDFs: exit 1" test $? -eq 1
+check "setnet on PDFs: one line" test "$(cat "$work/setnet_pdf.err")" = \
+  "keyturn: set network: 32 feature columns; it needs the keypoints first (features 'kpset' or 'kpset+…', 193 values)"
+"$KT" train "$work/ds" --features kpset --classifier setnet --label category --open-set knn-relative -q \
+  --out "$work/setnet_knn" 2> "$work/setnet_knn.err"
+check "a nearest-reference open set over the keypoints: one line" grep -q \
+  "^keyturn: open-set method 'knn-relative' measures distances between feature rows, and block 'kpset' lists keypoints in no fixed order: use the max-probability method$" \
+  "$work/setnet_knn.err"
+
 "$KT" consistency "$work/ds" --object can/ycb_002_master_chef_can --out "$work/cons" -q
 check "consistency writes CSV and one plot per elevation" test -s "$work/cons/consistency.csv" -a -s "$work/cons/consistency_e30.png" -a -s "$work/cons/consistency_e60.png"
 check "the first view is identical to itself" \

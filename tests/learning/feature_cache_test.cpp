@@ -127,8 +127,9 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
   EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-5663d6ab80b6e754.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
-  // 6 keypoint + 3 shape + 6 random-keypoint + 7 scaled blocks of 32 bins, size (4), ESF, VFH, OUR-CVFH.
-  EXPECT_EQ(all.width(), 22 * 32 + 4 + 640 + 308 + 308);
+  // 6 keypoint + 3 shape + 6 random-keypoint + 7 scaled blocks of 32 bins, size (4), the keypoints
+  // (K and 64 × 3 coordinates), ESF, VFH, OUR-CVFH.
+  EXPECT_EQ(all.width(), 22 * 32 + 4 + 193 + 640 + 308 + 308);
   EXPECT_THROW(featureLayout({"kpd9"}, DescriptorOptions()), Error);
 
   const keyturn::test::ScratchFolder scratch("feature_cache_refill");
@@ -163,6 +164,52 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   ASSERT_EQ(merged.rows.size(), 3u);
   for (std::size_t v = 0; v < 3; ++v) EXPECT_TRUE(sameValues(merged.rows[v].values, t3.rows[v].values)) << v;
   EXPECT_THROW(describeCacheShard({sharded.string(), views, o, 1, nullptr}, 2, 2), Error);
+}
+
+// A cache written before a block existed (here: without the keypoints) keeps its rows; only the new
+// block is described, and it holds what a fresh describe gives.
+TEST(FeatureCache, ABlockAddedLaterIsDescribedAloneIntoTheCache) {
+  const keyturn::test::ScratchFolder scratch("feature_cache_new_block");
+  const std::filesystem::path& root = scratch.path;
+  const auto views = writeViews(root);
+  DescriptorOptions o;
+  o.histogram.bins = 8;
+  const FeatureTable fresh = loadOrDescribeCache({root.string(), views, o, 2, nullptr});
+  const std::string path = featureCachePath(root.string(), o);
+  // The same cache as an older build wrote it: every block but "kpset"; a marker in one value shows
+  // whether the rows were kept or described again.
+  std::vector<std::string> older;
+  for (const auto& b : cacheBlocks())
+    if (b != "kpset") older.push_back(b);
+  FeatureTable old = featureLayout(older, o);
+  for (const auto& row : fresh.rows) {
+    FeatureRow r = row;
+    r.values.clear();
+    for (const auto& b : older) {
+      const std::vector<float> v = block(fresh, row, b);
+      r.values.insert(r.values.end(), v.begin(), v.end());
+    }
+    old.rows.push_back(r);
+  }
+  old.rows[1].values[static_cast<std::size_t>(old.offset("kpa3"))] = 0.125f;
+  saveFeatureTable(path, old);
+
+  Counting upgrade;
+  const FeatureTable t = loadOrDescribeCache({root.string(), views, o, 2, &upgrade});
+  EXPECT_EQ(upgrade.begun, 3u);
+  ASSERT_EQ(upgrade.notes.size(), 1u);
+  EXPECT_EQ(upgrade.notes[0], "adding kpset to the feature cache of 3 views");
+  ASSERT_EQ(t.blocks, cacheBlocks());
+  ASSERT_EQ(t.rows.size(), 3u);
+  EXPECT_EQ(t.rows[1].values[static_cast<std::size_t>(t.offset("kpa3"))], 0.125f) << "the cached rows are kept";
+  for (std::size_t v = 0; v < 3; ++v) {
+    EXPECT_TRUE(sameValues(block(t, t.rows[v], "kpset"), block(fresh, fresh.rows[v], "kpset"))) << v;
+    EXPECT_EQ(block(t, t.rows[v], "kpset")[0], static_cast<float>(fresh.rows[v].keypoints)) << v;
+    EXPECT_TRUE(sameValues(block(t, t.rows[v], "esf"), block(fresh, fresh.rows[v], "esf"))) << v;
+  }
+  Counting again;
+  loadOrDescribeCache({root.string(), views, o, 2, &again});
+  EXPECT_EQ(again.begun, 0u) << "the upgraded cache was written";
 }
 
 // A describe stopped part-way (Ctrl-C, a killed job: here the progress throws at the third view) keeps

@@ -130,10 +130,10 @@ py::object train(const Features& f, const py::object& blocks, const py::object& 
   learning::ClassifierParams params;
   params.kind = classifier;
   params.seed = seed;
-  if (classifier != "xgboost" && classifier != "mlp")
-    throw py::value_error("train: classifier must be 'xgboost' or 'mlp', not '" + classifier + "'");
+  if (classifier != "xgboost" && classifier != "mlp" && classifier != "setnet")
+    throw py::value_error("train: classifier must be 'xgboost', 'mlp' or 'setnet', not '" + classifier + "'");
   if (!rounds.is_none()) params.xgboost.rounds = rounds.cast<int>();
-  if (!epochs.is_none()) params.mlp.epochs = epochs.cast<int>();
+  if (!epochs.is_none()) params.mlp.epochs = params.setnet.epochs = epochs.cast<int>();
   if (params.xgboost.rounds < 1 || params.mlp.epochs < 1) throw py::value_error("train: rounds and epochs must be >= 1");
   learning::LabelKind kind = learning::LabelKind::Instance;
   std::vector<std::string> use = f.blocks;
@@ -250,7 +250,8 @@ void bindDataset(py::module_& m) {
         "epochs=None, open_set='none', false_accept=0.05) -> Model\n\n"
         "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
         "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
-        "default 30) or the libtorch network (epochs, default 30). Model.save writes it; Model.classify applies it "
+        "default 30), the libtorch network (epochs, default 30) or, classifier='setnet', the set network over the "
+        "keypoints (blocks 'kpset' first; epochs, default 30). Model.save writes it; Model.classify applies it "
         "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn-relative', 'knn' or "
         "'max-probability' (a threshold calibrated for false_accept on categories left out in turn; needs at least 3 "
         "categories) or 'auto' (knn-relative where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "

@@ -4,10 +4,10 @@
 #include <torch/torch.h>
 
 #include <algorithm>
-#include <mutex>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/plugin.h"
+#include "torch_lock.h"
 
 namespace keyturn::learning {
 
@@ -46,18 +46,6 @@ struct MlpNetImpl : torch::nn::Module {
   std::vector<torch::nn::Linear> layers;
 };
 TORCH_MODULE(MlpNet);
-
-// One network trains or predicts at a time. Parameter initialisation draws from libtorch's global
-// generator; and two networks trained on two threads at once came out different from the same
-// network trained alone, run to run, even with OMP_NUM_THREADS=1 (Debian's libtorch 1.13 over its
-// serial OpenBLAS; which shared state it is was not isolated):
-// ClassifierKind.FoldsTrainedInParallelThreadsMatchSequentialOnes on 6,000 rows, and evaluate's
-// figures moved by up to 0.5 points between runs. The networks are small; XGBoost, the costlier
-// classifier, still trains folds in parallel.
-std::mutex& torchMutex() {
-  static std::mutex m;
-  return m;
-}
 
 // Missing values (NaN: a block a view could not give) enter the network as 0, and so do ±inf
 // (no feature is infinite; nan_to_num's default made them ±3.4e38, then NaN probabilities).

@@ -18,7 +18,17 @@ nlohmann::json classifierParamsJson(const ClassifierParams& p) {
             {"learning_rate", p.mlp.learning_rate},
             {"epochs", p.mlp.epochs},
             {"batch", p.mlp.batch},
-            {"sigmoid_output", p.mlp.sigmoid_output}}}};
+            {"sigmoid_output", p.mlp.sigmoid_output}}},
+          {"setnet",
+           {{"width", p.setnet.width},
+            {"hidden", p.setnet.hidden},
+            {"dropout", p.setnet.dropout},
+            {"learning_rate", p.setnet.learning_rate},
+            {"epochs", p.setnet.epochs},
+            {"batch", p.setnet.batch},
+            {"min_steps", p.setnet.min_steps},
+            {"keypoint_dropout", p.setnet.keypoint_dropout},
+            {"jitter_m", p.setnet.jitter_m}}}};
 }
 
 }  // namespace keyturn::learning

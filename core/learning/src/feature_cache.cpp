@@ -36,6 +36,7 @@ const std::map<std::string, int> kPeerSizes = {{"esf", 640}, {"vfh", 308}, {"our
 const std::string kRandom = "u_";  // a keypoint block on random keypoints
 const std::string kScaled = "s_";  // a length block in RMS radii of the view (view_size.h)
 const std::string kSize = "size";  // the view's RMS radius and spreads (metres)
+const std::string kKeypointSet = "kpset";  // the keypoints themselves (keypointSetBlock)
 
 bool has(const FeatureTable& t, const std::string& block) { return t.offset(block) >= 0; }
 
@@ -63,8 +64,8 @@ DescriptorOptions optionsFor(const FeatureTable& layout, const DescriptorOptions
     o.random_keypoints_twin = o.random_keypoints_twin || random;
     o.scaled_twin = o.scaled_twin || scaled;
   }
-  // The size block alone still needs the view described (its points, after the filter).
-  if (o.features.empty() && has(layout, kSize)) o.features.push_back(Feature::KPD2);
+  // The size block or the keypoints alone still need the view described (its points, after the filter).
+  if (o.features.empty() && (has(layout, kSize) || has(layout, kKeypointSet))) o.features.push_back(Feature::KPD2);
   return o;
 }
 
@@ -94,6 +95,7 @@ FeatureRow describeCloud(const Cloud& cloud, const DescriptorOptions& options, c
         if (!d.scaled_pdfs.empty()) put(row, layout, kScaled + featureName(o.features[f]), d.scaled_pdfs[f]);
       }
       put(row, layout, kSize, d.size.block());
+      put(row, layout, kKeypointSet, keypointSetBlock(d.keypoints));
       if (d.low_keypoints) note(row, "only " + std::to_string(row.keypoints) + " keypoints");
     } catch (const EmptyViewError& e) {
       row.no_object = true;
@@ -199,6 +201,7 @@ std::string specHash(const DescriptorOptions& options) {
 
 BlockName parseBlockName(const std::string& name) {
   if (kPeerSizes.count(name)) return {BlockName::Peer};
+  if (name == kKeypointSet) return {BlockName::KeypointSet};
   if (name == kSize) return {BlockName::Size};
   BlockName b;
   std::string feature = name;
@@ -226,6 +229,7 @@ const std::vector<std::string>& cacheBlocks() {
       for (Feature f : *fs)
         if (!isAngleFeature(f)) b.push_back(kScaled + featureName(f));
     b.push_back(kSize);
+    b.push_back(kKeypointSet);
     for (const char* p : {"esf", "vfh", "ourcvfh"}) b.push_back(p);
     return b;
   }();
@@ -239,6 +243,7 @@ FeatureTable featureLayout(const std::vector<std::string>& blocks, const Descrip
     t.blocks.push_back(b);
     t.sizes.push_back(name.kind == BlockName::Peer   ? kPeerSizes.at(b)
                       : name.kind == BlockName::Size ? kSizeBlockWidth
+                      : name.kind == BlockName::KeypointSet ? kKeypointSetWidth
                                                      : options.histogram.bins);
   }
   t.spec = featureSpec(options);
@@ -270,6 +275,51 @@ std::string describeCacheShard(const FeatureCache& c, int shard, int shards) {
   return path;
 }
 
+namespace {
+
+bool isSubset(const std::vector<std::string>& some, const std::vector<std::string>& all) {
+  return std::all_of(some.begin(), some.end(),
+                     [&](const std::string& b) { return std::find(all.begin(), all.end(), b) != all.end(); });
+}
+
+// A cache written before a block was added (the same parameters, fewer blocks): its rows keep what
+// they hold and only the new blocks are described, instead of every block of every view again.
+FeatureTable withNewBlocks(const FeatureCache& c, FeatureTable old, const FeatureTable& layout) {
+  std::vector<std::string> added;
+  for (const auto& b : layout.blocks)
+    if (std::find(old.blocks.begin(), old.blocks.end(), b) == old.blocks.end()) added.push_back(b);
+  const FeatureTable sub = featureLayout(added, c.options);
+  std::map<std::string, std::size_t> index;
+  for (std::size_t i = 0; i < c.views.size(); ++i) index[c.views[i].id] = i;
+  std::vector<std::size_t> which;
+  std::vector<std::size_t> rows_of;
+  for (std::size_t r = 0; r < old.rows.size(); ++r)
+    if (const auto it = index.find(old.rows[r].id); it != index.end()) which.push_back(it->second), rows_of.push_back(r);
+  std::string names;
+  for (const auto& b : added) names += (names.empty() ? "" : ", ") + b;
+  if (c.progress) c.progress->note("adding " + names + " to the feature cache of " + std::to_string(which.size()) + " views");
+  if (c.progress) c.progress->begin(which.size());
+  const std::vector<FeatureRow> described = describeRows(c.views, which, c.options, sub, c.jobs, c.progress);
+  if (c.progress) c.progress->end();
+  FeatureTable t = layout;
+  for (std::size_t k = 0; k < which.size(); ++k) {
+    FeatureRow row = std::move(old.rows[rows_of[k]]);
+    std::vector<float> values(static_cast<std::size_t>(layout.width()), std::nanf(""));
+    for (std::size_t b = 0; b < layout.blocks.size(); ++b) {
+      const std::string& name = layout.blocks[b];
+      const bool is_new = sub.offset(name) >= 0;
+      const std::vector<float>& from = is_new ? described[k].values : row.values;
+      const int at = is_new ? sub.offset(name) : old.offset(name);
+      std::copy_n(from.begin() + at, layout.sizes[b], values.begin() + layout.offset(name));
+    }
+    row.values = std::move(values);
+    t.rows.push_back(std::move(row));
+  }
+  return t;
+}
+
+}  // namespace
+
 FeatureTable loadOrDescribeCache(const FeatureCache& c) {
   const std::string path = featureCachePath(c.dataset, c.options);
   const FeatureTable layout = featureLayout(cacheBlocks(), c.options);
@@ -286,7 +336,13 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
   } else {
     mergeShards(c.dataset, specHash(c.options), t, c.progress);
   }
-  if (t.blocks != layout.blocks || t.spec != layout.spec) t = layout;
+  bool upgraded = false;
+  if (t.spec == layout.spec && t.blocks != layout.blocks && isSubset(t.blocks, layout.blocks) && !t.rows.empty()) {
+    t = withNewBlocks(c, std::move(t), layout);
+    upgraded = true;
+  } else if (t.blocks != layout.blocks || t.spec != layout.spec) {
+    t = layout;
+  }
   // Keep cached rows of views still listed; describe the rest.
   std::map<std::string, FeatureRow> have;
   for (auto& row : t.rows) have[row.id] = std::move(row);
@@ -315,7 +371,7 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
     if (c.progress) c.progress->end();
   }
   for (const auto& v : c.views) t.rows.push_back(std::move(have[v.id]));
-  if (!missing.empty() || !cached) save(path, t);
+  if (!missing.empty() || !cached || upgraded) save(path, t);
   return t;
 }
 

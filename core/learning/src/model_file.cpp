@@ -27,7 +27,7 @@ namespace {
 constexpr const char* kFormat = "keyturn-model";
 constexpr int kVersion = 1;
 
-std::string weightsName(const std::string& kind) { return kind == "mlp" ? "model.pt" : "model.xgb.json"; }
+std::string weightsName(const std::string& kind) { return kind == "xgboost" ? "model.xgb.json" : "model.pt"; }
 
 json toJson(const ModelInfo& m) {
   json j = classifierParamsJson(m.params);
@@ -58,7 +58,8 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
       throw Error(source + ": model format version " + j.at("version").dump() + " is not supported (expected 1)");
     auto& p = m.params;
     p.kind = j.at("classifier").get<std::string>();
-    if (p.kind != "xgboost" && p.kind != "mlp") throw Error(source + ": unknown classifier '" + p.kind + "'");
+    if (p.kind != "xgboost" && p.kind != "mlp" && p.kind != "setnet")
+      throw Error(source + ": unknown classifier '" + p.kind + "'");
     p.seed = jsonInteger(j, "seed", std::uint64_t{0}, std::numeric_limits<std::uint64_t>::max(), source);
     const auto& x = j.at("xgboost");
     p.xgboost.eta = x.at("eta").get<double>();
@@ -74,6 +75,19 @@ ModelInfo parseModelSidecar(const std::string& text, const std::string& source) 
     p.mlp.epochs = jsonInteger(n, "epochs", 0, most, source + ": mlp");
     p.mlp.batch = jsonInteger(n, "batch", 0, most, source + ": mlp");
     p.mlp.sigmoid_output = n.at("sigmoid_output").get<bool>();
+    if (j.contains("setnet")) {  // models before the set network have no such entry
+      const auto& sn = j.at("setnet");
+      p.setnet.width = jsonInteger(sn, "width", 1, 1 << 12, source + ": setnet");
+      p.setnet.hidden = jsonInteger(sn, "hidden", 1, 1 << 16, source + ": setnet");
+      p.setnet.dropout = sn.at("dropout").get<double>();
+      p.setnet.learning_rate = sn.at("learning_rate").get<double>();
+      p.setnet.epochs = jsonInteger(sn, "epochs", 0, most, source + ": setnet");
+      p.setnet.batch = jsonInteger(sn, "batch", 1, most, source + ": setnet");
+      p.setnet.min_steps = jsonInteger(sn, "min_steps", 0, 0, most, source + ": setnet");
+      p.setnet.keypoint_dropout = sn.value("keypoint_dropout", 0.0);
+      p.setnet.jitter_m = sn.value("jitter_m", 0.0);
+      if (p.setnet.dropout < 0 || p.setnet.dropout >= 1) throw Error(source + ": setnet: dropout must be in [0, 1)");
+    }
     m.classes = j.at("classes").get<std::vector<std::string>>();
     m.blocks = j.at("blocks").get<std::vector<std::string>>();
     m.inputs = jsonInteger(j, "inputs", 0, most, source);

@@ -16,6 +16,7 @@ OpenSet calibrateModelOpenSet(const FeatureTable& t, const Matrix& x, const std:
   OpenSetOptions o = options;
   o.methods.resize(1);
   checkOpenSetDistanceFor(o.distance, blocks);
+  checkOpenSetMethodsFor(o.methods, blocks);
   std::vector<std::string> categories;
   for (const auto& row : t.rows) categories.push_back(row.cls);
   // Turns need every view's angle (a view without one would leave holes the turns skip silently).

@@ -60,6 +60,16 @@ void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std:
   }
 }
 
+void checkOpenSetMethodsFor(const std::vector<std::string>& methods, const std::vector<std::string>& blocks) {
+  for (const auto& m : methods) {
+    if (!keepsReferences(m)) continue;
+    for (const auto& b : blocks)
+      if (parseBlockName(b).kind == BlockName::KeypointSet)
+        throw Error("open-set method '" + m + "' measures distances between feature rows, and block '" + b +
+                    "' lists keypoints in no fixed order: use the max-probability method");
+  }
+}
+
 double openSetDistance(const OpenSet& s, const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
   if (s.distance == "rms") return detail::rmsDistance(a, b);
   // The rows as described: a standardised value times the column's spread plus its mean (a missing

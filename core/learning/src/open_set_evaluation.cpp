@@ -81,6 +81,7 @@ FoldOutcome evaluateOpenSetFold(const FeatureTable& table, const std::vector<std
   const int classes = static_cast<int>(present.size());
   if (classes < 2) throw Error("fold '" + fold.name + "' trains on fewer than two classes");
   checkOpenSetDistanceFor(options.distance, blocks);
+  checkOpenSetMethodsFor(options.methods, blocks);
   const Matrix xtrain = table.select(blocks, train);
   const auto t0 = std::chrono::steady_clock::now();
   auto clf = makeClassifier(params);

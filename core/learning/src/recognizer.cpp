@@ -35,19 +35,20 @@ Recognizer::Recognizer(Model model, std::string source) : model_(std::move(model
     if (!parsed || parsed->kind == BlockName::Peer || parsed->kind == BlockName::RandomTwin)
       throw Error(source_ + ": block '" + b +
                   "' is not computed live (live recognition uses kpd2, kpd3, kpa3, gkpd1, gkpd2, gkpcd2, d1–d4, "
-                  "a3, their s_ twins and size)");
+                  "a3, their s_ twins, size and kpset)");
     live.size = parsed->kind == BlockName::Size;
+    live.keypoint_set = parsed->kind == BlockName::KeypointSet;
     live.scaled = parsed->kind == BlockName::ScaledTwin;
-    if (!live.size) {
+    if (!live.size && !live.keypoint_set) {
       const auto it = std::find(options_.features.begin(), options_.features.end(), parsed->feature);
       live.feature = static_cast<std::size_t>(it - options_.features.begin());
       if (it == options_.features.end()) options_.features.push_back(parsed->feature);
     }
     options_.scaled_twin = options_.scaled_twin || live.scaled;
-    inputs += live.size ? kSizeBlockWidth : options_.histogram.bins;
+    inputs += live.size ? kSizeBlockWidth : live.keypoint_set ? kKeypointSetWidth : options_.histogram.bins;
     live_.push_back(live);
   }
-  // The size block alone still needs the view described (its points, after the filter).
+  // The size block or the keypoints alone still need the view described (its points, after the filter).
   if (options_.features.empty()) options_.features.push_back(Feature::KPD2);
   if (inputs != model_.info.inputs)
     throw Error(source_ + ": " + std::to_string(live_.size()) + " blocks of " + std::to_string(inputs) +
@@ -81,9 +82,10 @@ Recognition Recognizer::describe(const Cloud& cloud, bool with_geodesic_paths) c
   r.describe_ms = msSince(t1);
   r.block_names = blockNames();
   for (const auto& b : live_) {
-    r.blocks.push_back(b.size     ? r.descriptor.size.block()
-                       : b.scaled ? r.descriptor.scaled_pdfs[b.feature]
-                                  : r.descriptor.pdfs[b.feature]);
+    r.blocks.push_back(b.size           ? r.descriptor.size.block()
+                       : b.keypoint_set ? keypointSetBlock(r.descriptor.keypoints)
+                       : b.scaled       ? r.descriptor.scaled_pdfs[b.feature]
+                                        : r.descriptor.pdfs[b.feature]);
     for (double v : r.blocks.back()) r.features.push_back(static_cast<float>(v));
   }
   r.total_ms = msSince(t0);

@@ -14,6 +14,7 @@
 #include "keyturn/core/descriptor.h"
 #include "keyturn/dataset/dataset_views.h"
 #include "keyturn/learning/feature_table.h"
+#include "keyturn/learning/keypoint_set.h"
 
 namespace keyturn::learning {
 
@@ -32,9 +33,10 @@ class DescribeProgress {
 };
 
 // What a block name says: a feature's PDF ("kpd2"), its twin on random keypoints ("u_kpd2"), its
-// scale-normalised twin ("s_kpd2"; lengths only), the size block ("size") or a peer ("esf").
+// scale-normalised twin ("s_kpd2"; lengths only), the size block ("size"), a peer ("esf") or the
+// keypoints themselves ("kpset", keypoint_set.h).
 struct BlockName {
-  enum Kind { Pdf, RandomTwin, ScaledTwin, Size, Peer } kind = Pdf;
+  enum Kind { Pdf, RandomTwin, ScaledTwin, Size, Peer, KeypointSet } kind = Pdf;
   Feature feature = Feature::KPD2;  // for Pdf and the twins
 };
 // Throws keyturn::Error for a name that is none of these.

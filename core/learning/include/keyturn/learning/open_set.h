@@ -54,6 +54,9 @@ const std::vector<std::string>& openSetDistances();
 void checkOpenSetDistance(const std::string& distance);
 // As above, and l1 or chi2 (which compare PDFs) over a block that is not a PDF (size, a peer) too.
 void checkOpenSetDistanceFor(const std::string& distance, const std::vector<std::string>& blocks);
+// Throws keyturn::Error when a method that measures distances to references (knn, knn-relative) is
+// asked over the keypoints themselves ("kpset"): their order is describe's, not a feature's.
+void checkOpenSetMethodsFor(const std::vector<std::string>& methods, const std::vector<std::string>& blocks);
 
 struct OpenSet {
   std::string method;          // "" : closed-set (every view gets a class)

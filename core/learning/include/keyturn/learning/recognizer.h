@@ -52,11 +52,12 @@ class Recognizer {
   Recognition describe(const Cloud& cloud, bool with_geodesic_paths = false) const;
 
  private:
-  // A block computed live: a feature's PDF, its scale-normalised twin (s_) or the size block.
+  // A block computed live: a feature's PDF, its scale-normalised twin (s_), the size block or the
+  // keypoints themselves (kpset).
   struct LiveBlock {
     std::string name;
     std::size_t feature = 0;  // index into options_.features
-    bool scaled = false, size = false;
+    bool scaled = false, size = false, keypoint_set = false;
   };
   Model model_;
   std::string source_;
