@@ -27,10 +27,14 @@ void DescribeProgressLine::note(const std::string& line) {
 void DescribeProgressLine::warning(const std::string& line) { std::cerr << "keyturn: " << line << "\n"; }
 
 learning::FeatureTable datasetFeatures(const std::string& dataset, const DescriptorOptions& options, int jobs,
-                                       bool quiet) {
+                                       bool quiet, const std::vector<std::string>& feature_sets) {
   DescribeProgressLine progress(quiet);
+  std::vector<std::string> blocks;
+  for (const auto& set : feature_sets)
+    for (const auto& choice : learning::featureSetChoices(set))
+      for (const auto& b : learning::featureSetBlocks(choice)) blocks.push_back(b);
   return learning::datasetFeatures({dataset, datasetViews(dataset), options, jobs, &progress},
-                                   learning::CacheWrite::Fill).table;
+                                   learning::CacheWrite::Fill, blocks).table;
 }
 
 }  // namespace keyturn::app

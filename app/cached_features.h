@@ -32,7 +32,9 @@ class DescribeProgressLine final : public learning::DescribeProgress {
   std::unique_ptr<Progress> bar_;
 };
 
+// `feature_sets`: the sets the caller reads ("kpd2+kpa3", "a|b"); an older cache gains the blocks of
+// them it lacks (learning::FeatureCache::needs).
 learning::FeatureTable datasetFeatures(const std::string& dataset, const DescriptorOptions& options, int jobs,
-                                       bool quiet);
+                                       bool quiet, const std::vector<std::string>& feature_sets = {});
 
 }  // namespace keyturn::app

@@ -38,7 +38,8 @@ int runCrossSensorEvaluate(const CrossSensorEvaluateArgs& a) {
   o.label = a.label;
   o.jobs = a.jobs;
   const learning::CrossSensorData data = learning::crossSensorData(
-      datasetFeatures(a.dataset, a.options, a.jobs, a.quiet), datasetFeatures(a.other_camera, a.options, a.jobs, a.quiet),
+      datasetFeatures(a.dataset, a.options, a.jobs, a.quiet, o.feature_sets),
+      datasetFeatures(a.other_camera, a.options, a.jobs, a.quiet, o.feature_sets),
       cameras);
   Progress progress("evaluate", learning::crossSensorTrainings(data, o), !a.quiet);
   const learning::CrossSensorResult result = learning::evaluateCrossSensor(data, o, [&] { progress.advance(); });

@@ -119,7 +119,7 @@ int runEvaluate(const EvaluateArgs& a) {
   const auto describe = [&a](const std::string& dataset, int bins) {
     DescriptorOptions options = a.flags.options;
     options.histogram.bins = bins;
-    return datasetFeatures(dataset, options, a.jobs, a.quiet);
+    return datasetFeatures(dataset, options, a.jobs, a.quiet, splitList(a.features));
   };
   learning::EvaluationRun run = learning::prepareEvaluation(
       plan, [&](int bins) { return describe(a.dataset, bins); }, describe);

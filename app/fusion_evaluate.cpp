@@ -94,7 +94,7 @@ void checkOneFeatureSetAndClassifier(const FusionEvaluateArgs& a, const std::str
 
 PosedTable posedTable(const FusionEvaluateArgs& a, const std::string& protocol) {
   PosedTable v;
-  v.table = datasetFeatures(a.dataset, a.options, a.jobs, a.quiet);
+  v.table = datasetFeatures(a.dataset, a.options, a.jobs, a.quiet, {a.features});
   const std::map<std::string, double> poses = dataset::datasetAzimuths(a.dataset);
   std::set<std::string> elevations;
   std::map<std::string, std::set<std::string>> instances;

@@ -61,11 +61,11 @@ int runTrain(const TrainArgs& a) {
   const learning::LabelKind kind = learning::parseLabelKind(a.label);
   learning::OpenSetOptions open_set = a.open_set;
   setOpenSetFlag(open_set, a.open_set_method);  // before describing: a wrong name fails at once
-  learning::FeatureTable t = datasetFeatures(a.datasets.front(), a.flags.options, a.jobs, a.quiet);
+  learning::FeatureTable t = datasetFeatures(a.datasets.front(), a.flags.options, a.jobs, a.quiet, {a.features});
   std::vector<double> azimuths = datasetRowAzimuths(a.datasets.front(), t);
   setDatasetCamera(a.datasets.front(), t, 0);
   for (std::size_t d = 1; d < a.datasets.size(); ++d) {
-    const learning::FeatureTable more = datasetFeatures(a.datasets[d], a.flags.options, a.jobs, a.quiet);
+    const learning::FeatureTable more = datasetFeatures(a.datasets[d], a.flags.options, a.jobs, a.quiet, {a.features});
     const std::size_t from = t.rows.size();
     learning::appendRows(t, more, a.datasets[d]);
     setDatasetCamera(a.datasets[d], t, from);

@@ -166,8 +166,9 @@ TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   EXPECT_THROW(describeCacheShard({sharded.string(), views, o, 1, nullptr}, 2, 2), Error);
 }
 
-// A cache written before a block existed (here: without the keypoints) keeps its rows; only the new
-// block is described, and it holds what a fresh describe gives.
+// A cache written before a block existed (here: without the keypoints) is read as it is while no
+// caller reads the new block; a caller that does gets it described alone, into the cache, with the
+// values a fresh describe gives, and the cached rows kept.
 TEST(FeatureCache, ABlockAddedLaterIsDescribedAloneIntoTheCache) {
   const keyturn::test::ScratchFolder scratch("feature_cache_new_block");
   const std::filesystem::path& root = scratch.path;
@@ -194,8 +195,16 @@ TEST(FeatureCache, ABlockAddedLaterIsDescribedAloneIntoTheCache) {
   old.rows[1].values[static_cast<std::size_t>(old.offset("kpa3"))] = 0.125f;
   saveFeatureTable(path, old);
 
+  Counting as_it_is;
+  const FeatureTable older_read = loadOrDescribeCache({root.string(), views, o, 2, &as_it_is});
+  EXPECT_EQ(as_it_is.begun, 0u) << "no caller reads kpset: nothing described";
+  EXPECT_EQ(older_read.blocks, older);
+  EXPECT_EQ(older_read.rows[1].values[static_cast<std::size_t>(older_read.offset("kpa3"))], 0.125f);
+
   Counting upgrade;
-  const FeatureTable t = loadOrDescribeCache({root.string(), views, o, 2, &upgrade});
+  FeatureCache reading_kpset{root.string(), views, o, 2, &upgrade};
+  reading_kpset.needs = {"kpa3", "kpset"};
+  const FeatureTable t = loadOrDescribeCache(reading_kpset);
   EXPECT_EQ(upgrade.begun, 3u);
   ASSERT_EQ(upgrade.notes.size(), 1u);
   EXPECT_EQ(upgrade.notes[0], "adding kpset to the feature cache of 3 views");
@@ -208,7 +217,8 @@ TEST(FeatureCache, ABlockAddedLaterIsDescribedAloneIntoTheCache) {
     EXPECT_TRUE(sameValues(block(t, t.rows[v], "esf"), block(fresh, fresh.rows[v], "esf"))) << v;
   }
   Counting again;
-  loadOrDescribeCache({root.string(), views, o, 2, &again});
+  reading_kpset.progress = &again;
+  EXPECT_EQ(loadOrDescribeCache(reading_kpset).blocks, cacheBlocks());
   EXPECT_EQ(again.begun, 0u) << "the upgraded cache was written";
 }
 

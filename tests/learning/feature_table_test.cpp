@@ -100,6 +100,27 @@ TEST(FeatureTable, DatasetsTrainedOnTogetherKeepEveryRowAndRefuseOtherFeatures) 
   EXPECT_EQ(keyturn::test::errorOf([&] { appendRows(t, other, "openni2"); }),
             "openni2: its features have other blocks than the dataset's");
   EXPECT_EQ(t.rows.size(), 5u) << "a refused dataset adds no row";
+  EXPECT_EQ(t.blocks, (std::vector<std::string>{"kpd2", "esf"}));
+}
+
+// A dataset whose cache was written before a block existed lacks it: the two train on the blocks both
+// have, with every value where it was.
+TEST(FeatureTable, ADatasetWithAnOlderCacheTrainsOnTheBlocksBothHave) {
+  for (const bool older_first : {false, true}) {
+    FeatureTable newer = sample(0, 2), older = sample(2, 1);
+    older.blocks = {"kpd2"};
+    older.sizes = {3};
+    for (auto& r : older.rows) r.values.resize(3);
+    FeatureTable t = older_first ? older : newer;
+    appendRows(t, older_first ? newer : older, "other");
+    EXPECT_EQ(t.blocks, std::vector<std::string>{"kpd2"}) << older_first;
+    ASSERT_EQ(t.rows.size(), 3u);
+    const auto& from_newer = t.rows[older_first ? 1 : 0];
+    const auto& from_older = t.rows[older_first ? 0 : 2];
+    EXPECT_EQ(from_newer.values, (std::vector<float>{0.f, 0.5f, 1.00000036f})) << older_first;
+    EXPECT_EQ(from_older.values, (std::vector<float>{0.5f, 0.5f, 1.00000036f})) << older_first;
+    EXPECT_EQ(t.select({"kpd2"}, {0, 1, 2}).rows(), 3);
+  }
 }
 
 TEST(FeatureTable, DamagedCachesNameTheLine) {

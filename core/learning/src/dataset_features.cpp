@@ -23,14 +23,18 @@ std::optional<std::vector<FeatureRow>> rowsOf(const FeatureTable& t, const std::
   return rows;
 }
 
-// The cache file's table restricted to the views, when it was made with these options and holds them all.
-std::optional<FeatureTable> completeCache(const std::string& path, const FeatureCache& c) {
+// The cache file's table restricted to the views, when it was made with these options and holds them
+// all and the blocks (every cache block when none are named; an older cache may lack others).
+std::optional<FeatureTable> completeCache(const std::string& path, const FeatureCache& c,
+                                          const std::vector<std::string>& blocks) {
   std::error_code ec;
   if (!std::filesystem::exists(path, ec)) return std::nullopt;
   const FeatureTable layout = featureLayout(cacheBlocks(), c.options);
   try {
     FeatureTable t = loadFeatureTable(path);
-    if (t.blocks != layout.blocks || t.spec != layout.spec) return std::nullopt;
+    const auto has = [&t](const std::string& b) { return t.offset(b) >= 0; };
+    const std::vector<std::string>& wanted = blocks.empty() ? cacheBlocks() : blocks;
+    if (t.spec != layout.spec || !std::all_of(wanted.begin(), wanted.end(), has)) return std::nullopt;
     auto rows = rowsOf(t, c.views);
     if (!rows) return std::nullopt;
     t.rows = std::move(*rows);
@@ -44,8 +48,12 @@ std::optional<FeatureTable> completeCache(const std::string& path, const Feature
 
 DatasetFeatures datasetFeatures(const FeatureCache& c, CacheWrite write, const std::vector<std::string>& blocks) {
   const std::string path = featureCachePath(c.dataset, c.options);
-  if (write == CacheWrite::Fill) return {loadOrDescribeCache(c), path};
-  if (auto t = completeCache(path, c)) return {std::move(*t), path};
+  if (write == CacheWrite::Fill) {
+    FeatureCache reading = c;
+    reading.needs.insert(reading.needs.end(), blocks.begin(), blocks.end());
+    return {loadOrDescribeCache(reading), path};
+  }
+  if (auto t = completeCache(path, c, blocks)) return {std::move(*t), path};
   std::vector<std::string> unique;
   for (const auto& b : blocks.empty() ? cacheBlocks() : blocks)
     if (std::find(unique.begin(), unique.end(), b) == unique.end()) unique.push_back(b);

@@ -8,6 +8,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <set>
 #include <sstream>
 #include <thread>
 
@@ -338,8 +339,13 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
   }
   bool upgraded = false;
   if (t.spec == layout.spec && t.blocks != layout.blocks && isSubset(t.blocks, layout.blocks) && !t.rows.empty()) {
-    t = withNewBlocks(c, std::move(t), layout);
-    upgraded = true;
+    std::set<std::string> ids;
+    for (const auto& row : t.rows) ids.insert(row.id);
+    const bool new_views = std::any_of(c.views.begin(), c.views.end(), [&](const auto& v) { return !ids.count(v.id); });
+    if (new_views || !isSubset(c.needs, t.blocks)) {
+      t = withNewBlocks(c, std::move(t), layout);
+      upgraded = true;
+    }
   } else if (t.blocks != layout.blocks || t.spec != layout.spec) {
     t = layout;
   }

@@ -185,7 +185,49 @@ void checkSameFeatures(const FeatureTable& table, const FeatureTable& other, con
   }
 }
 
+namespace {
+
+FeatureTable withBlocks(const FeatureTable& t, const std::vector<std::string>& blocks) {
+  FeatureTable out;
+  out.spec = t.spec;
+  for (const auto& b : blocks) out.blocks.push_back(b), out.sizes.push_back(t.blockSize(b));
+  out.rows.reserve(t.rows.size());
+  for (const auto& row : t.rows) {
+    FeatureRow r = row;
+    r.values.clear();
+    for (const auto& b : blocks) {
+      const auto from = row.values.begin() + t.offset(b);
+      r.values.insert(r.values.end(), from, from + t.blockSize(b));
+    }
+    out.rows.push_back(std::move(r));
+  }
+  return out;
+}
+
+}  // namespace
+
+void keepCommonBlocks(FeatureTable& a, FeatureTable& b) {
+  if (a.blocks == b.blocks) return;
+  const auto within = [](const FeatureTable& x, const FeatureTable& y) {
+    return std::all_of(x.blocks.begin(), x.blocks.end(), [&y](const std::string& block) { return y.offset(block) >= 0; });
+  };
+  if (!within(a, b) && !within(b, a)) return;  // not an older cache of the same blocks: checkSameFeatures refuses it
+  std::vector<std::string> common;
+  for (const auto& block : a.blocks)
+    if (b.offset(block) >= 0) common.push_back(block);
+  if (common != a.blocks) a = withBlocks(a, common);
+  if (common != b.blocks) b = withBlocks(b, common);
+}
+
 void appendRows(FeatureTable& table, const FeatureTable& other, const std::string& other_name) {
+  if (other.blocks != table.blocks) {
+    FeatureTable mine = table, theirs = other;  // a refused dataset leaves the table as it was
+    keepCommonBlocks(mine, theirs);
+    checkSameFeatures(mine, theirs, other_name);
+    mine.rows.insert(mine.rows.end(), theirs.rows.begin(), theirs.rows.end());
+    table = std::move(mine);
+    return;
+  }
   checkSameFeatures(table, other, other_name);
   table.rows.insert(table.rows.end(), other.rows.begin(), other.rows.end());
 }

@@ -7,8 +7,12 @@
 
 namespace keyturn::learning {
 
-TwinRows appendTwins(FeatureTable& table, const FeatureTable& extra, const std::string& extra_name) {
-  checkSameFeatures(table, extra, extra_name);
+TwinRows appendTwins(FeatureTable& table, const FeatureTable& given_extra, const std::string& extra_name) {
+  FeatureTable extra = given_extra;  // an older cache may lack a block the other has: the blocks both have
+  FeatureTable mine = table;
+  keepCommonBlocks(mine, extra);
+  checkSameFeatures(mine, extra, extra_name);
+  table = std::move(mine);
   std::unordered_map<std::string, std::size_t> row_of;
   for (std::size_t r = 0; r < table.rows.size(); ++r) row_of.emplace(table.rows[r].id, r);
   TwinRows twins(table.rows.size());

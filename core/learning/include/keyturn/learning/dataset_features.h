@@ -19,8 +19,9 @@ struct DatasetFeatures {
   std::string cache;   // the cache file read or written; "" when described in memory
 };
 
-// `blocks` (Never only): the blocks to describe in memory when the cache cannot answer (a block named
-// twice is described once); every cache block when empty. Throws keyturn::Error for an unknown block.
+// `blocks`: the blocks the caller reads. Never: the blocks to describe in memory when the cache cannot
+// answer (a block named twice is described once); every cache block when empty. Fill: an older cache
+// gains those of them it lacks (FeatureCache::needs). Throws keyturn::Error for an unknown block.
 DatasetFeatures datasetFeatures(const FeatureCache& cache, CacheWrite write, const std::vector<std::string>& blocks = {});
 
 }  // namespace keyturn::learning

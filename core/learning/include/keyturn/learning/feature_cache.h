@@ -77,13 +77,18 @@ struct FeatureCache {
   // resumes where it stopped: the next run describes only the views the cache lacks.
   std::size_t checkpoint_views = 256;
   double checkpoint_s = 60;
+  // The blocks the caller will read. A cache written before a block existed (the same parameters,
+  // fewer blocks) gains the blocks of these it lacks, described alone for every view; a block no
+  // caller has read yet stays out of it (describing it costs the keypoints of every view again).
+  std::vector<std::string> needs;
 };
 
 // Describes the shard's views (i % shards == shard) into their shard file; returns its path.
 std::string describeCacheShard(const FeatureCache& cache, int shard, int shards);
 // The whole dataset's features: the cache if it is there, else merged shards if all are there,
 // else described now and cached. Views no longer in the list are dropped, new ones described (and
-// saved as they are, every cache.checkpoint_s).
+// saved as they are, every cache.checkpoint_s). An older cache without some blocks is returned with
+// the blocks it has, unless cache.needs names one it lacks or views are new (then it gains them).
 FeatureTable loadOrDescribeCache(const FeatureCache& cache);
 
 }  // namespace keyturn::learning

@@ -48,8 +48,11 @@ void saveFeatureTable(const std::string& path, const FeatureTable& table);
 FeatureTable loadFeatureTable(const std::string& path);
 // Throws keyturn::Error naming other_name when other's blocks or descriptor parameters differ from table's.
 void checkSameFeatures(const FeatureTable& table, const FeatureTable& other, const std::string& other_name);
-// other's rows after table's (checked by checkSameFeatures): several datasets' views trained on together.
-// Ids may repeat: the same view through another camera keeps its id.
+// When one table's blocks are all among the other's (a cache written before a block existed lacks it,
+// FeatureCache::needs), both keep only those, in a's order; otherwise both stay as they are.
+void keepCommonBlocks(FeatureTable& a, FeatureTable& b);
+// other's rows after table's (checked by checkSameFeatures, on the blocks both have): several datasets'
+// views trained on together. Ids may repeat: the same view through another camera keeps its id.
 void appendRows(FeatureTable& table, const FeatureTable& other, const std::string& other_name);
 // Rows of shards with identical blocks and spec, in order; duplicate ids are an error.
 FeatureTable mergeFeatureTables(const std::vector<FeatureTable>& shards, const std::vector<std::string>& names);
