@@ -154,6 +154,30 @@ TEST(SetNetwork, SavedModelPredictsIdenticallyAndSameSeedSameModel) {
   }
 }
 
+// Rows a cache can hold for a view gone wrong: no keypoints, NaN (not described), a K past the block,
+// coordinates of 1e30. Each gets probabilities, not NaN.
+TEST(SetNetwork, BrokenRowsGetProbabilities) {
+  const Sets train = makeSets(10, 6);
+  ClassifierParams params = setnetParams();
+  params.setnet.epochs = 2;
+  auto clf = makeClassifier(params);
+  clf->fit(train.x, train.y, 3);
+  Matrix x = Matrix::Zero(4, kKeypointSetWidth);
+  x.row(1).setConstant(std::nanf(""));
+  x(2, 0) = 1000.f;
+  x.row(2).tail(kKeypointSetWidth - 1).setConstant(0.01f);
+  x(3, 0) = 5.f;
+  x.row(3).segment(1, 15).setConstant(1e30f);
+  x(3, 1) = -1e30f;
+  const Matrix p = clf->predictProba(x);
+  ASSERT_EQ(p.rows(), 4);
+  for (Eigen::Index r = 0; r < 4; ++r) {
+    EXPECT_TRUE(p.row(r).allFinite()) << r;
+    EXPECT_NEAR(p.row(r).sum(), 1.f, 1e-5f) << r;
+  }
+  EXPECT_EQ(clf->predictProba(Matrix(0, kKeypointSetWidth)).rows(), 0);
+}
+
 TEST(SetNetwork, FeaturesWithoutTheKeypointsAreOneLine) {
   Matrix x = Matrix::Ones(6, 32);
   try {

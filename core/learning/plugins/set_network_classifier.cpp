@@ -28,7 +28,8 @@ struct KeypointBatch {
 KeypointBatch keypointsOf(const torch::Tensor& rows) {
   const std::int64_t b = rows.size(0);
   const torch::Tensor k = rows.select(1, 0).clamp(0, kKeypointSetSize).round();
-  const torch::Tensor points = rows.slice(1, 1, kKeypointSetWidth).reshape({b, kKeypointSetSize, 3});
+  // Bounded: no keypoint lies a kilometre away, and lengths of 1e30 would make the embeddings inf.
+  const torch::Tensor points = rows.slice(1, 1, kKeypointSetWidth).reshape({b, kKeypointSetSize, 3}).clamp(-1e3, 1e3);
   const torch::Tensor index = torch::arange(kKeypointSetSize, torch::kFloat32).unsqueeze(0);
   return {points, (index < k.unsqueeze(1)).to(torch::kFloat32)};
 }
@@ -151,8 +152,8 @@ class SetNetworkClassifier : public Classifier {
       const torch::Tensor order = torch::randperm(n, gen, torch::kInt64);
       for (std::int64_t start = 0; start < n; start += p.batch) {
         const torch::Tensor idx = order.slice(0, start, std::min<std::int64_t>(n, start + p.batch));
-        const torch::Tensor loss =
-            torch::nn::functional::cross_entropy(net_->forward(inputs.index_select(0, idx), &gen, &p), labels.index_select(0, idx));
+        const torch::Tensor logits = net_->forward(inputs.index_select(0, idx), &gen, &p);
+        const torch::Tensor loss = torch::nn::functional::cross_entropy(logits, labels.index_select(0, idx));
         adam.zero_grad();
         loss.backward();
         adam.step();
@@ -165,11 +166,14 @@ class SetNetworkClassifier : public Classifier {
     checkInputs(x.cols());
     const std::lock_guard<std::mutex> lock(torchMutex());
     torch::NoGradGuard no_grad;
+    if (x.rows() == 0) return Matrix(0, net_->head2->weight.size(0));
     const torch::Tensor all = toTensor(x);
     std::vector<torch::Tensor> out;
-    // In batches: the pair tensors are N² × width per view.
-    for (std::int64_t start = 0; start < all.size(0); start += 256)
-      out.push_back(torch::softmax(net_->forward(all.slice(0, start, std::min<std::int64_t>(all.size(0), start + 256)), nullptr), 1));
+    // In batches: the pair tensors are K(K−1)/2 × width per view.
+    for (std::int64_t start = 0; start < all.size(0); start += 256) {
+      const torch::Tensor part = all.slice(0, start, std::min<std::int64_t>(all.size(0), start + 256));
+      out.push_back(torch::softmax(net_->forward(part, nullptr), 1));
+    }
     const torch::Tensor prob = torch::cat(out, 0).contiguous();
     return Eigen::Map<const Matrix>(prob.data_ptr<float>(), prob.size(0), prob.size(1));
   }
