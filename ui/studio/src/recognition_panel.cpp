@@ -163,7 +163,11 @@ void RecognitionPanel::setModel(const QString& path, const learning::Recognizer*
     return;
   }
   if (!recognizer) return;
-  for (const auto& b : recognizer->blockNames()) block_->addItem(QString::fromStdString(b));
+  // Each PDF by its index among the view's blocks; the keypoints themselves (a set network's "kpset")
+  // are no PDF, and the 3D view already shows them.
+  const auto names = recognizer->blockNames();
+  for (std::size_t k = 0; k < names.size(); ++k)
+    if (names[k] != "kpset") block_->addItem(QString::fromStdString(names[k]), static_cast<int>(k));
   if (!recognizer->hasModel()) {
     model_info_->setText(tr("no model: views are described, not classified"));
     return;
@@ -303,7 +307,8 @@ void RecognitionPanel::refresh() {
 
 void RecognitionPanel::plot(const ViewResult& r) {
   const auto& rec = *r.recognition;
-  const int b = block_->currentIndex();
+  if (block_->currentIndex() < 0) return;
+  const int b = block_->currentData().toInt();
   if (b < 0 || b >= static_cast<int>(rec.blocks.size())) return;
   const auto& pdf = rec.blocks[static_cast<std::size_t>(b)];
   QVector<QPointF> view, mean;
