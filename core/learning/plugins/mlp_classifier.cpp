@@ -7,7 +7,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/plugin.h"
-#include "torch_lock.h"
+#include "torch_common.h"
 
 namespace keyturn::learning {
 
@@ -47,13 +47,6 @@ struct MlpNetImpl : torch::nn::Module {
 };
 TORCH_MODULE(MlpNet);
 
-// Missing values (NaN: a block a view could not give) enter the network as 0, and so do ±inf
-// (no feature is infinite; nan_to_num's default made them ±3.4e38, then NaN probabilities).
-torch::Tensor toTensor(const Matrix& x) {
-  return torch::nan_to_num(torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32), 0.0,
-                           0.0, 0.0)
-      .clone();
-}
 
 class MlpClassifier : public Classifier {
  public:
@@ -110,21 +103,13 @@ class MlpClassifier : public Classifier {
   }
 
   void save(const std::string& path) const override {
-    try {
-      torch::save(net_, path);
-    } catch (const c10::Error& e) {
-      throw Error(path + ": cannot write the network: " + e.what_without_backtrace());
-    }
+    saveNetwork(net_, path);
   }
 
   void load(const std::string& path, int inputs, int classes) override {
     build(inputs, classes);
-    try {
-      torch::load(net_, path);
-    } catch (const c10::Error& e) {
-      throw Error(path + ": not a network of " + std::to_string(inputs) + " inputs and " + std::to_string(classes) +
-                  " classes as its sidecar says (" + std::string(e.what_without_backtrace()).substr(0, 160) + ")");
-    }
+    loadNetwork(net_, path,
+                "a network of " + std::to_string(inputs) + " inputs and " + std::to_string(classes) + " classes");
     // libtorch replaces each tensor wholesale on load: check the shapes it brought.
     const auto params = net_->parameters();
     const std::int64_t got_in = net_->mean.numel(), got_out = params.back().size(0);

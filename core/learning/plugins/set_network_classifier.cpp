@@ -11,7 +11,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/plugin.h"
 #include "keyturn/learning/keypoint_set.h"
-#include "torch_lock.h"
+#include "torch_common.h"
 
 namespace keyturn::learning {
 
@@ -92,12 +92,6 @@ struct SetNetImpl : torch::nn::Module {
 };
 TORCH_MODULE(SetNet);
 
-// Missing values (NaN: a view that could not be described) enter as 0: no keypoints.
-torch::Tensor toTensor(const Matrix& x) {
-  return torch::nan_to_num(torch::from_blob(const_cast<float*>(x.data()), {x.rows(), x.cols()}, torch::kFloat32), 0.0,
-                           0.0, 0.0)
-      .clone();
-}
 
 void checkInputs(Eigen::Index cols) {
   if (cols < kKeypointSetWidth)
@@ -179,23 +173,14 @@ class SetNetworkClassifier : public Classifier {
   }
 
   void save(const std::string& path) const override {
-    try {
-      torch::save(net_, path);
-    } catch (const c10::Error& e) {
-      throw Error(path + ": cannot write the network: " + e.what_without_backtrace());
-    }
+    saveNetwork(net_, path);
   }
 
   void load(const std::string& path, int inputs, int classes) override {
     checkInputs(inputs);
     build(inputs, classes);
-    try {
-      torch::load(net_, path);
-    } catch (const c10::Error& e) {
-      throw Error(path + ": not a set network of " + std::to_string(inputs) + " inputs and " +
-                  std::to_string(classes) + " classes as its sidecar says (" +
-                  std::string(e.what_without_backtrace()).substr(0, 160) + ")");
-    }
+    loadNetwork(net_, path,
+                "a set network of " + std::to_string(inputs) + " inputs and " + std::to_string(classes) + " classes");
     const std::int64_t got_extras = net_->mean.numel(), got_out = net_->head2->weight.size(0);
     if (got_extras != inputs - kKeypointSetWidth || got_out != classes ||
         net_->pair1->weight.size(0) != params_.setnet.width)
