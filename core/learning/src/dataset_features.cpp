@@ -32,9 +32,7 @@ std::optional<FeatureTable> completeCache(const std::string& path, const Feature
   const FeatureTable layout = featureLayout(cacheBlocks(), c.options);
   try {
     FeatureTable t = loadFeatureTable(path);
-    const auto has = [&t](const std::string& b) { return t.offset(b) >= 0; };
-    const std::vector<std::string>& wanted = blocks.empty() ? cacheBlocks() : blocks;
-    if (t.spec != layout.spec || !std::all_of(wanted.begin(), wanted.end(), has)) return std::nullopt;
+    if (t.spec != layout.spec || !hasBlocks(t, blocks.empty() ? cacheBlocks() : blocks)) return std::nullopt;
     auto rows = rowsOf(t, c.views);
     if (!rows) return std::nullopt;
     t.rows = std::move(*rows);

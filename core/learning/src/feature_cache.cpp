@@ -278,11 +278,6 @@ std::string describeCacheShard(const FeatureCache& c, int shard, int shards) {
 
 namespace {
 
-bool isSubset(const std::vector<std::string>& some, const std::vector<std::string>& all) {
-  return std::all_of(some.begin(), some.end(),
-                     [&](const std::string& b) { return std::find(all.begin(), all.end(), b) != all.end(); });
-}
-
 // A cache written before a block was added (the same parameters, fewer blocks): its rows keep what
 // they hold and only the new blocks are described, instead of every block of every view again.
 FeatureTable withNewBlocks(const FeatureCache& c, FeatureTable old, const FeatureTable& layout) {
@@ -338,11 +333,11 @@ FeatureTable loadOrDescribeCache(const FeatureCache& c) {
     mergeShards(c.dataset, specHash(c.options), t, c.progress);
   }
   bool upgraded = false;
-  if (t.spec == layout.spec && t.blocks != layout.blocks && isSubset(t.blocks, layout.blocks) && !t.rows.empty()) {
+  if (t.spec == layout.spec && t.blocks != layout.blocks && hasBlocks(layout, t.blocks) && !t.rows.empty()) {
     std::set<std::string> ids;
     for (const auto& row : t.rows) ids.insert(row.id);
     const bool new_views = std::any_of(c.views.begin(), c.views.end(), [&](const auto& v) { return !ids.count(v.id); });
-    if (new_views || !isSubset(c.needs, t.blocks)) {
+    if (new_views || !hasBlocks(t, c.needs)) {
       t = withNewBlocks(c, std::move(t), layout);
       upgraded = true;
     }

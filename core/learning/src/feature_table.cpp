@@ -206,12 +206,13 @@ FeatureTable withBlocks(const FeatureTable& t, const std::vector<std::string>& b
 
 }  // namespace
 
+bool hasBlocks(const FeatureTable& t, const std::vector<std::string>& blocks) {
+  return std::all_of(blocks.begin(), blocks.end(), [&t](const std::string& b) { return t.offset(b) >= 0; });
+}
+
 void keepCommonBlocks(FeatureTable& a, FeatureTable& b) {
   if (a.blocks == b.blocks) return;
-  const auto within = [](const FeatureTable& x, const FeatureTable& y) {
-    return std::all_of(x.blocks.begin(), x.blocks.end(), [&y](const std::string& block) { return y.offset(block) >= 0; });
-  };
-  if (!within(a, b) && !within(b, a)) return;  // not an older cache of the same blocks: checkSameFeatures refuses it
+  if (!hasBlocks(b, a.blocks) && !hasBlocks(a, b.blocks)) return;  // not an older cache of the same blocks: checkSameFeatures refuses it
   std::vector<std::string> common;
   for (const auto& block : a.blocks)
     if (b.offset(block) >= 0) common.push_back(block);

@@ -48,6 +48,8 @@ void saveFeatureTable(const std::string& path, const FeatureTable& table);
 FeatureTable loadFeatureTable(const std::string& path);
 // Throws keyturn::Error naming other_name when other's blocks or descriptor parameters differ from table's.
 void checkSameFeatures(const FeatureTable& table, const FeatureTable& other, const std::string& other_name);
+// Whether the table holds every one of these blocks.
+bool hasBlocks(const FeatureTable& t, const std::vector<std::string>& blocks);
 // When one table's blocks are all among the other's (a cache written before a block existed lacks it,
 // FeatureCache::needs), both keep only those, in a's order; otherwise both stay as they are.
 void keepCommonBlocks(FeatureTable& a, FeatureTable& b);
