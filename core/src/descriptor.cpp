@@ -10,6 +10,7 @@
 #include "keyturn/core/error.h"
 #include "keyturn/core/histogram.h"
 #include "keyturn/core/keypoint_functions.h"
+#include "keyturn/core/measured_keypoints.h"
 #include "keyturn/core/radius_search.h"
 #include "keyturn/core/string_format.h"
 
@@ -119,21 +120,32 @@ ViewDescriptor describeFilteredPoints(const PointSet& set, const DescriptorOptio
   std::vector<int> keypoints;
   const bool need_kp = wants(o.features, isKeypointFeature);
   if (need_kp) {
-    IssResult iss = detectIssKeypoints(set, search, out.resolution, o.iss);
-    keypoints = std::move(iss.keypoints);
-    out.keypoint_weight = std::move(iss.weight);
-    for (int i : keypoints) out.keypoints.push_back(set.points[i]);
+    if (!o.refine.enabled && o.placement.placement == KeypointPlacement::Measured && measured && measured->size() >= 2) {
+      MeasuredKeypoints m = detectKeypointsOnMeasuredPoints(*measured, set, out.resolution, o.iss);
+      keypoints = std::move(m.vertex);
+      out.keypoints = std::move(m.positions);
+      out.keypoint_weight = std::move(m.weight);
+      out.filled_keypoints = m.filled;
+    } else {
+      IssResult iss = detectIssKeypoints(set, search, out.resolution, o.iss);
+      keypoints = std::move(iss.keypoints);
+      out.keypoint_weight = std::move(iss.weight);
+      out.filled_keypoints = iss.filled;
+      for (int i : keypoints) out.keypoints.push_back(set.points[i]);
+    }
     out.keypoint_index = keypoints;
     if (o.refine.enabled && measured && measured->size() >= 2)
       out.keypoints = refineKeypointsOnMeasuredPoints(*measured, out.keypoints, out.resolution, o.iss, o.refine);
     else if (measured && measured->size() >= 2)
       out.keypoints = placeKeypoints(*measured, out.keypoints, out.resolution, o.iss, o.placement);
     out.times.iss = clock.lap();
-    if (out.keypointCount() < o.min_keypoints)
-      throw EmptyViewError("too few keypoints: ISS found " + std::to_string(out.keypointCount()) + " in " +
+    // A filled budget does not hide a view without salient structure: the checks count ISS's maxima.
+    const int maxima = out.keypointCount() - out.filled_keypoints;
+    if (maxima < o.min_keypoints)
+      throw EmptyViewError("too few keypoints: ISS found " + std::to_string(maxima) + " in " +
                   std::to_string(set.size()) + " points (need at least " +
                   std::to_string(o.min_keypoints) + "; move the camera closer or lower the radii)");
-    out.low_keypoints = out.keypointCount() < o.low_keypoints;
+    out.low_keypoints = maxima < o.low_keypoints;
   }
 
   LocalCompleteGraph graph;

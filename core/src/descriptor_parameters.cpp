@@ -213,6 +213,18 @@ std::vector<DescriptorParameter> makeTable() {
                      "Weighted keypoint budget: the least salient fraction of the budget weighs less the less salient "
                      "it is, down to 0 at the first keypoint left out (0 = a hard budget)",
                      [](auto& o) -> auto& { return o.iss.budget_taper; }, 1, "", "0"));
+  DescriptorParameter fill{"fill_budget",
+               "Keypoint budget always reached: when ISS finds fewer local maxima than max_keypoints, the most salient "
+               "other points at least the suppression radius apart join them, so sensor noise no longer moves K "
+               "(off: K is ISS's count of maxima, at most the budget; issue 49)",
+               Kind::Choice, [](const DescriptorOptions& o) -> std::string { return o.iss.fill_budget ? "on" : "off"; },
+               [](DescriptorOptions& o, const std::string& t) {
+                 if (t != "on" && t != "off") throw Error("must be on or off, not '" + t + "'");
+                 o.iss.fill_budget = t == "on";
+               },
+               "off"};
+  fill.written_when_set = true;  // measured, not the default (docs/descriptors.md)
+  t.push_back(fill);
   DescriptorParameter refine{"refine_keypoints",
                "Keypoint refinement: move each keypoint to the most salient measured point within this many ISS "
                "suppression radii of it, before the working resolution (0 = off: keypoints on the working points)",
@@ -230,7 +242,8 @@ std::vector<DescriptorParameter> makeTable() {
   DescriptorParameter placement{
       "keypoint_placement",
       "Where each keypoint is placed: means (the voxel mean ISS found it at), nearest (the measured point nearest "
-      "it) or salient (the most salient measured point near it, coarse to fine from cube moments; issue 49)",
+      "it), salient (the most salient measured point near it, coarse to fine from cube moments) or measured (ISS "
+      "run on the measured points at the working scale; issue 49)",
       Kind::Choice,
       [](const DescriptorOptions& o) -> std::string { return keypointPlacementName(o.placement.placement); },
       [](DescriptorOptions& o, const std::string& t) { o.placement.placement = parseKeypointPlacement(t); },

@@ -8,7 +8,49 @@
 namespace keyturn {
 namespace {
 constexpr double kPlanarRatio = 1e-9;
+
+double smallestEigenvalue(const Eigen::Matrix3d& scatter) {
+  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
+  eig.computeDirect(scatter, Eigen::EigenvaluesOnly);
+  return std::max(eig.eigenvalues()[0], 0.0);
 }
+
+// IssOptions::fill_budget: after the local maxima, the other points by saliency (the ratio tests'
+// rejects after every salient point, by λ3), each kept when it is at least r from every keypoint;
+// r halves until the budget is met. Ties go to the lower index, so the outcome is deterministic.
+void fillBudget(const PointSet& set, IssResult& result, const std::vector<double>& lambda3, float r, int budget) {
+  const int n = static_cast<int>(set.size());
+  std::vector<char> chosen(static_cast<std::size_t>(n), 0);
+  for (int i : result.keypoints) chosen[static_cast<std::size_t>(i)] = 1;
+  std::vector<int> order;
+  for (int i = 0; i < n; ++i)
+    if (!chosen[static_cast<std::size_t>(i)]) order.push_back(i);
+  std::stable_sort(order.begin(), order.end(), [&](int a, int b) {
+    const bool sa = result.saliency[a] > 0, sb = result.saliency[b] > 0;
+    if (sa != sb) return sa;
+    return sa ? result.saliency[a] > result.saliency[b] : lambda3[a] > lambda3[b];
+  });
+  const std::size_t before = result.keypoints.size();
+  for (float radius = r; static_cast<int>(result.keypoints.size()) < budget && radius > 1e-9f; radius *= 0.5f) {
+    const float r2 = radius * radius;
+    for (int i : order) {
+      if (static_cast<int>(result.keypoints.size()) >= budget) break;
+      if (chosen[static_cast<std::size_t>(i)]) continue;
+      bool far = true;
+      for (int k : result.keypoints)
+        if ((set.points[k] - set.points[i]).squaredNorm() < r2) {
+          far = false;
+          break;
+        }
+      if (!far) continue;
+      chosen[static_cast<std::size_t>(i)] = 1;
+      result.keypoints.push_back(i);
+    }
+  }
+  result.filled = static_cast<int>(result.keypoints.size() - before);
+  std::sort(result.keypoints.begin(), result.keypoints.end());
+}
+}  // namespace
 
 double issSaliency(const Eigen::Matrix3d& scatter, const IssOptions& o) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
@@ -39,6 +81,7 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
   // Eq. (9): weighted scatter matrix about p_i, then the eigenvalue-ratio tests.
   IssResult result;
   result.saliency.assign(n, 0.0);
+  std::vector<double> lambda3(o.fill_budget ? n : 0, 0.0);  // fill_budget's rank for the points the tests turn away
   for (int i = 0; i < n; ++i) {
     search.radius(i, r_frame, nb);
     if (static_cast<int>(nb.size()) - 1 < o.min_neighbors) continue;
@@ -52,6 +95,7 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
     }
     cov /= wsum;
     result.saliency[i] = issSaliency(cov, o);
+    if (o.fill_budget) lambda3[i] = smallestEigenvalue(cov);
   }
 
   // Non-maximum suppression on λ3; ties go to the lower index so the outcome
@@ -71,6 +115,8 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
     }
     if (is_max) result.keypoints.push_back(i);
   }
+  if (o.fill_budget && o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) < o.max_keypoints)
+    fillBudget(set, result, lambda3, r_nms, o.max_keypoints);
   const bool weighted = o.budget_taper > 0 && o.max_keypoints > 0;
   double edge = 0.0;  // the saliency of the first keypoint past the budget (0: none)
   if (o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) > o.max_keypoints) {

@@ -30,8 +30,10 @@ Detector parseDetector(const std::string& n) {
   if (n == "iss-refined") return Detector::IssRefined;
   if (n == "iss-nearest") return Detector::IssNearest;
   if (n == "iss-salient") return Detector::IssSalient;
+  if (n == "iss-measured") return Detector::IssMeasured;
   throw Error("unknown detector '" + n +
-              "' (expected iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient)");
+              "' (expected iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient, "
+              "iss-measured)");
 }
 
 std::string detectorName(Detector d) {
@@ -44,6 +46,7 @@ std::string detectorName(Detector d) {
     case Detector::IssRefined: return "iss-refined";
     case Detector::IssNearest: return "iss-nearest";
     case Detector::IssSalient: return "iss-salient";
+    case Detector::IssMeasured: return "iss-measured";
   }
   return "?";
 }
@@ -118,7 +121,8 @@ std::vector<Eigen::Vector3f> detectKeypoints(Detector d, const PointSet& set, do
     case Detector::IssChain:
     case Detector::IssRefined:
     case Detector::IssNearest:
-    case Detector::IssSalient: {
+    case Detector::IssSalient:
+    case Detector::IssMeasured: {
       const RadiusSearch search(set);
       for (int i : detectIssKeypoints(set, search, res, o.iss).keypoints) out.push_back(set.points[i]);
       break;

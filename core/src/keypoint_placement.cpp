@@ -17,6 +17,7 @@ const char* keypointPlacementName(KeypointPlacement p) {
   switch (p) {
     case KeypointPlacement::Nearest: return "nearest";
     case KeypointPlacement::Salient: return "salient";
+    case KeypointPlacement::Measured: return "measured";
     default: return "means";
   }
 }
@@ -25,7 +26,8 @@ KeypointPlacement parseKeypointPlacement(const std::string& name) {
   if (name == "means") return KeypointPlacement::VoxelMeans;
   if (name == "nearest") return KeypointPlacement::Nearest;
   if (name == "salient") return KeypointPlacement::Salient;
-  throw Error("must be means, nearest or salient, not '" + name + "'");
+  if (name == "measured") return KeypointPlacement::Measured;
+  throw Error("must be means, nearest, salient or measured, not '" + name + "'");
 }
 
 namespace {
@@ -136,7 +138,7 @@ std::vector<Eigen::Vector3f> placeKeypoints(const PointSet& measured, const std:
                                             double s, const IssOptions& iss, const KeypointPlacementOptions& o) {
   std::vector<Eigen::Vector3f> out = keypoints;
   const int n = static_cast<int>(measured.size());
-  if (o.placement == KeypointPlacement::VoxelMeans || keypoints.empty() || n < 2 || !(s > 0)) return out;
+  if (o.placement == KeypointPlacement::VoxelMeans || o.placement == KeypointPlacement::Measured || keypoints.empty() || n < 2 || !(s > 0)) return out;
 
   // The view's own frame: centroid and principal axes.
   Eigen::Vector3d centroid = Eigen::Vector3d::Zero();

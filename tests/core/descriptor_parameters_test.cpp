@@ -22,6 +22,7 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
       if (p.name == "working_grid") return now == "object" ? "camera" : "object";
       if (p.name == "working_points") return now == "means" ? "thinned" : "means";
       if (p.name == "keypoint_placement") return now == "means" ? "salient" : "means";
+      if (p.name == "fill_budget") return now == "off" ? "on" : "off";
       ADD_FAILURE() << "no other value known for " << p.name;
       return now;
     }
@@ -56,6 +57,12 @@ TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("refine_keypoints"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("gkpd1_sources"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("curvature_floor"), 0u);
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("fill_budget"), 0u);
+  DescriptorOptions filled;
+  descriptorParameter("fill_budget").set(filled, "on");
+  EXPECT_EQ(parameterSpec(filled).at("fill_budget"), "on");
+  EXPECT_TRUE(optionsFromParameterSpec(parameterSpec(filled), "model.json").iss.fill_budget);
+  EXPECT_FALSE(optionsFromParameterSpec(parameterSpec(DescriptorOptions()), "model.json").iss.fill_budget);
   DescriptorOptions blended;
   descriptorParameter("gkpd1_sources").set(blended, "8");
   descriptorParameter("curvature_floor").set(blended, "0.1");

@@ -59,7 +59,17 @@ TEST(Descriptor, MugViewGivesNormalisedPdfsAndAKeypointCount) {
 TEST(Descriptor, ConnectedSurfaceHasEveryPairReachable) {
   DescriptorOptions o;
   o.filter = false;
-  const auto d = describeView(test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1))), o);
+  const Cloud cube = test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1)));
+  const auto d = describeView(cube, o);
+  // A filled budget (issue 49): the same maxima, then points of the faces, 64 in all.
+  DescriptorOptions fill = o;
+  fill.iss.fill_budget = true;
+  const auto filled = describeView(cube, fill);
+  EXPECT_EQ(filled.keypointCount(), 64);
+  EXPECT_EQ(filled.filled_keypoints, 64 - d.keypointCount());
+  EXPECT_EQ(d.filled_keypoints, 0);
+  for (const auto& k : d.keypoints)
+    EXPECT_NE(std::find(filled.keypoints.begin(), filled.keypoints.end(), k), filled.keypoints.end()) << k.transpose();
   // The corners, and points of the edges' plateaus (Iss tests): 24 here. Issue 51: `EQ 8` became
   // `GE 8` when ISS's r_nms became 3 (d44002c); a count says little of where they are. Each of the 8
   // corners has a keypoint within 2.5 sample steps (as the Iss tests: the chain works on a coarser

@@ -111,3 +111,45 @@ TEST(Iss, DeterministicAndSortedWhateverTheSearchStructure) {
   EXPECT_EQ(a.keypoints, b.keypoints);
   EXPECT_TRUE(std::is_sorted(a.keypoints.begin(), a.keypoints.end()));
 }
+
+// IssOptions::fill_budget (issue 49): K is the budget whenever the view has the points, the local
+// maxima are kept and come first, and the rest are the most salient points the suppression radius
+// apart. On the cube with r_nms 4 × resolution ISS alone finds the 8 corners (above); filled to 20,
+// the 12 others are edge points (λ3 > 0 there, 0 on the flat faces), each at least 4 × resolution
+// from every other keypoint.
+TEST(Iss, FillBudgetReachesTheBudgetWithTheMostSalientPointsApart) {
+  const Eigen::Vector3f centre(0.f, 0.f, 1.f);
+  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
+  const RadiusSearch search(set);
+  const double res = cloudResolution(set, search);
+  IssOptions o;
+  o.nms_radius = 4.0;
+  o.max_keypoints = 20;
+  const IssResult plain = detectIssKeypoints(set, search, res, o);
+  ASSERT_EQ(plain.keypoints.size(), 8u);
+  EXPECT_EQ(plain.filled, 0);
+  o.fill_budget = true;
+  const IssResult r = detectIssKeypoints(set, search, res, o);
+  ASSERT_EQ(r.keypoints.size(), 20u);
+  EXPECT_EQ(r.filled, 12);
+  EXPECT_TRUE(std::is_sorted(r.keypoints.begin(), r.keypoints.end()));
+  for (int k : plain.keypoints) EXPECT_NE(std::find(r.keypoints.begin(), r.keypoints.end(), k), r.keypoints.end()) << k;
+  for (std::size_t a = 0; a < r.keypoints.size(); ++a) {
+    const Eigen::Vector3f& p = set.points[r.keypoints[a]];
+    EXPECT_LT(distanceFromAnEdge(p, 0.1f, centre), 1.5 * res) << "filled off the edges " << p.transpose();
+    for (std::size_t b = 0; b < a; ++b)
+      EXPECT_GE((set.points[r.keypoints[b]] - p).norm(), 4.0 * res - 1e-6) << a << " and " << b;
+  }
+  // A budget larger than the edges can hold 4 × resolution apart halves the radius: still the budget.
+  o.max_keypoints = 200;
+  const IssResult many = detectIssKeypoints(set, search, res, o);
+  EXPECT_EQ(many.keypoints.size(), 200u);
+  // A flat patch fails the ratio tests everywhere: off, no keypoints; filled, the budget, ranked by λ3.
+  const Cloud plane = test::organizedPlanes(30, 30, 100.f, 1.f, 1.f, 0, 0, 0, 0);
+  const PointSet flat = PointSet::fromCloud(plane);
+  const RadiusSearch flat_search(flat);
+  IssOptions f;
+  f.max_keypoints = 10;
+  f.fill_budget = true;
+  EXPECT_EQ(detectIssKeypoints(flat, flat_search, cloudResolution(flat, flat_search), f).keypoints.size(), 10u);
+}

@@ -158,10 +158,23 @@ TEST(Stability, TheCameraAnchoredOrThinnedGridMovesWithTheView) {
     double worst = 0;
     for (const auto& f : s.functions) worst = std::max(worst, f.rigidMaxL1());
     EXPECT_GT(worst, 0.05) << voxelAnchorName(working.anchor);
-    EXPECT_GT(s.maxAbsKeypointChange(true), 0) << voxelAnchorName(working.anchor);
+      EXPECT_GT(s.maxAbsKeypointChange(true), 0) << voxelAnchorName(working.anchor);
   }
 }
 
+// Issue 49's target, K steady under 0.1 mm jitter: on four real crops where ISS finds fewer local
+// maxima than the budget (18–44), jitter moves their count by up to 6 (measured: `keyturn stability`);
+// the filled budget (`--fill-budget on`) keeps K at the budget.
+TEST(Stability, AFilledBudgetKeepsKUnderJitter) {
+  std::vector<StabilityView> views;
+  for (const char* name : {"learn0_o2", "learn14_o2", "learn43_o1", "learn41_o1"}) views.push_back({name, name, realCrop(name)});
+  EXPECT_GT(keypointStudy(DescriptorOptions(), views, {named("jitter-0.1mm")}).maxAbsKeypointChangeUnder("jitter-0.1mm"), 2);
+  DescriptorOptions fill;
+  fill.iss.fill_budget = true;
+  const StabilityStudy filled = keypointStudy(fill, views, {named("jitter-0.1mm")});
+  ASSERT_TRUE(filled.errors.empty()) << filled.errors.front();
+  EXPECT_EQ(filled.maxAbsKeypointChangeUnder("jitter-0.1mm"), 0);
+}
 
 // Kernel density PDFs (pdf_smoothing): on real crops jittered far below the sensor's noise or
 // given its noise, every length function moves less in units of the distance between views, and

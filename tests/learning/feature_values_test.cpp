@@ -2,7 +2,7 @@
 // a code change that alters what the chain computes under an unchanged specification would let
 // `evaluate` reuse stale caches and a model be fed features unlike those it was trained on. This
 // test keeps that from passing silently: it describes a fixed set of views — a simulated SR4000
-// view, a real Kinect box and cylinder crop, a real masked frame — with the default options and
+// view, real Kinect box and cylinder crops (one with fewer maxima than the budget), a real masked frame — with the default options and
 // holds every keyturn block (keypoint functions, Osada's, their twins, size; PCL's peers are
 // PCL's) against the values recorded for this cache version in tests/data/feature-values.json.
 //
@@ -62,6 +62,8 @@ std::vector<LabelledView> views(const fs::path& dir) {
   return {{"sim/mug_a40", mug, "mug", "builtin", "30", {}},
           {"crop/learn0_o1", real + "/crop/learn0_o1.pcd", "box", "learn0_o1", "", {}},
           {"crop/learn34_o1", real + "/crop/learn34_o1.pcd", "cylinder", "learn34_o1", "", {}},
+          // ISS finds 18 local maxima here: the filled budget (fill_budget) is in the recorded values.
+          {"crop/learn0_o2", real + "/crop/learn0_o2.pcd", "box", "learn0_o2", "", {}},
           {"masked/learn34_o2", real + "/masked/learn34_o2.pcd", "cylinder", "learn34_o2", "", {}}};
 }
 

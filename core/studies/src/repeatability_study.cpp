@@ -11,6 +11,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/error.h"
 #include "keyturn/core/filter.h"
+#include "keyturn/core/descriptor.h"
 #include "keyturn/core/keypoint_placement.h"
 #include "keyturn/core/keypoint_refinement.h"
 #include "keyturn/core/radius_search.h"
@@ -177,27 +178,33 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
     v.budget = o.keypoints > 0 ? o.keypoints : static_cast<int>(detectKeypoints(Detector::Iss, v.set, v.res, o.detector).size());
     for (Detector d : o.detectors) {
       const bool chain = isChainDetector(d);
-      const PointSet& set = chain ? v.working_set : v.set;
+      // The chain's keypoints as describe places them: iss-chain with describe's default placement,
+      // iss-refined with --refine-keypoints, iss-nearest, iss-salient and iss-measured with
+      // --keypoint-placement. "measured" detects on the measured points at the chain's scale; the
+      // others detect on the working-resolution view, then place.
+      KeypointPlacementOptions p = d == Detector::IssChain ? DescriptorOptions().placement : o.placement;
+      if (d == Detector::IssNearest) p.placement = KeypointPlacement::Nearest;
+      if (d == Detector::IssSalient) p.placement = KeypointPlacement::Salient;
+      if (d == Detector::IssMeasured) p.placement = KeypointPlacement::Measured;
+      const bool on_measured = chain && d != Detector::IssRefined && p.placement == KeypointPlacement::Measured;
+      const PointSet& set = chain && !on_measured ? v.working_set : v.set;
       const double res = chain ? v.working_res : v.res;
-      // The chain's keypoints placed on the measured points as describe places them: iss-chain with
-      // describe's default placement, iss-refined with --refine-keypoints, iss-nearest and
-      // iss-salient with --keypoint-placement.
       auto refined = [&](std::vector<Eigen::Vector3f> kp) {
-        if (!chain || !v.subsampled) return kp;
+        if (!chain || !v.subsampled || on_measured) return kp;
         if (d == Detector::IssRefined) {
           KeypointRefinementOptions r;
           r.enabled = true;
           return refineKeypointsOnMeasuredPoints(v.set, kp, v.working_res, o.detector.iss, r);
         }
-        KeypointPlacementOptions p = d == Detector::IssChain ? KeypointPlacementOptions() : o.placement;
-        if (d == Detector::IssNearest) p.placement = KeypointPlacement::Nearest;
-        if (d == Detector::IssSalient) p.placement = KeypointPlacement::Salient;
         return placeKeypoints(v.set, kp, v.working_res, o.detector.iss, p);
       };
+      // The chain's ISS as describe runs it by default (DescriptorOptions::iss: the budget filled or not).
+      DetectorOptions dopt = o.detector;
+      if (chain) dopt.iss.fill_budget = DescriptorOptions().iss.fill_budget;
       const auto t0 = std::chrono::steady_clock::now();
-      v.native[d] = refined(detectKeypoints(d, set, res, o.detector));
+      v.native[d] = refined(detectKeypoints(d, set, res, dopt));
       v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
-      v.equal[d] = refined(detectKeypointsAtBudget(d, set, res, v.budget, o.detector));
+      v.equal[d] = refined(detectKeypointsAtBudget(d, set, res, v.budget, dopt));
     }
     progress.step();
   }

@@ -22,7 +22,7 @@ struct DescriptorOptions {
   bool filter = true;
   FilterOptions filter_options;
   WorkingResolutionOptions working;  // applies with or without the filter
-  IssOptions iss;
+  IssOptions iss;  // fill_budget (issue 49) off by default: docs/descriptors.md, "A budget K always reaches"
   KeypointRefinementOptions refine;  // keypoints moved onto the measured points (off by default)
   KeypointPlacementOptions placement;  // keypoints placed on the measured points (voxel means by default)
   GraphOptions graph;
@@ -71,7 +71,8 @@ struct ViewDescriptor {
   std::vector<double> keypoint_weight;  // per keypoint with a weighted budget (iss.h); empty: each weighs 1
   int unreachable_keypoints = 0;    // keypoints outside the centroid's component
   int unreachable_pairs = 0;
-  bool low_keypoints = false;
+  bool low_keypoints = false;       // fewer than low_keypoints local maxima (filled ones not counted)
+  int filled_keypoints = 0;         // of the keypoints, those IssOptions::fill_budget added past ISS's maxima
   std::vector<Feature> features;
   std::vector<std::vector<double>> pdfs;  // one PDF per feature, same order
   // With random_keypoints_twin: the keypoint features' PDFs on random points

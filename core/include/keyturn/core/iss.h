@@ -30,12 +30,19 @@ struct IssOptions {
   // none is). A keypoint near the edge then enters and leaves the description gradually, where a
   // hard cut swaps it whole. 0 = the hard budget (every kept keypoint weighs 1).
   double budget_taper = 0.0;
+  // A budget that K always reaches (issue 49): when the suppression leaves fewer than max_keypoints
+  // maxima, the most salient other points (those the ratio tests turned away ranked by λ3) join,
+  // each at least the suppression radius from every keypoint, the radius halved until the budget
+  // is met or no point is left. K is then min(max_keypoints, points): the count of a view's local
+  // maxima, which sensor noise moves by several, no longer sets it.
+  bool fill_budget = false;
 };
 
 struct IssResult {
   std::vector<int> keypoints;     // indices into the PointSet, ascending
   std::vector<double> saliency;   // λ3 per point (0 where the ratio tests failed)
   std::vector<double> weight;     // per keypoint (same order) with a weighted budget; empty otherwise
+  int filled = 0;                 // keypoints fill_budget added past the local maxima
 };
 
 IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,

@@ -18,9 +18,11 @@ namespace keyturn {
 // them when DescriptorOptions::refine is on; IssNearest and IssSalient IssChain's keypoints placed
 // as DescriptorOptions::placement places them (keypoint_placement.h: nearest, salient). IssChain
 // itself is placed as describe's default placement does, so that it is what describe outputs.
-enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined, IssNearest, IssSalient };
+// IssMeasured is ISS run on the measured points at the chain's scale (radii in multiples of the
+// working resolution), as DescriptorOptions::placement "measured" detects them.
+enum class Detector { Iss, Harris3d, Sift3d, Uniform, IssChain, IssRefined, IssNearest, IssSalient, IssMeasured };
 
-// iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient; throws keyturn::Error
+// iss, harris3d, sift3d, uniform, iss-chain, iss-refined, iss-nearest, iss-salient, iss-measured; throws keyturn::Error
 Detector parseDetector(const std::string& name);
 std::string detectorName(Detector d);
 // ISS, on the raw view or on the chain's (every detector but Harris3d, SIFT and uniform sampling).

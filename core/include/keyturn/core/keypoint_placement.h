@@ -12,6 +12,8 @@
 //    that ramps from 1 to 0 over its side around the frame radius, so the saliency changes
 //    smoothly as a candidate or the grid moves. Cheap enough to be a default (docs/repeatability.md,
 //    "Placing keypoints on measured points").
+//  Measured: not a placement of the chain's keypoints but ISS itself run on the measured points at
+//    the working scale (measured_keypoints.h): which keypoints and how many may differ.
 #include <Eigen/Core>
 #include <string>
 #include <vector>
@@ -21,8 +23,8 @@
 
 namespace keyturn {
 
-enum class KeypointPlacement { VoxelMeans, Nearest, Salient };
-const char* keypointPlacementName(KeypointPlacement p);                 // "means", "nearest", "salient"
+enum class KeypointPlacement { VoxelMeans, Nearest, Salient, Measured };
+const char* keypointPlacementName(KeypointPlacement p);  // "means", "nearest", "salient", "measured"
 KeypointPlacement parseKeypointPlacement(const std::string& name);       // throws keyturn::Error
 
 struct KeypointPlacementOptions {
@@ -44,7 +46,8 @@ struct KeypointPlacementOptions {
 
 // The keypoints (positions on the working-resolution view) placed on `measured` (the filtered view
 // before the working resolution), distinct points each; as given when measured has fewer than 2
-// points, or a keypoint has no measured point near it. Deterministic.
+// points, or a keypoint has no measured point near it (and for Measured, which describe detects
+// with detectKeypointsOnMeasuredPoints instead). Deterministic.
 std::vector<Eigen::Vector3f> placeKeypoints(const PointSet& measured, const std::vector<Eigen::Vector3f>& keypoints,
                                             double working_resolution, const IssOptions& iss,
                                             const KeypointPlacementOptions& options);
