@@ -67,6 +67,9 @@ TEST(Descriptor, ConnectedSurfaceHasEveryPairReachable) {
   const auto filled = describeView(cube, fill);
   EXPECT_EQ(filled.keypointCount(), 64);
   EXPECT_EQ(filled.filled_keypoints, 64 - d.keypointCount());
+  ASSERT_EQ(filled.keypoint_weight.size(), 64u);  // the filled ones weigh 0.3
+  EXPECT_DOUBLE_EQ(std::accumulate(filled.keypoint_weight.begin(), filled.keypoint_weight.end(), 0.0),
+                   d.keypointCount() + 0.3 * (64 - d.keypointCount()));
   EXPECT_EQ(d.filled_keypoints, 0);
   for (const auto& k : d.keypoints)
     EXPECT_NE(std::find(filled.keypoints.begin(), filled.keypoints.end(), k), filled.keypoints.end()) << k.transpose();

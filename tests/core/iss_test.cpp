@@ -134,6 +134,13 @@ TEST(Iss, FillBudgetReachesTheBudgetWithTheMostSalientPointsApart) {
   EXPECT_EQ(r.filled, 12);
   EXPECT_TRUE(std::is_sorted(r.keypoints.begin(), r.keypoints.end()));
   for (int k : plain.keypoints) EXPECT_NE(std::find(r.keypoints.begin(), r.keypoints.end(), k), r.keypoints.end()) << k;
+  // The maxima weigh 1, the filled points 0.3 (ISS alone: no weights).
+  EXPECT_TRUE(plain.weight.empty());
+  ASSERT_EQ(r.weight.size(), r.keypoints.size());
+  for (std::size_t a = 0; a < r.keypoints.size(); ++a) {
+    const bool maximum = std::find(plain.keypoints.begin(), plain.keypoints.end(), r.keypoints[a]) != plain.keypoints.end();
+    EXPECT_EQ(r.weight[a], maximum ? 1.0 : 0.3) << a;
+  }
   for (std::size_t a = 0; a < r.keypoints.size(); ++a) {
     const Eigen::Vector3f& p = set.points[r.keypoints[a]];
     EXPECT_LT(distanceFromAnEdge(p, 0.1f, centre), 1.5 * res) << "filled off the edges " << p.transpose();

@@ -34,14 +34,15 @@ struct IssOptions {
   // maxima, the most salient other points (those the ratio tests turned away ranked by λ3) join,
   // each at least the suppression radius from every keypoint, the radius halved until the budget
   // is met or no point is left. K is then min(max_keypoints, points): the count of a view's local
-  // maxima, which sensor noise moves by several, no longer sets it.
+  // maxima, which sensor noise moves by several, no longer sets it. A filled keypoint weighs 0.3
+  // against a maximum's 1 (IssResult::weight; with budget_taper the taper's weights instead).
   bool fill_budget = false;
 };
 
 struct IssResult {
   std::vector<int> keypoints;     // indices into the PointSet, ascending
   std::vector<double> saliency;   // λ3 per point (0 where the ratio tests failed)
-  std::vector<double> weight;     // per keypoint (same order) with a weighted budget; empty otherwise
+  std::vector<double> weight;     // per keypoint (same order) with a weighted or filled budget; empty otherwise
   int filled = 0;                 // keypoints fill_budget added past the local maxima
 };
 
