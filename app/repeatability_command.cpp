@@ -74,7 +74,7 @@ Command addRepeatabilityCommand(CLI::App& app) {
   cmd->add_option("--pose-format", a->pose_format, "auto, keyturn, stanford, tum or matrix")->capture_default_str();
   cmd->add_option("--views", a->views, "TUM only: the view files, one FILE or TIMESTAMP FILE a line");
   cmd->add_flag("--invert-poses", a->poses.invert, "The poses map the common frame into each view: invert them");
-  cmd->add_option("--detectors", a->detectors, "Comma list: iss, harris3d, sift3d, uniform, iss-chain (the keypoints describe outputs by default), iss-refined, iss-nearest, iss-salient, iss-measured (the chain's keypoints with --refine-keypoints or --keypoint-placement)")->capture_default_str();
+  cmd->add_option("--detectors", a->detectors, "Comma list: iss, harris3d, sift3d, uniform, iss-chain (the keypoints describe outputs by default), iss-refined, iss-nearest, iss-salient (the chain's keypoints with --refine-keypoints or --keypoint-placement), iss-measured (ISS on the measured points at the chain's scale: --keypoint-placement measured)")->capture_default_str();
   cmd->add_option("--eps", a->eps, "ε as START:STOP:STEP or a list, in multiples of the resolution")->capture_default_str();
   cmd->add_option("--pairs", a->pairs, "consecutive, from-first or all-within:DEG")->capture_default_str();
   cmd->add_option("--keypoints", a->study.keypoints, "Equal budget K for every detector (0: ISS's count per view)")
