@@ -14,10 +14,19 @@ constexpr double kPlanarRatio = 1e-9;
 // (docs/descriptors.md, "A budget K always reaches").
 constexpr double kFilledWeight = 0.3;
 
-double smallestEigenvalue(const Eigen::Matrix3d& scatter) {
+Eigen::Vector3d ascendingEigenvalues(const Eigen::Matrix3d& scatter) {
   Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
   eig.computeDirect(scatter, Eigen::EigenvaluesOnly);
-  return std::max(eig.eigenvalues()[0], 0.0);
+  return eig.eigenvalues();
+}
+
+// ISS's saliency λ3 from the scatter's eigenvalues, 0 where the ratio tests fail.
+double saliencyOf(const Eigen::Vector3d& ev, const IssOptions& o) {
+  const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
+  // A planar or linear patch has λ3 or λ2 = 0 up to float rounding of the
+  // coordinates (~1e-11 of λ1): not salient, and no ratio divides by zero.
+  if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) return 0.0;
+  return l2 / l1 < o.gamma21 && l3 / l2 < o.gamma32 ? l3 : 0.0;
 }
 
 // IssOptions::fill_budget: after the local maxima, the other points by saliency (the ratio tests'
@@ -58,14 +67,7 @@ void fillBudget(const PointSet& set, IssResult& result, const std::vector<double
 }  // namespace
 
 double issSaliency(const Eigen::Matrix3d& scatter, const IssOptions& o) {
-  Eigen::SelfAdjointEigenSolver<Eigen::Matrix3d> eig;
-  eig.computeDirect(scatter, Eigen::EigenvaluesOnly);
-  const Eigen::Vector3d ev = eig.eigenvalues();  // ascending
-  const double l1 = ev[2], l2 = ev[1], l3 = ev[0];
-  // A planar or linear patch has λ3 or λ2 = 0 up to float rounding of the
-  // coordinates (~1e-11 of λ1): not salient, and no ratio divides by zero.
-  if (l1 <= 0.0 || l2 <= kPlanarRatio * l1 || l3 <= kPlanarRatio * l1) return 0.0;
-  return l2 / l1 < o.gamma21 && l3 / l2 < o.gamma32 ? l3 : 0.0;
+  return saliencyOf(ascendingEigenvalues(scatter), o);
 }
 
 IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, double resolution,
@@ -99,8 +101,9 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
       wsum += weight[j];
     }
     cov /= wsum;
-    result.saliency[i] = issSaliency(cov, o);
-    if (o.fill_budget) lambda3[i] = smallestEigenvalue(cov);
+    const Eigen::Vector3d ev = ascendingEigenvalues(cov);  // one solve for the saliency and the fill's rank
+    result.saliency[i] = saliencyOf(ev, o);
+    if (o.fill_budget) lambda3[i] = std::max(ev[0], 0.0);
   }
 
   // Non-maximum suppression on λ3; ties go to the lower index so the outcome
