@@ -223,7 +223,8 @@ std::vector<DescriptorParameter> makeTable() {
                  o.iss.fill_budget = t == "on";
                },
                "off"};
-  fill.written_when_set = true;  // measured, not the default (docs/descriptors.md)
+  // The default since 2026-12-07; written whenever on, so every cache and model made before (no key) reads off.
+  fill.written_when_set = true;
   t.push_back(fill);
   DescriptorParameter refine{"refine_keypoints",
                "Keypoint refinement: move each keypoint to the most salient measured point within this many ISS "

@@ -27,7 +27,7 @@ const std::map<std::string, std::string> kDocumentedDefaults = {
     {"jump_edge_deg", "10"},  {"iss_frame", "6"},       {"iss_nms", "3"},               {"iss_density", "2"},
     {"graph_radius", "3.5"},  {"gkpd1_sources", "1"},   {"curvature_floor", "0.0001"},  {"working_samples_across", "40"},
     {"working_grid", "object"}, {"working_points", "means"}, {"max_keypoints", "64"},   {"budget_taper", "0"},
-    {"fill_budget", "off"},   {"refine_keypoints", "0"}, {"keypoint_placement", "means"}, {"osada_samples", "20000"}, {"seed", "7"},
+    {"fill_budget", "on"},    {"refine_keypoints", "0"}, {"keypoint_placement", "means"}, {"osada_samples", "20000"}, {"seed", "7"},
     {"low_keypoints", "10"}};
 
 }  // namespace

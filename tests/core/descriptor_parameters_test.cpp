@@ -38,7 +38,8 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
 }  // namespace
 
 // The specification of the default options, as feature caches and models of cache version 4 hold
-// it (version 3 added the working resolution and the keypoint budget; 4 changed what is computed, not the keys).
+// it (version 3 added the working resolution and the keypoint budget; 4 changed what is computed, not the keys;
+// fill_budget on is the default since 2026-12-07).
 // The values are docs/descriptors.md's table of defaults, not the library's own.
 TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
   const std::map<std::string, std::string> expected = {
@@ -47,7 +48,7 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
       {"iss_nms", "3"},        {"iss_density", "2"},      {"graph_radius", "3.5"}, {"osada_samples", "20000"},
       {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"},
       {"binning", "linear"},   {"working_grid", "object"}, {"working_points", "means"},
-      {"budget_taper", "0"},   {"pdf_smoothing", "1.5"}};
+      {"budget_taper", "0"},   {"pdf_smoothing", "1.5"}, {"fill_budget", "on"}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
 }
 
@@ -57,12 +58,14 @@ TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("refine_keypoints"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("gkpd1_sources"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("curvature_floor"), 0u);
-  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("fill_budget"), 0u);
-  DescriptorOptions filled;
-  descriptorParameter("fill_budget").set(filled, "on");
-  EXPECT_EQ(parameterSpec(filled).at("fill_budget"), "on");
-  EXPECT_TRUE(optionsFromParameterSpec(parameterSpec(filled), "model.json").iss.fill_budget);
-  EXPECT_FALSE(optionsFromParameterSpec(parameterSpec(DescriptorOptions()), "model.json").iss.fill_budget);
+  // The filled budget, the default since it was measured: written when on, absent (as in every cache
+  // and model made before) when off.
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).at("fill_budget"), "on");
+  EXPECT_TRUE(optionsFromParameterSpec(parameterSpec(DescriptorOptions()), "model.json").iss.fill_budget);
+  DescriptorOptions capped;
+  descriptorParameter("fill_budget").set(capped, "off");
+  EXPECT_EQ(parameterSpec(capped).count("fill_budget"), 0u);
+  EXPECT_FALSE(optionsFromParameterSpec(parameterSpec(capped), "model.json").iss.fill_budget);
   DescriptorOptions blended;
   descriptorParameter("gkpd1_sources").set(blended, "8");
   descriptorParameter("curvature_floor").set(blended, "0.1");
@@ -89,6 +92,7 @@ TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
   spec.erase("working_points");
   spec.erase("refine_keypoints");
   spec.erase("pdf_smoothing");
+  spec.erase("fill_budget");
   const DescriptorOptions old = optionsFromParameterSpec(spec, "model.json");
   EXPECT_EQ(old.histogram.smoothing, 0.0);  // PDFs as they were made: unsmoothed
   EXPECT_EQ(old.working.anchor, VoxelAnchor::CameraGrid);
@@ -96,6 +100,7 @@ TEST(DescriptorParameters, SpecsWrittenBeforeARowExistedReadAsTheyWereMade) {
   EXPECT_EQ(old.iss.budget_taper, 0.0);
   EXPECT_EQ(old.working.points, VoxelPoints::Thinned);
   EXPECT_FALSE(old.refine.enabled);
+  EXPECT_FALSE(old.iss.fill_budget);  // K as ISS's maxima, at most the budget
   EXPECT_EQ(parameterSpec(old).at("working_grid"), "camera");
 }
 

@@ -195,6 +195,7 @@ TEST(WeightedBudget, ViewsUnderTheBudgetAreDescribedAsBefore) {
   const Cloud view = sim::builtinBenchmarkView();
   DescriptorOptions hard;
   hard.iss.max_keypoints = 200;  // above what the view has
+  hard.iss.fill_budget = false;   // (filled, K would be 200)
   DescriptorOptions soft = hard;
   soft.iss.budget_taper = 0.1;
   const ViewDescriptor a = describeView(view, hard), b = describeView(view, soft);

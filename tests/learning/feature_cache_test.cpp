@@ -119,13 +119,17 @@ TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
 }
 
 TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
-  // The default parameters of cache version 5 (r_nms 3 since issue 17, smoothed PDFs since issue 30)
-  // give this name (a changed default renames the cache).
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-5663d6ab80b6e754.csv");
+  // The default parameters of cache version 5 (r_nms 3 since issue 17, smoothed PDFs since issue 30,
+  // the filled budget since issue 49) give this name (a changed default renames the cache); the
+  // capped budget keeps the name every cache made before had.
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-adb63714c4bae4dd.csv");
+  DescriptorOptions capped;
+  capped.iss.fill_budget = false;
+  EXPECT_EQ(featureCachePath("ds", capped), "ds/.keyturn/features-5663d6ab80b6e754.csv");
   DescriptorOptions other;
   other.histogram.bins = 16;
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-5663d6ab80b6e754.shard-2-of-4.csv");
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-adb63714c4bae4dd.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
   // 6 keypoint + 3 shape + 6 random-keypoint + 7 scaled blocks of 32 bins, size (4), the keypoints
   // (K and 64 × 3 coordinates), ESF, VFH, OUR-CVFH.

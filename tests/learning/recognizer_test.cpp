@@ -52,10 +52,14 @@ TEST(Recognizer, NamesTheObjectOfUnseenViewsWithTheModelsOwnFeatures) {
   trained.classifier->fit(x, y, 2);
   trained.info.class_means = classMeans(x, y, 2);
   const Recognizer recognizer(std::move(trained));
+  // A statistical bar (issue 51): 11 of 12 right. It was a sample of 12 views (every 60°); the filled
+  // budget's default named 10 of those, yet more of 144 views every 5° (138 against the capped
+  // budget's 134: the sphere 66 and 62 of 72, the mug all). The views are now 48, every 15° between the
+  // training angles, the bar the same share (44): measured 47 filled, 46 capped.
   int right = 0;
-  for (int i = 0; i < 6; ++i) {
+  for (int i = 0; i < 24; ++i) {
     for (int c = 0; c < 2; ++c) {
-      const Recognition r = recognizer.recognize(render(c ? sphere : mug, 15.0 + 60.0 * i, 100 + i));
+      const Recognition r = recognizer.recognize(render(c ? sphere : mug, 7.5 + 15.0 * i, 100 + i));
       ASSERT_EQ(r.probabilities.size(), 2u);
       EXPECT_NEAR(r.probabilities[0] + r.probabilities[1], 1.0f, 1e-4f);
       EXPECT_GT(r.descriptor.keypointCount(), 5);
@@ -64,7 +68,7 @@ TEST(Recognizer, NamesTheObjectOfUnseenViewsWithTheModelsOwnFeatures) {
       right += r.best == c;
     }
   }
-  EXPECT_GE(right, 11) << "of 12 unseen views";
+  EXPECT_GE(right, 44) << "of 48 unseen views";
 }
 
 // A model on scale-normalised twins and the size block sees live what evaluate and train saw in
@@ -155,7 +159,9 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
       // issue 30's keys (a spec without them reads as before: camera grid, thinned, hard bins, no taper,
       // unsmoothed PDFs)
       {"working_grid", "object"}, {"working_points", "means"}, {"binning", "linear"}, {"budget_taper", "0"},
-      {"pdf_smoothing", "1.5"}};
+      {"pdf_smoothing", "1.5"},
+      // issue 49's (absent: K is ISS's maxima, at most the budget)
+      {"fill_budget", "on"}};
   EXPECT_EQ(featureSpec(DescriptorOptions()), expected);
 }
 

@@ -22,7 +22,13 @@ struct DescriptorOptions {
   bool filter = true;
   FilterOptions filter_options;
   WorkingResolutionOptions working;  // applies with or without the filter
-  IssOptions iss;  // fill_budget (issue 49) off by default: docs/descriptors.md, "A budget K always reaches"
+  // ISS as §4.2 defines it, with a budget K always reaches (issue 49; docs/descriptors.md, "A budget K
+  // always reaches"): K stays put under sensor noise, and unseen elevations and instances gained.
+  IssOptions iss = [] {
+    IssOptions o;
+    o.fill_budget = true;
+    return o;
+  }();
   KeypointRefinementOptions refine;  // keypoints moved onto the measured points (off by default)
   KeypointPlacementOptions placement;  // keypoints placed on the measured points (voxel means by default)
   GraphOptions graph;
