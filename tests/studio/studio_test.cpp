@@ -247,8 +247,8 @@ class StudioTest : public QObject {
       QCOMPARE(batch.size(), std::size_t(1));
       const QString answer = QString::fromStdString(learning::answerLabel(model.info, batch[0]));
       QCOMPARE(w.recognisedClass(), answer);
-      // The drill's view is named; the bowl's, at this angle and noise draw, is unknown to the model,
-      // live and batch alike (one of the bowl's 4 in 48 frames at 0° that the model turns away).
+      // The drill's view is named; the bowl's is whatever the model answers on that one view, live and
+      // batch alike (unknown with the model before 2026-12-07: one of the bowl's 4 in 48 frames at 0°).
       if (std::string(object) == "ycb_035_power_drill") QCOMPARE(answer, QString(object));
       if (batch[0].answer != learning::Answer::Class) continue;
       auto* legend = w.findChild<QLabel*>("pdfLegend");  // the chart's series, named above it
@@ -269,7 +269,7 @@ class StudioTest : public QObject {
     auto* verdict = w.findChild<QLabel*>("verdict");
     QVERIFY(verdict);
     // Its score under the threshold the built-in model's file states (0.40 with issue 47's first
-    // model, 0.28 since its open set measures the χ² distance).
+    // model, 0.28 since its open set measures the χ² distance and since the filled budget, 0.277).
     const double threshold = builtInOpenSet()["threshold"].toDouble();
     QVERIFY2(threshold > 0.2 && threshold < 0.5, qPrintable(QString::number(threshold)));
     QVERIFY2(verdict->text().contains(" &lt; " + QString::number(threshold, 'f', 2)), qPrintable(verdict->text()));
@@ -299,10 +299,10 @@ class StudioTest : public QObject {
     QVERIFY2(fused->text().contains("· 1 view, 0°"), qPrintable(fused->text()));
     // The built-in model holds pose references and open-set answers, and says so.
     const auto info = w.findChildren<QLabel*>();
-    const QString stated = QString("open-set: %1 at %2 %")  // the method and rate its file states (knn-relative, 8 %)
+    const QString stated = QString("open-set: %1 at %2 %")  // the method and rate its file states (knn-relative, 5 %: data/models/README.md)
                                .arg(builtInOpenSet()["method"].toString())
                                .arg(std::lround(100 * builtInOpenSet()["false_accept"].toDouble()));
-    QVERIFY2(stated == "open-set: knn-relative at 8 %", qPrintable(stated));
+    QVERIFY2(stated == "open-set: knn-relative at 5 %", qPrintable(stated));
     QVERIFY(std::any_of(info.begin(), info.end(), [&](QLabel* l) {
       return l->text().contains(stated) && l->text().contains("fuses by pose");
     }));
@@ -624,15 +624,16 @@ class StudioTest : public QObject {
     }
     QCOMPARE(answers.size(), std::size_t(12));
     const auto drill = static_cast<int>(std::count(answers.begin(), answers.end(), QString("ycb_035_power_drill")));
-    // `keyturn classify` on this recording: 10 of 12 views are the drill (120° and 270° not).
-    QVERIFY2(drill == 10, qPrintable(QString("%1 of 12 views the drill").arg(drill)));
+    // `keyturn classify` on this recording: 11 of 12 views are the drill (the built-in model made with
+    // the filled keypoint budget, 2026-12-07; 10 with the one before).
+    QVERIFY2(drill == 11, qPrintable(QString("%1 of 12 views the drill").arg(drill)));
 
     ObservedFactory observed(*factory_);
     observed.gate.allow(1);
     StudioWindow w(observed, playback(25));
     const auto open = qScopeGuard([&] { observed.gate.open(); });  // before the window closes its camera
     w.show();
-    // 32 frames, one at a time: the last 20 results are views 0-11 and 0-7 (120° twice, 270° once).
+    // 32 frames, one at a time: the last 20 results are views 0-11 and 0-7 (the view not the drill once or twice).
     const long frames = 32;
     for (long n = 1; n <= frames; ++n) {
       QTRY_VERIFY2_WITH_TIMEOUT(w.rates().results == n, qPrintable(QString("frame %1: %2 results").arg(n).arg(w.rates().results)),
@@ -646,7 +647,7 @@ class StudioTest : public QObject {
     const auto mode = std::max_element(last20.begin(), last20.end(), [](auto& a, auto& b) { return a.second < b.second; });
     QCOMPARE(w.recognisedClass(), mode->first);
     QCOMPARE(w.recognisedAgreement(), mode->second / 20.0);
-    QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));  // 17 of 20
+    QVERIFY2(w.recognisedAgreement() >= 0.8, qPrintable(QString::number(w.recognisedAgreement())));  // 18 or 19 of 20
   }
 
   void aRecordingPlayedOnceEndsAfterItsViewsWithoutABanner() {
