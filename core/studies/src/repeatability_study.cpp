@@ -172,6 +172,10 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
                            inverse_overlaps);
   }
 
+  // describe's defaults, which iss-chain follows (its placement, and DescriptorOptions::iss's filled budget).
+  const DescriptorOptions describe_defaults;
+  DetectorOptions chain_detector = o.detector;
+  chain_detector.iss.fill_budget = describe_defaults.iss.fill_budget;
   progress.begin("detect", views.size());
   for (auto& v : data) {
     // The budget K is ISS's native count unless given; ISS runs for it even when not compared.
@@ -182,7 +186,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
       // iss-refined with --refine-keypoints, iss-nearest, iss-salient and iss-measured with
       // --keypoint-placement. "measured" detects on the measured points at the chain's scale; the
       // others detect on the working-resolution view, then place.
-      KeypointPlacementOptions p = d == Detector::IssChain ? DescriptorOptions().placement : o.placement;
+      KeypointPlacementOptions p = d == Detector::IssChain ? describe_defaults.placement : o.placement;
       if (d == Detector::IssNearest) p.placement = KeypointPlacement::Nearest;
       if (d == Detector::IssSalient) p.placement = KeypointPlacement::Salient;
       if (d == Detector::IssMeasured) p.placement = KeypointPlacement::Measured;
@@ -198,9 +202,7 @@ Study runRepeatabilityStudy(std::vector<StudyView> views, const StudyOptions& o,
         }
         return placeKeypoints(v.set, kp, v.working_res, o.detector.iss, p);
       };
-      // The chain's ISS as describe runs it by default (DescriptorOptions::iss: the budget filled or not).
-      DetectorOptions dopt = o.detector;
-      if (chain) dopt.iss.fill_budget = DescriptorOptions().iss.fill_budget;
+      const DetectorOptions& dopt = chain ? chain_detector : o.detector;
       const auto t0 = std::chrono::steady_clock::now();
       v.native[d] = refined(detectKeypoints(d, set, res, dopt));
       v.ms[d] = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();

@@ -22,8 +22,8 @@ struct DescriptorOptions {
   bool filter = true;
   FilterOptions filter_options;
   WorkingResolutionOptions working;  // applies with or without the filter
-  // ISS as §4.2 defines it, with a budget K always reaches (issue 49; docs/descriptors.md, "A budget K
-  // always reaches"): K stays put under sensor noise, and unseen elevations and instances gained.
+  // ISS as §4.2 defines it, plus the filled budget (issue 49; docs/descriptors.md, "A budget K always
+  // reaches"): K no longer moves with sensor noise; unseen elevations and instances were named better.
   IssOptions iss = [] {
     IssOptions o;
     o.fill_budget = true;
