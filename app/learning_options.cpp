@@ -94,6 +94,11 @@ void addOpenSetOptions(CLI::App& cmd, learning::OpenSetOptions& o, std::string* 
                  "Open-set: groups of categories left out in turn to calibrate the threshold (trainings)")
       ->check(CLI::Range(2, 1000))
       ->capture_default_str();
+  cmd.add_option("--open-set-rule", o.rule,
+                 "Open-set: the stated rate met on all the left-out views together (pooled) or on each left-out "
+                 "group's alone (per-group: stricter; with --open-set-groups 1000, on every category)")
+      ->check(CLI::IsMember(learning::openSetRules()))
+      ->capture_default_str();
 }
 
 std::string openSetSummary(const learning::OpenSet& os) {
@@ -101,7 +106,8 @@ std::string openSetSummary(const learning::OpenSet& os) {
   std::ostringstream out;
   out << std::fixed << "; open-set " << os.method << " threshold " << std::setprecision(4) << os.threshold << " for "
       << std::setprecision(1) << 100 * os.false_accept << " % false accepts (" << os.calibration_views
-      << " views of left-out categories, " << os.calibration_groups << " trainings)";
+      << " views of left-out categories, " << os.calibration_groups << " trainings"
+      << (os.rule == "per-group" ? ", met by each left-out group" : "") << ")";
   if (learning::keepsReferences(os.method) && os.distance != "rms") out << "; distance " << os.distance;
   for (const auto& [camera, f] : os.camera_scale) out << "; camera " << camera << " × " << std::setprecision(3) << f;
   if (os.class_scale_power != 1)

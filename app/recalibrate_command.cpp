@@ -15,7 +15,7 @@ namespace {
 
 // Each option left out keeps the model's own setting: empty text, NaN or 0 mean "not given".
 struct RecalibrateArgs {
-  std::string model, out, method, scale_by, spread, distance;
+  std::string model, out, method, scale_by, spread, distance, rule;
   double false_accept = std::nan(""), class_scale_power = std::nan("");
   int groups = 0;
   bool quiet = false;
@@ -33,6 +33,7 @@ int runRecalibrate(const RecalibrateArgs& a) {
   if (std::isfinite(a.false_accept)) o.false_accept = a.false_accept;
   if (std::isfinite(a.class_scale_power)) o.class_scale_power = a.class_scale_power;
   if (a.groups > 0) o.groups = a.groups;
+  if (!a.rule.empty()) o.rule = a.rule;
   if (!a.quiet)
     std::cerr << "keyturn recalibrate: " << m.info.training_views.views.size() << " kept training views, "
               << o.groups << " trainings without a group of categories each…\n";
@@ -72,6 +73,9 @@ Command addRecalibrateCommand(CLI::App& app) {
       ->check(CLI::Range(0.0, 0.99));
   cmd->add_option("--open-set-groups", a->groups, "Groups of categories left out in turn (trainings)")
       ->check(CLI::Range(2, 1000));
+  cmd->add_option("--open-set-rule", a->rule,
+                  "pooled (the stated rate on all left-out views together) or per-group (on each left-out group's)")
+      ->check(CLI::IsMember(learning::openSetRules()));
   cmd->add_flag("--quiet,-q", a->quiet, "No progress");
   return {cmd, [a] { return runRecalibrate(*a); }};
 }

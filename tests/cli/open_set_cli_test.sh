@@ -97,6 +97,16 @@ check "  and says so" grep -q "the classifier kept (threshold before .*distance 
 check "recalibrate with no option gives the model's threshold back (to 1e-3)" \
   jq -e --slurpfile a "$work/mrel/model.json" '(.open_set.threshold - $a[0].open_set.threshold | fabs) < 1e-3' \
   "$work/mrel-again/model.json" > /dev/null
+"$KT" recalibrate "$work/mrel" --open-set-rule per-group --open-set-groups 1000 --out "$work/mrel-each" 2> "$work/each.err"
+check "recalibrate --open-set-rule per-group keeps the rule in the model, met by every category" \
+  test "$(jq -r '.open_set.calibration | "\(.rule) \(.groups)"' "$work/mrel-each/model.json")" = "per-group 4"
+check "  a threshold no lower than the pooled one" \
+  jq -e --slurpfile a "$work/mrel/model.json" '.open_set.threshold >= $a[0].open_set.threshold' \
+  "$work/mrel-each/model.json" > /dev/null
+check "  and says so" grep -q "met by each left-out group" "$work/each.err"
+"$KT" recalibrate "$work/mrel-each" --out "$work/mrel-each-again" -q
+check "  recalibrated again with no option, the rule is the model's own" \
+  test "$(jq -r '.open_set.calibration.rule' "$work/mrel-each-again/model.json")" = per-group
 
 # Two categories cannot be calibrated: asked for, an error; with auto, a closed-set model.
 "$KT" simulate --objects "$data/objects-two-categories.csv" --elevations 30 --step 90 -q --out "$work/two"

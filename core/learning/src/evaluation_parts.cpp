@@ -47,7 +47,8 @@ json planKey(const EvaluationRun& run) {
           {"label", p.label ? (*p.label == LabelKind::Category ? "category" : "instance") : "each protocol's own"},
           // the open-set protocol's calibration: parts calibrated otherwise are another run
           {"open_set", {{"methods", p.open_set.methods}, {"false_accept", p.open_set.false_accept},
-                        {"groups", p.open_set.groups}, {"neighbours", p.open_set.neighbours}}}};
+                        {"groups", p.open_set.groups}, {"neighbours", p.open_set.neighbours},
+                        {"rule", p.open_set.rule}}}};
 }
 
 std::string differences(const json& theirs, const json& mine) {

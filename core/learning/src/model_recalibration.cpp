@@ -22,6 +22,7 @@ OpenSetOptions openSetOptionsOf(const Model& m) {
   o.class_scale_power = info.open_set.class_scale_power;
   o.class_spread = info.open_set.class_spread;
   o.distance = info.open_set.distance;
+  o.rule = info.open_set.rule;
   o.groups = info.training_views.open_set_groups;
   o.seed = info.training_views.open_set_seed;
   o.required = true;

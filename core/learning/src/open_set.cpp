@@ -98,6 +98,13 @@ const std::vector<std::string>& openSetScales() {
 
 void checkOpenSetScale(const std::string& scale_by) { checkChoice(openSetScales(), scale_by, "scale"); }
 
+const std::vector<std::string>& openSetRules() {
+  static const std::vector<std::string> rules = {"pooled", "per-group"};
+  return rules;
+}
+
+void checkOpenSetRule(const std::string& rule) { checkChoice(openSetRules(), rule, "calibration rule"); }
+
 const std::vector<std::string>& openSetSpreads() {
   static const std::vector<std::string> spreads = {"views", "instances"};
   return spreads;

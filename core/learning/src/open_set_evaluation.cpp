@@ -175,6 +175,9 @@ std::vector<OpenSetSummary> summariseOpenSet(const std::vector<FoldOutcome>& fol
       if (s.method != o.method) throw Error("open-set folds list their methods in different orders");
       const double a = auroc(o.known_scores, o.unknown_scores);
       if (std::isfinite(a)) aurocs[m].push_back(a);
+      s.false_accept_by_fold.push_back(f.unknown_views ? static_cast<double>(o.unknown_accepted) /
+                                                             static_cast<double>(f.unknown_views)
+                                                       : std::nan(""));
       s.known_views += f.test_views;
       s.unknown_views += f.unknown_views;
       accepted_unknown[m] += o.unknown_accepted;

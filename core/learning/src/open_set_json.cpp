@@ -19,6 +19,7 @@ json openSetJson(const OpenSet& s) {
             {"threshold", s.threshold},
             {"false_accept", s.false_accept},
             {"calibration", {{"unknown_views", s.calibration_views}, {"groups", s.calibration_groups}}}};
+  if (s.rule != "pooled") j["calibration"]["rule"] = s.rule;  // absent: pooled (every model before 2026-12-07)
   if (std::isfinite(s.turn_threshold)) {
     j["turn_threshold"] = s.turn_threshold;
     j["calibration"]["unknown_turns"] = s.calibration_turns;
@@ -75,6 +76,7 @@ OpenSet parseOpenSetJson(const json& j, int inputs, int classes, const std::stri
       const auto& c = j.at("calibration");
       s.calibration_views = jsonInteger(c, "unknown_views", 0, std::numeric_limits<int>::max(), where);
       s.calibration_groups = jsonInteger(c, "groups", 0, std::numeric_limits<int>::max(), where);
+      if (c.contains("rule")) s.rule = choiceOf(c, "rule", checkOpenSetRule, where);
       if (c.contains("unknown_turns"))
         s.calibration_turns = jsonInteger(c, "unknown_turns", 0, std::numeric_limits<int>::max(), where);
     }

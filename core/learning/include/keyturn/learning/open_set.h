@@ -64,6 +64,9 @@ struct OpenSet {
   double false_accept = 0;     // the stated rate the threshold was calibrated for
   int calibration_views = 0;   // unknown views the threshold was set on
   int calibration_groups = 0;  // trainings, each without one group of categories
+  // How the threshold meets the stated rate (openSetRules()): "pooled", on all the left-out views
+  // together; "per-group", on each left-out group's views alone (the strictest group's threshold).
+  std::string rule = "pooled";
   // A turn's threshold (turn_fusion.h): the mean score of a turn's views accepted when >= it,
   // calibrated for the same false-accept rate on turns of the left-out categories' capture groups
   // (kTurnViews views over kTurnSpreadDeg, as evaluate reads turns). NaN: not calibrated (a model
@@ -106,6 +109,10 @@ struct OpenSet {
 const std::vector<std::string>& openSetScales();
 // Throws keyturn::Error naming the scale when it is not one of openSetScales().
 void checkOpenSetScale(const std::string& scale_by);
+// The calibration rules (OpenSet::rule): pooled, per-group.
+const std::vector<std::string>& openSetRules();
+// Throws keyturn::Error naming the rule when it is not one of openSetRules().
+void checkOpenSetRule(const std::string& rule);
 // The spreads a class's knn-relative scale is measured by: views, instances (OpenSet::class_spread).
 const std::vector<std::string>& openSetSpreads();
 // Throws keyturn::Error naming the spread when it is not one of openSetSpreads().

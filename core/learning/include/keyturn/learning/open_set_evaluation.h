@@ -39,6 +39,7 @@ struct OpenSetSummary {
   std::string method;
   double auroc_mean = 0, auroc_sd = 0;        // known vs unknown, per fold
   double false_accept = 0;                    // unknowns accepted / unknowns, all folds
+  std::vector<double> false_accept_by_fold;   // the same, fold by fold (NaN: a fold without unknowns)
   double known_accuracy_open = 0;             // known views accepted with their true class / known views
   double known_accuracy_closed = 0;           // known views given their true class (no rejection)
   double known_rejected = 0;                  // known views rejected / known views
