@@ -1,6 +1,7 @@
 // keyturn classify --fuse: the views of one object, taken as the turntable turned it, fused into
 // the belief after each view (learning/model_fusion.h); the poses come from the dataset's
-// manifest (--object) or from each view's sidecar.
+// manifest (--object) or from each view's sidecar. With --turns, every turn of a dataset
+// (learning::turnsOf), each fused alone: a model's answers over turns, as evaluate reads them.
 #include <cmath>
 #include <iomanip>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include "keyturn/core/string_format.h"
 #include "keyturn/core/view_files.h"
 #include "keyturn/learning/model_fusion.h"
+#include "keyturn/learning/turn_fusion.h"
 #include "keyturn/dataset/dataset.h"
 #include "keyturn/dataset/dataset_views.h"
 #include "keyturn/dataset/view_poses.h"
@@ -67,6 +69,63 @@ std::string fusedLabel(const learning::ModelInfo& m, const learning::FusedStep& 
   return s.answer == learning::Answer::Class ? m.classes.at(static_cast<std::size_t>(s.best)) : learning::answerName(s.answer);
 }
 
+// --turns: the dataset's views described and classified once, then every turn fused alone.
+int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const learning::FusionOptions& options,
+                  const DepthImageOptions& depth) {
+  if (a.inputs.size() != 1 || !isDataset(a.inputs[0]))
+    throw Error("--turns reads the turns of one dataset folder (manifest.csv), not of " + std::to_string(a.inputs.size()) +
+                " inputs");
+  if (!a.object.empty() || !a.azimuths.empty()) throw Error("--turns takes every object's turns: leave out --object and --azimuths");
+  std::vector<dataset::ViewRecord> records;
+  std::vector<learning::LabelledView> views = dataset::datasetViews(a.inputs[0], nullptr, &records);
+  std::vector<double> az;
+  std::vector<std::string> group;
+  for (std::size_t i = 0; i < views.size(); ++i) {
+    views[i].depth = depth;
+    az.push_back(records[i].measured_deg);
+    group.push_back(views[i].cls + "/" + views[i].instance + "/e" + views[i].elevation);
+  }
+  const std::vector<std::vector<int>> turns = learning::turnsOf(az, group);
+  if (turns.empty())
+    throw Error(a.inputs[0] + ": no turn of " + std::to_string(learning::kTurnViews) + " views over " +
+                std::to_string(static_cast<int>(learning::kTurnSpreadDeg)) + "° in any object's views");
+  DescribeProgressLine progress(a.quiet);
+  const learning::FeatureTable t = learning::describeForModel(m, views, a.jobs, &progress, a.model);
+  for (const auto& row : t.rows)
+    if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) throw Error(row.id + ": " + row.problem);
+  const auto preds = learning::predictRows(m, t, a.model);
+  std::vector<const learning::Prediction*> of_view(views.size(), nullptr);
+  for (const auto& p : preds) of_view.at(p.row) = &p;
+  nlohmann::json out = nlohmann::json::array();
+  if (!a.json) std::cout << "# object\tstart\tviews' answers\tfused (" << options.method << ")\n";
+  for (const auto& seq : turns) {
+    std::vector<learning::Prediction> turn_preds;
+    std::vector<double> turn_az;
+    nlohmann::json ids = nlohmann::json::array(), answers = nlohmann::json::array();
+    std::string answer_list;
+    for (int i : seq) {
+      const auto* p = of_view.at(static_cast<std::size_t>(i));
+      if (!p) throw Error(views[static_cast<std::size_t>(i)].id + ": not classified");
+      turn_preds.push_back(*p);
+      turn_az.push_back(az[static_cast<std::size_t>(i)]);
+      ids.push_back(t.rows[p->row].id);
+      answers.push_back(learning::answerLabel(m.info, *p));
+      answer_list += (answer_list.empty() ? "" : ",") + learning::answerLabel(m.info, *p);
+    }
+    const learning::ModelFusion fused = learning::fusePredictions(m, t, turn_preds, turn_az, options);
+    const learning::FusedStep& last = fused.steps.back();
+    const std::string& object = group[static_cast<std::size_t>(seq.front())];
+    if (a.json)
+      out.push_back({{"object", object}, {"start_deg", turn_az.front()}, {"views", ids}, {"view_classes", answers},
+                     {"class", fusedLabel(m.info, last)}, {"answer", learning::answerName(last.answer)}});
+    else
+      std::cout << object << "\t" << std::fixed << std::setprecision(1) << turn_az.front() << "\t" << answer_list << "\t"
+                << fusedLabel(m.info, last) << "\n";
+  }
+  if (a.json) std::cout << nlohmann::json{{"method", options.method}, {"turns", out}}.dump(2) << "\n";
+  return 0;
+}
+
 }  // namespace
 
 int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth) {
@@ -79,6 +138,7 @@ int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth
                 << " holds no pose references (trained before them, or on views without poses): fusing independently\n";
     options.method = "independent";
   }
+  if (a.turns) return classifyTurns(a, m, options, depth);
   const bool need_poses = options.method == "pose";
   PosedViews posed;
   if (!a.object.empty()) {

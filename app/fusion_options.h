@@ -61,6 +61,7 @@ struct ClassifyFusionArgs {
   std::vector<std::string> inputs;  // view files, or one dataset folder with `object`
   std::string object;               // CLASS/INSTANCE[/ELEVATION] of a dataset
   std::string azimuths;             // a dataset's views at these angles only ("0,45,90")
+  bool turns = false;               // every turn of one dataset folder, each fused alone
   bool json = false, quiet = false;
   int jobs = 0;
   FusionFlags flags;

@@ -128,8 +128,8 @@ struct ClassifyArgs {
 };
 
 int runClassify(const ClassifyArgs& a) {
-  if (!a.fuse && (!a.fusion.object.empty() || !a.fusion.azimuths.empty()))
-    throw Error("--object and --azimuths pick the views of a fused sequence: give --fuse");
+  if (!a.fuse && (!a.fusion.object.empty() || !a.fusion.azimuths.empty() || a.fusion.turns))
+    throw Error("--object, --azimuths and --turns pick the views of fused sequences: give --fuse");
   if (a.fuse) {
     ClassifyFusionArgs f = a.fusion;
     f.model = a.model, f.inputs = a.inputs, f.json = a.json, f.quiet = a.quiet, f.jobs = a.jobs;
@@ -214,6 +214,9 @@ Command addClassifyCommand(CLI::App& app) {
   cmd->add_option("--object", a->fusion.object,
                   "With --fuse and a dataset folder: the views of CLASS/INSTANCE[/ELEVATION], in capture order");
   cmd->add_option("--azimuths", a->fusion.azimuths, "With --object: only the views at these angles, e.g. 0,45,90");
+  cmd->add_flag("--turns", a->fusion.turns,
+                "With --fuse and a dataset folder: every turn of its objects (3 views over 90°, one starting at every "
+                "view of each object and elevation, as evaluate reads turns), each fused alone; one answer per turn");
   a->fusion.flags.addStopBelief(*cmd);
   a->depth.add(*cmd);
   return {cmd, [a] { return runClassify(*a); }};

@@ -51,6 +51,24 @@ check "independent fusion needs no pose" test "$(jq -c '[.views[].azimuth_deg]' 
 check "a malformed --object is named" grep -q "^keyturn: --object: 'box' is not CLASS/INSTANCE or CLASS/INSTANCE/ELEVATION" "$work/object.err"
 "$KT" classify "$work/model" "$work/ds" --object box/ycb_004_sugar_box -q 2> "$work/nofuse.err"
 check "--object without --fuse is refused" grep -q "give --fuse" "$work/nofuse.err"
+# Every turn of a dataset (--turns): 3 views over 90° from every view of each object and elevation,
+# each fused alone; a turn's answer is the one --object gives for the same three views.
+"$KT" classify "$work/model" "$work/ds" --fuse --turns -q --json > "$work/turns.json"
+check "--turns: one turn from every view (4 objects × 2 elevations × 8 views)" \
+  test "$(jq '.turns | length' "$work/turns.json")" -eq 64
+check "  each of 3 views of one object, 45° apart" \
+  test "$(jq '[.turns[] | (.views | length == 3) and (.views | map(split("/a")[0]) | unique | length == 1)] | all' "$work/turns.json")" = true
+"$KT" classify "$work/model" "$work/ds" --fuse --object mug/ycb_025_mug/e60 --azimuths 90,135,180 -q --json > "$work/one_turn.json"
+turn_class=$(jq -r '.turns[] | select(.object == "mug/ycb_025_mug/e60" and .start_deg == 90) | .class' "$work/turns.json")
+check "  the turn from 90° of the mug at 60° answers as --object does for its views" \
+  test -n "$turn_class" -a "$turn_class" = "$(jq -r '.views[-1].class' "$work/one_turn.json")"
+check "  and the turn from 315° takes 315, 0 and 45°" \
+  test "$(jq -c '[.turns[] | select(.object == "mug/ycb_025_mug/e60" and .start_deg == 315) | .views[] | split("/a")[1]]' "$work/turns.json")" = '["315.0","0.0","45.0"]'
+"$KT" classify "$work/model" "$work/ds" --turns -q 2> "$work/turns_nofuse.err"
+check "--turns without --fuse is refused" grep -q "give --fuse" "$work/turns_nofuse.err"
+"$KT" classify "$work/model" "$work/ds" --fuse --turns --object mug/ycb_025_mug -q 2> "$work/turns_object.err"
+check "--turns with --object is refused in one line" \
+  test "$(cat "$work/turns_object.err")" = "keyturn: --turns takes every object's turns: leave out --object and --azimuths"
 mkdir -p "$work/old"  # the shipped model as it was before pose references
 jq 'del(.pose_references)' "$(dirname "$0")/../../data/models/sim-objects/model.json" > "$work/old/model.json"
 cp "$(dirname "$0")/../../data/models/sim-objects/model.xgb.json" "$work/old/"

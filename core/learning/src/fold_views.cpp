@@ -80,6 +80,10 @@ std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& membe
   return seq;
 }
 
+}  // namespace keyturn::learning::detail
+
+namespace keyturn::learning {
+
 std::vector<std::vector<int>> turnsOf(const std::vector<double>& az, const std::vector<std::string>& group) {
   std::vector<FusionView> views(az.size());
   for (std::size_t i = 0; i < az.size(); ++i) views[i].azimuth_deg = az[i];
@@ -88,12 +92,12 @@ std::vector<std::vector<int>> turnsOf(const std::vector<double>& az, const std::
   const std::vector<double> offsets = turn.offsets(kTurnViews);
   const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
   std::vector<std::vector<int>> turns;
-  for (const auto& [name, members] : groupsByAngle(views, group))
+  for (const auto& [name, members] : detail::groupsByAngle(views, group))
     for (const auto& [start_deg, start] : members) {
-      std::vector<int> seq = viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
+      std::vector<int> seq = detail::viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
       if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
     }
   return turns;
 }
 
-}  // namespace keyturn::learning::detail
+}  // namespace keyturn::learning

@@ -52,9 +52,4 @@ int viewAt(const std::vector<std::pair<double, int>>& members, double a, double 
 std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& members, double start_deg,
                                 const std::vector<double>& offsets, double tolerance);
 
-// The turns evaluate and the open-set calibration read from views with angles (NaN: none) and
-// capture groups: kTurnViews views over kTurnSpreadDeg (turn_fusion.h), one starting at every view
-// whose group has all of them (each a list of indices into the views).
-std::vector<std::vector<int>> turnsOf(const std::vector<double>& azimuth_deg, const std::vector<std::string>& group);
-
 }  // namespace keyturn::learning::detail

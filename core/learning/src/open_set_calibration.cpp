@@ -8,6 +8,7 @@
 
 #include "keyturn/core/error.h"
 #include "keyturn/learning/splits.h"
+#include "keyturn/learning/turn_fusion.h"
 #include "fold_views.h"
 
 namespace keyturn::learning {
@@ -107,7 +108,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
       std::vector<double> az;
       std::vector<std::string> group;
       for (auto r : held) az.push_back(turns->azimuth_deg[r]), group.push_back(turns->group[r]);
-      held_turns = detail::turnsOf(az, group);
+      held_turns = turnsOf(az, group);
     }
     for (std::size_t m = 0; m < o.methods.size(); ++m) {
       const OpenSet scorer =

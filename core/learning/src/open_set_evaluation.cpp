@@ -39,7 +39,7 @@ TurningViews turningViews(const FeatureTable& t, const std::vector<std::size_t>&
 std::vector<std::vector<int>> turnsOf(const TurningViews& tv) {
   std::vector<double> az;
   for (const auto& v : tv.views) az.push_back(v.azimuth_deg);
-  return detail::turnsOf(az, tv.group);
+  return learning::turnsOf(az, tv.group);
 }
 
 // The fused answer of a sequence: the class index, or -1 for "unknown" (closed-set without scores).

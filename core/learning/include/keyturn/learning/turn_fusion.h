@@ -13,6 +13,7 @@
 //   outvote the views that named it, and a mean has no tie for an even count of views. The earlier
 //   vote ("unknown" while half the views are) is measured against it in docs/results.md, "Fused turns".
 #include <cstddef>
+#include <string>
 #include <vector>
 
 #include "keyturn/learning/open_set.h"
@@ -24,6 +25,12 @@ namespace keyturn::learning {
 // spread over this many degrees of the table (0°, 45°, 90°).
 constexpr int kTurnViews = 3;
 constexpr double kTurnSpreadDeg = 90;
+
+// The turns of a set of views: kTurnViews views over kTurnSpreadDeg, one starting at every view whose
+// capture group (instance and elevation) has all of them, each a list of indices into the views in
+// turntable order. azimuth_deg and group one per view (NaN: no angle, in no turn). evaluate's open-set
+// turns, the turn threshold's calibration and `classify --fuse --turns` read turns by it.
+std::vector<std::vector<int>> turnsOf(const std::vector<double>& azimuth_deg, const std::vector<std::string>& group);
 
 // One view of a turn as its model answered it alone.
 struct TurnView {
