@@ -69,6 +69,13 @@ std::string fusedLabel(const learning::ModelInfo& m, const learning::FusedStep& 
   return s.answer == learning::Answer::Class ? m.classes.at(static_cast<std::size_t>(s.best)) : learning::answerName(s.answer);
 }
 
+// A view that could not be read or described stops the sequences in one line naming it; one too empty to
+// be an object is answered "no object" instead and fusion leaves it out (turn_fusion.h).
+void refuseUndescribedViews(const learning::FeatureTable& t) {
+  for (const auto& row : t.rows)
+    if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) throw Error(row.id + ": " + row.problem);
+}
+
 // --turns: the dataset's views described and classified once, then every turn fused alone.
 int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const learning::FusionOptions& options,
                   const DepthImageOptions& depth) {
@@ -91,8 +98,7 @@ int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const l
                 std::to_string(static_cast<int>(learning::kTurnSpreadDeg)) + "° in any object's views");
   DescribeProgressLine progress(a.quiet);
   const learning::FeatureTable t = learning::describeForModel(m, views, a.jobs, &progress, a.model);
-  for (const auto& row : t.rows)
-    if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) throw Error(row.id + ": " + row.problem);
+  refuseUndescribedViews(t);
   const auto preds = learning::predictRows(m, t, a.model);
   std::vector<const learning::Prediction*> of_view(views.size(), nullptr);
   for (const auto& p : preds) of_view.at(p.row) = &p;
@@ -157,8 +163,7 @@ int runClassifyFused(const ClassifyFusionArgs& a, const DepthImageOptions& depth
   }
   DescribeProgressLine progress(a.quiet || posed.views.size() < 2);
   const learning::FeatureTable t = learning::describeForModel(m, posed.views, a.jobs, &progress, a.model);
-  for (const auto& row : t.rows)
-    if (row.keypoints < 0 && !row.problem.empty() && !row.no_object) throw Error(row.id + ": " + row.problem);
+  refuseUndescribedViews(t);
   const auto preds = learning::predictRows(m, t, a.model);
   std::vector<double> az;
   for (const auto& p : preds) az.push_back(std::isfinite(posed.azimuths[p.row]) ? posed.azimuths[p.row] : 0.0);
