@@ -107,8 +107,7 @@ int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const l
   for (const auto& seq : turns) {
     std::vector<learning::Prediction> turn_preds;
     std::vector<double> turn_az;
-    nlohmann::json ids = nlohmann::json::array(), answers = nlohmann::json::array();
-    std::string answer_list;
+    std::vector<std::string> ids, answers;
     for (int i : seq) {
       const auto* p = of_view.at(static_cast<std::size_t>(i));
       if (!p) throw Error(views[static_cast<std::size_t>(i)].id + ": not classified");
@@ -116,7 +115,6 @@ int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const l
       turn_az.push_back(az[static_cast<std::size_t>(i)]);
       ids.push_back(t.rows[p->row].id);
       answers.push_back(learning::answerLabel(m.info, *p));
-      answer_list += (answer_list.empty() ? "" : ",") + learning::answerLabel(m.info, *p);
     }
     const learning::ModelFusion fused = learning::fusePredictions(m, t, turn_preds, turn_az, options);
     const learning::FusedStep& last = fused.steps.back();
@@ -124,9 +122,11 @@ int classifyTurns(const ClassifyFusionArgs& a, const learning::Model& m, const l
     if (a.json)
       out.push_back({{"object", object}, {"start_deg", turn_az.front()}, {"views", ids}, {"view_classes", answers},
                      {"class", fusedLabel(m.info, last)}, {"answer", learning::answerName(last.answer)}});
-    else
-      std::cout << object << "\t" << std::fixed << std::setprecision(1) << turn_az.front() << "\t" << answer_list << "\t"
-                << fusedLabel(m.info, last) << "\n";
+    else {
+      std::cout << object << "\t" << std::fixed << std::setprecision(1) << turn_az.front() << "\t";
+      for (std::size_t k = 0; k < answers.size(); ++k) std::cout << (k ? "," : "") << answers[k];
+      std::cout << "\t" << fusedLabel(m.info, last) << "\n";
+    }
   }
   if (a.json) std::cout << nlohmann::json{{"method", options.method}, {"turns", out}}.dump(2) << "\n";
   return 0;

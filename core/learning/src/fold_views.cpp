@@ -4,7 +4,6 @@
 #include <cmath>
 
 #include "keyturn/learning/fusion_evaluation.h"
-#include "keyturn/learning/turn_fusion.h"
 
 namespace keyturn::learning::detail {
 
@@ -81,23 +80,3 @@ std::vector<int> viewsAtOffsets(const std::vector<std::pair<double, int>>& membe
 }
 
 }  // namespace keyturn::learning::detail
-
-namespace keyturn::learning {
-
-std::vector<std::vector<int>> turnsOf(const std::vector<double>& az, const std::vector<std::string>& group) {
-  std::vector<FusionView> views(az.size());
-  for (std::size_t i = 0; i < az.size(); ++i) views[i].azimuth_deg = az[i];
-  FusionSchedule turn;
-  turn.spread_deg = kTurnSpreadDeg;
-  const std::vector<double> offsets = turn.offsets(kTurnViews);
-  const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
-  std::vector<std::vector<int>> turns;
-  for (const auto& [name, members] : detail::groupsByAngle(views, group))
-    for (const auto& [start_deg, start] : members) {
-      std::vector<int> seq = detail::viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
-      if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
-    }
-  return turns;
-}
-
-}  // namespace keyturn::learning

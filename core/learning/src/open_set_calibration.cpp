@@ -78,6 +78,7 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   const int groups = *std::max_element(group_of.begin(), group_of.end()) + 1;
   std::vector<std::vector<double>> unknown(o.methods.size()), unknown_turns(o.methods.size());
   // per-group: the strictest of the groups' own thresholds (-inf until a group has views or turns).
+  const bool per_group = o.rule == "per-group";
   const double none = -std::numeric_limits<double>::infinity();
   std::vector<double> strictest(o.methods.size(), none), strictest_turn(o.methods.size(), none);
   for (int g = 0; g < groups; ++g) {
@@ -116,14 +117,14 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
                            o.class_scale_power, o.class_spread, instances ? &insttrain : nullptr, o.distance);
       const std::vector<double> s = openSetScores(scorer, xheld, p, cameras ? &camheld : nullptr);
       unknown[m].insert(unknown[m].end(), s.begin(), s.end());
-      strictest[m] = std::max(strictest[m], thresholdForFalseAccept(s, o.false_accept));
+      if (per_group) strictest[m] = std::max(strictest[m], thresholdForFalseAccept(s, o.false_accept));
       std::vector<double> turn_scores;
       for (const auto& seq : held_turns) {
         double sum = 0;
         for (int i : seq) sum += std::isfinite(s[static_cast<std::size_t>(i)]) ? s[static_cast<std::size_t>(i)] : 0.0;
         turn_scores.push_back(sum / static_cast<double>(seq.size()));
       }
-      if (!turn_scores.empty())
+      if (per_group && !turn_scores.empty())
         strictest_turn[m] = std::max(strictest_turn[m], thresholdForFalseAccept(turn_scores, o.false_accept));
       unknown_turns[m].insert(unknown_turns[m].end(), turn_scores.begin(), turn_scores.end());
     }
@@ -132,7 +133,6 @@ std::vector<OpenSet> calibrateOpenSets(const Matrix& x, const std::vector<int>& 
   for (std::size_t m = 0; m < o.methods.size(); ++m) {
     OpenSet s = fitOpenSetScorer(o.methods[m], x, y, o.neighbours, o.scale_by, cameras, o.class_scale_power,
                                  o.class_spread, instances, o.distance);
-    const bool per_group = o.rule == "per-group";
     s.threshold = per_group && !unknown[m].empty() ? strictest[m] : thresholdForFalseAccept(unknown[m], o.false_accept);
     s.rule = o.rule;
     s.false_accept = o.false_accept;

@@ -3,6 +3,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "keyturn/learning/fusion_evaluation.h"
+#include "fold_views.h"
+
 namespace keyturn::learning {
 
 TurnFusion::TurnFusion(const FusionOptions& o, const OpenSet& s) : options_(o), state_(o) {
@@ -42,5 +45,21 @@ double TurnFusion::topBelief() const {
 bool TurnFusion::certain() const { return answer() == Answer::Class && topBelief() >= options_.stop_belief; }
 
 bool TurnFusion::certainWhileUnknown() const { return answer() == Answer::Unknown && topBelief() >= options_.stop_belief; }
+
+std::vector<std::vector<int>> turnsOf(const std::vector<double>& az, const std::vector<std::string>& group) {
+  std::vector<FusionView> views(az.size());
+  for (std::size_t i = 0; i < az.size(); ++i) views[i].azimuth_deg = az[i];
+  FusionSchedule turn;
+  turn.spread_deg = kTurnSpreadDeg;
+  const std::vector<double> offsets = turn.offsets(kTurnViews);
+  const double tolerance_deg = FusionEvaluationOptions().tolerance_deg;
+  std::vector<std::vector<int>> turns;
+  for (const auto& [name, members] : detail::groupsByAngle(views, group))
+    for (const auto& [start_deg, start] : members) {
+      std::vector<int> seq = detail::viewsAtOffsets(members, start_deg, offsets, tolerance_deg);
+      if (seq.size() == offsets.size()) turns.push_back(std::move(seq));
+    }
+  return turns;
+}
 
 }  // namespace keyturn::learning
