@@ -226,6 +226,14 @@ std::vector<DescriptorParameter> makeTable() {
   // The default since 2026-12-07; written whenever on, so every cache and model made before (no key) reads off.
   fill.written_when_set = true;
   t.push_back(fill);
+  DescriptorParameter margin = within(
+      "nms_margin",
+      "Soft suppression: each ISS maximum weighs its margin over the most salient other point within the suppression "
+      "radius (1 - that saliency / its own) divided by this, at most 1, so neighbours that noise swaps weigh about 0 "
+      "(0 = every maximum weighs 1; issue 49)",
+      [](auto& o) -> auto& { return o.iss.nms_margin; }, 1, "", "0");
+  margin.written_when_set = true;  // an option: the default specification, caches and models stay as they were
+  t.push_back(margin);
   DescriptorParameter refine{"refine_keypoints",
                "Keypoint refinement: move each keypoint to the most salient measured point within this many ISS "
                "suppression radii of it, before the working resolution (0 = off: keypoints on the working points)",

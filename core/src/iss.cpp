@@ -108,11 +108,13 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
 
   // Non-maximum suppression on λ3; ties go to the lower index so the outcome
   // never depends on visiting order.
+  std::vector<double> margin_weight(o.nms_margin > 0 ? n : 0, 1.0);  // nms_margin's weight per maximum
   for (int i = 0; i < n; ++i) {
     const double s = result.saliency[i];
     if (s <= 0.0) continue;
     search.radius(i, r_nms, nb);
     bool is_max = true;
+    double rival = 0.0;  // the most salient other point within r_nms
     for (int j : nb) {
       if (j == i) continue;
       const double t = result.saliency[j];
@@ -120,16 +122,16 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
         is_max = false;
         break;
       }
+      rival = std::max(rival, t);
     }
-    if (is_max) result.keypoints.push_back(i);
+    if (!is_max) continue;
+    result.keypoints.push_back(i);
+    if (o.nms_margin > 0) margin_weight[i] = std::min(1.0, (1.0 - rival / s) / o.nms_margin);
   }
   const std::vector<int> maxima = result.keypoints;  // ascending
   if (o.fill_budget && o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) < o.max_keypoints)
     fillBudget(set, result, lambda3, r_nms, o.max_keypoints);
   const bool weighted = o.budget_taper > 0 && o.max_keypoints > 0;
-  if (result.filled > 0 && !weighted)
-    for (int i : result.keypoints)
-      result.weight.push_back(std::binary_search(maxima.begin(), maxima.end(), i) ? 1.0 : kFilledWeight);
   double edge = 0.0;  // the saliency of the first keypoint past the budget (0: none)
   if (o.max_keypoints > 0 && static_cast<int>(result.keypoints.size()) > o.max_keypoints) {
     auto& kp = result.keypoints;
@@ -138,6 +140,10 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
     kp.resize(static_cast<std::size_t>(o.max_keypoints));
     std::sort(kp.begin(), kp.end());
   }
+  if (!weighted && (result.filled > 0 || o.nms_margin > 0))
+    for (int i : result.keypoints)
+      result.weight.push_back(std::binary_search(maxima.begin(), maxima.end(), i) ? (o.nms_margin > 0 ? margin_weight[i] : 1.0)
+                                                                                  : kFilledWeight);
   if (weighted && !result.keypoints.empty()) {
     // Full weight down to the saliency of the (1 − taper)·budget-th most salient keypoint.
     std::vector<double> s;
@@ -148,7 +154,8 @@ IssResult detectIssKeypoints(const PointSet& set, const RadiusSearch& search, do
                                 1, s.size());
     const double top = s[full - 1];
     for (int i : result.keypoints)
-      result.weight.push_back(top > edge ? std::clamp((result.saliency[i] - edge) / (top - edge), 0.0, 1.0) : 1.0);
+      result.weight.push_back((top > edge ? std::clamp((result.saliency[i] - edge) / (top - edge), 0.0, 1.0) : 1.0) *
+                              (o.nms_margin > 0 ? margin_weight[i] : 1.0));
   }
   return result;
 }

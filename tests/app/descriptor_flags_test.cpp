@@ -26,8 +26,8 @@ const std::map<std::string, std::string> kDocumentedDefaults = {
     {"extent_m", "0.35"},     {"filter", "on"},         {"plane_removal", "on"},        {"max_range_m", "3"},
     {"jump_edge_deg", "10"},  {"iss_frame", "6"},       {"iss_nms", "3"},               {"iss_density", "2"},
     {"graph_radius", "3.5"},  {"gkpd1_sources", "1"},   {"curvature_floor", "0.0001"},  {"working_samples_across", "40"},
-    {"working_grid", "object"}, {"working_points", "means"}, {"max_keypoints", "64"},   {"budget_taper", "0"},
-    {"fill_budget", "on"},    {"refine_keypoints", "0"}, {"keypoint_placement", "means"}, {"osada_samples", "20000"}, {"seed", "7"},
+    {"working_grid", "object"}, {"working_points", "means"}, {"max_keypoints", "128"},  {"budget_taper", "0"},
+    {"fill_budget", "on"},    {"nms_margin", "0"},      {"refine_keypoints", "0"}, {"keypoint_placement", "means"}, {"osada_samples", "20000"}, {"seed", "7"},
     {"low_keypoints", "10"}};
 
 }  // namespace
@@ -72,7 +72,7 @@ TEST(DescriptorFlags, EachRowHasOneFlagMadeFromItsName) {
   EXPECT_EQ(flags, (std::set<std::string>{"--bins", "--range", "--binning", "--pdf-smoothing", "--extent", "--no-filter", "--no-plane",
                                           "--max-range", "--jump-edge-angle", "--iss-frame", "--iss-nms", "--iss-density",
                                           "--graph-radius", "--gkpd1-sources", "--curvature-floor", "--samples-across", "--voxel-grid", "--voxel-points",
-                                          "--max-keypoints", "--budget-taper", "--fill-budget", "--refine-keypoints", "--keypoint-placement", "--osada-samples", "--seed",
+                                          "--max-keypoints", "--budget-taper", "--fill-budget", "--nms-margin", "--refine-keypoints", "--keypoint-placement", "--osada-samples", "--seed",
                                           "--low-keypoints"}));
 }
 

@@ -28,7 +28,7 @@ std::string otherValue(const DescriptorParameter& p, const DescriptorOptions& d)
     }
     case DescriptorParameter::Kind::Integer: return std::to_string(std::stoll(p.get(d)) + 3);
     case DescriptorParameter::Kind::Number:
-      return p.name == "budget_taper" ? "0.25" : p.name == "refine_keypoints" ? "0.5"
+      return p.name == "budget_taper" || p.name == "nms_margin" ? "0.25" : p.name == "refine_keypoints" ? "0.5"
              : p.name == "curvature_floor"                                 ? "0.1"
                                                                            : "1.25";
   }
@@ -46,7 +46,7 @@ TEST(DescriptorParameters, DefaultSpecIsTheOneCachesHold) {
       {"bins", "32"},          {"range", "fixed"},        {"extent_m", "0.35"},   {"filter", "on"},
       {"plane_removal", "on"}, {"max_range_m", "3"},      {"jump_edge_deg", "10"}, {"iss_frame", "6"},
       {"iss_nms", "3"},        {"iss_density", "2"},      {"graph_radius", "3.5"}, {"osada_samples", "20000"},
-      {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "64"},
+      {"seed", "7"},           {"working_samples_across", "40"}, {"max_keypoints", "128"},
       {"binning", "linear"},   {"working_grid", "object"}, {"working_points", "means"},
       {"budget_taper", "0"},   {"pdf_smoothing", "1.5"}, {"fill_budget", "on"}};
   EXPECT_EQ(parameterSpec(DescriptorOptions()), expected);
@@ -58,6 +58,7 @@ TEST(DescriptorParameters, AnOptionOffByDefaultIsWrittenOnlyWhenSet) {
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("refine_keypoints"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("gkpd1_sources"), 0u);
   EXPECT_EQ(parameterSpec(DescriptorOptions()).count("curvature_floor"), 0u);
+  EXPECT_EQ(parameterSpec(DescriptorOptions()).count("nms_margin"), 0u);
   // The filled budget, the default since it was measured: written when on, absent (as in every cache
   // and model made before) when off.
   EXPECT_EQ(parameterSpec(DescriptorOptions()).at("fill_budget"), "on");

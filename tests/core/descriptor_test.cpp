@@ -62,16 +62,17 @@ TEST(Descriptor, ConnectedSurfaceHasEveryPairReachable) {
   o.iss.fill_budget = false;  // ISS's maxima alone; the default fills the budget (below)
   const Cloud cube = test::unorganized(test::cubeSurface(0.1f, 21, Eigen::Vector3f(0, 0, 1)));
   const auto d = describeView(cube, o);
-  // A filled budget (issue 49, the default): the same maxima, then points of the faces, 64 in all.
+  // A filled budget (issue 49, the default): the same maxima, then points of the faces, the default
+  // budget (128, docs/descriptors.md's table) in all.
   DescriptorOptions fill = o;
   fill.iss.fill_budget = DescriptorOptions().iss.fill_budget;
   ASSERT_TRUE(fill.iss.fill_budget);
   const auto filled = describeView(cube, fill);
-  EXPECT_EQ(filled.keypointCount(), 64);
-  EXPECT_EQ(filled.filled_keypoints, 64 - d.keypointCount());
-  ASSERT_EQ(filled.keypoint_weight.size(), 64u);  // the filled ones weigh 0.3
-  EXPECT_DOUBLE_EQ(std::accumulate(filled.keypoint_weight.begin(), filled.keypoint_weight.end(), 0.0),
-                   d.keypointCount() + 0.3 * (64 - d.keypointCount()));
+  EXPECT_EQ(filled.keypointCount(), 128);
+  EXPECT_EQ(filled.filled_keypoints, 128 - d.keypointCount());
+  ASSERT_EQ(filled.keypoint_weight.size(), 128u);  // the filled ones weigh 0.3
+  EXPECT_NEAR(std::accumulate(filled.keypoint_weight.begin(), filled.keypoint_weight.end(), 0.0),
+              d.keypointCount() + 0.3 * (128 - d.keypointCount()), 1e-9);  // a sum of 128 doubles
   EXPECT_EQ(d.filled_keypoints, 0);
   for (const auto& k : d.keypoints)
     EXPECT_NE(std::find(filled.keypoints.begin(), filled.keypoints.end(), k), filled.keypoints.end()) << k.transpose();
@@ -347,8 +348,8 @@ TEST(RealData, EveryShippedKinectCutIsDescribedByDefault) {
   for (const char* kind : {"full", "masked", "crop"})
     for (const auto& e : std::filesystem::directory_iterator(std::string(KEYTURN_REAL_DATA) + "/" + kind)) {
       const ViewDescriptor d = describeView(loadCloud(e.path().string()), DescriptorOptions());
-      EXPECT_GE(d.keypointCount(), 12) << e.path();  // measured 18–64 over the three kinds (docs/filtering.md)
-      EXPECT_LE(d.keypointCount(), 64) << e.path();
+      EXPECT_GE(d.keypointCount(), 12) << e.path();  // the filled budget: 128 on every one (18–64 maxima)
+      EXPECT_LE(d.keypointCount(), 128) << e.path();
       EXPECT_FALSE(d.filter.anyFlagged()) << e.path() << ": " << d.filter.flaggedSummary();
       EXPECT_EQ(d.filter.kind, std::string(kind) == "full"     ? InputKind::Frame
                                : std::string(kind) == "masked" ? InputKind::MaskedFrame

@@ -160,3 +160,36 @@ TEST(Iss, FillBudgetReachesTheBudgetWithTheMostSalientPointsApart) {
   f.fill_budget = true;
   EXPECT_EQ(detectIssKeypoints(flat, flat_search, cloudResolution(flat, flat_search), f).keypoints.size(), 10u);
 }
+
+// IssOptions::nms_margin (issue 49, tried and kept as an option): each local maximum weighs its margin
+// over the most salient other point within r_nms, (1 − rival / own) / nms_margin, at most 1. The rival
+// is found here by brute force over every point, not by the detector's radius search.
+TEST(Iss, SoftSuppressionWeighsEachMaximumByItsMarginOverItsRival) {
+  const Eigen::Vector3f centre(0.f, 0.f, 1.f);
+  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
+  const RadiusSearch search(set);
+  const double res = cloudResolution(set, search);
+  IssOptions o;
+  o.max_keypoints = 0;
+  const IssResult hard = detectIssKeypoints(set, search, res, o);
+  EXPECT_TRUE(hard.weight.empty());
+  o.nms_margin = 0.5;
+  const IssResult soft = detectIssKeypoints(set, search, res, o);
+  ASSERT_EQ(soft.keypoints, hard.keypoints);  // the same maxima: only their weights change
+  ASSERT_EQ(soft.weight.size(), soft.keypoints.size());
+  const float r_nms = static_cast<float>(o.nms_radius * res);
+  int partial = 0;
+  for (std::size_t a = 0; a < soft.keypoints.size(); ++a) {
+    const int i = soft.keypoints[a];
+    double rival = 0.0;
+    for (std::size_t j = 0; j < set.size(); ++j)
+      if (static_cast<int>(j) != i && (set.points[j] - set.points[i]).norm() <= r_nms)
+        rival = std::max(rival, soft.saliency[j]);
+    const double own = soft.saliency[static_cast<std::size_t>(i)];
+    EXPECT_NEAR(soft.weight[a], std::min(1.0, (1.0 - rival / own) / 0.5), 1e-12) << "keypoint " << i;
+    EXPECT_GE(soft.weight[a], 0.0);
+    if (soft.weight[a] < 1.0) ++partial;
+  }
+  // Along the cube's straight edges λ3 is a plateau: those maxima barely beat their neighbours.
+  EXPECT_GT(partial, 0);
+}

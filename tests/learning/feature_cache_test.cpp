@@ -6,6 +6,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <atomic>
 #include <cmath>
 #include <filesystem>
@@ -120,16 +121,20 @@ TEST(FeatureCache, RowsAreWhatDescribeViewGivesForTheSameFrame) {
 
 TEST(FeatureCache, NamedByTheSpecReusedRefilledAndMergedFromShards) {
   // The default parameters of cache version 5 (r_nms 3 since issue 17, smoothed PDFs since issue 30,
-  // the filled budget since issue 49) give this name (a changed default renames the cache); the
-  // capped budget keeps the name every cache made before had.
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-adb63714c4bae4dd.csv");
-  DescriptorOptions capped;
+  // the filled budget since issue 49, 128 keypoints since issue 47) give this name (a changed default
+  // renames the cache); the earlier defaults keep the names their caches had: 64 keypoints filled
+  // (2026-12-07) and the capped budget before it.
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions()), "ds/.keyturn/features-d2dabd5565b157be.csv");
+  DescriptorOptions filled64;
+  filled64.iss.max_keypoints = 64;
+  EXPECT_EQ(featureCachePath("ds", filled64), "ds/.keyturn/features-adb63714c4bae4dd.csv");
+  DescriptorOptions capped = filled64;
   capped.iss.fill_budget = false;
   EXPECT_EQ(featureCachePath("ds", capped), "ds/.keyturn/features-5663d6ab80b6e754.csv");
   DescriptorOptions other;
   other.histogram.bins = 16;
   EXPECT_NE(featureCachePath("ds", other), featureCachePath("ds", DescriptorOptions()));
-  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-adb63714c4bae4dd.shard-2-of-4.csv");
+  EXPECT_EQ(featureCachePath("ds", DescriptorOptions(), 1, 4), "ds/.keyturn/features-d2dabd5565b157be.shard-2-of-4.csv");
   const FeatureTable all = featureLayout(cacheBlocks(), DescriptorOptions());
   // 6 keypoint + 3 shape + 6 random-keypoint + 7 scaled blocks of 32 bins, size (4), the keypoints
   // (K and 64 × 3 coordinates), ESF, VFH, OUR-CVFH.
@@ -217,7 +222,8 @@ TEST(FeatureCache, ABlockAddedLaterIsDescribedAloneIntoTheCache) {
   EXPECT_EQ(t.rows[1].values[static_cast<std::size_t>(t.offset("kpa3"))], 0.125f) << "the cached rows are kept";
   for (std::size_t v = 0; v < 3; ++v) {
     EXPECT_TRUE(sameValues(block(t, t.rows[v], "kpset"), block(fresh, fresh.rows[v], "kpset"))) << v;
-    EXPECT_EQ(block(t, t.rows[v], "kpset")[0], static_cast<float>(fresh.rows[v].keypoints)) << v;
+    // K, up to the block's 64 (the default budget is 128: every second keypoint).
+    EXPECT_EQ(block(t, t.rows[v], "kpset")[0], static_cast<float>(std::min(fresh.rows[v].keypoints, 64))) << v;
     EXPECT_TRUE(sameValues(block(t, t.rows[v], "esf"), block(fresh, fresh.rows[v], "esf"))) << v;
   }
   Counting again;

@@ -151,7 +151,7 @@ TEST(FeatureSpec, RoundTripsAndNamesTheBadKey) {
   EXPECT_THROW(descriptorOptionsFromSpec(spec, "model.json"), Error);
   // The text of the default parameters, as every cache and model of version 4 holds it.
   const std::map<std::string, std::string> expected = {
-      {"working_samples_across", "40"}, {"max_keypoints", "64"},
+      {"working_samples_across", "40"}, {"max_keypoints", "128"},
       {"bins", "32"},           {"cache_version", "5"},  {"extent_m", "0.35"},      {"filter", "on"},
       {"graph_radius", "3.5"},  {"iss_density", "2"},    {"iss_frame", "6"},        {"iss_nms", "3"},
       {"jump_edge_deg", "10"},  {"keypoints", "iss"},    {"max_range_m", "3"},      {"normal_radius_m", "0.012"},

@@ -105,6 +105,11 @@ TEST(KeypointSet, BlockHoldsKAndTheCentredKeypointsThenZeros) {
   std::vector<Eigen::Vector3f> many(70, Eigen::Vector3f(0.1f, 0.f, 0.f));
   EXPECT_EQ(keypointSetBlock(many)[0], 64.0) << "at most 64 keypoints";
   EXPECT_EQ(keypointSetBlock({})[0], 0.0);
+  // 128 keypoints on a line, x = 0 … 127: every second one, 0, 2, … 126 (centroid 63), not the first 64.
+  std::vector<Eigen::Vector3f> line;
+  for (int i = 0; i < 128; ++i) line.emplace_back(static_cast<float>(i), 0.f, 0.f);
+  const std::vector<double> strided = keypointSetBlock(line);
+  for (int j = 0; j < 64; ++j) EXPECT_NEAR(strided[1 + 3 * j], 2.0 * j - 63.0, 1e-9) << j;
 }
 
 TEST(SetNetwork, LearnsShapesFromKeypointsInAnyPoseAndOrder) {

@@ -37,6 +37,12 @@ struct IssOptions {
   // maxima, which sensor noise moves by several, no longer sets it. A filled keypoint weighs 0.3
   // against a maximum's 1 (IssResult::weight; with budget_taper the taper's weights instead).
   bool fill_budget = false;
+  // A soft suppression (issue 49): > 0 weighs each local maximum by its margin over the most salient
+  // other point within r_nms, 1 − λ3(that point)/λ3(maximum), divided by this and capped at 1. Two
+  // nearly equal neighbours, which sensor noise swaps, then both weigh about 0, so the swap moves the
+  // PDFs by about nothing where a hard suppression moves a whole keypoint by up to r_nms. Multiplies
+  // the budget's weights (filled 0.3, the taper). 0 = every maximum weighs 1.
+  double nms_margin = 0.0;
 };
 
 struct IssResult {
