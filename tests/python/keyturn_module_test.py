@@ -300,6 +300,23 @@ class Classify(unittest.TestCase):
         with self.assertRaises(ValueError) as e:
             keyturn.train(keyturn.Dataset(WORK / "ds3").features("kpd2+kpa3"), rounds=10, open_set="entropy")
         self.assertIn("open-set method 'entropy'", str(e.exception))
+        # The calibration rule and groups, as train's --open-set-rule and --open-set-groups give them: the
+        # same threshold as the CLI's, and a per-group threshold at least the pooled one (knn: a score
+        # at or above it is named, and the strictest group sets it).
+        ds3 = keyturn.Dataset(WORK / "ds3").features("kpd2+kpa3")
+        strict = keyturn.train(ds3, rounds=10, open_set="knn", open_set_rule="per-group", open_set_groups=1000)
+        cli("train", WORK / "ds3", "--features", "kpd2+kpa3", "--rounds", "10", "--open-set", "knn",
+            "--open-set-rule", "per-group", "--open-set-groups", "1000", "-q", "--out", WORK / "strict-model")
+        self.assertEqual(strict.open_set["rule"], "per-group")
+        self.assertEqual(strict.open_set["threshold"], keyturn.Model(WORK / "strict-model").open_set["threshold"])
+        self.assertEqual(m.open_set["rule"], "pooled")
+        self.assertGreaterEqual(strict.open_set["threshold"], m.open_set["threshold"])
+        with self.assertRaises(ValueError) as e:
+            keyturn.train(ds3, rounds=10, open_set="knn", open_set_rule="strictest")
+        self.assertIn("strictest", str(e.exception))
+        with self.assertRaises(ValueError) as e:
+            keyturn.train(ds3, rounds=10, open_set="knn", open_set_groups=1)
+        self.assertIn("open_set_groups must be within 2..1000, not 1", str(e.exception))
 
 
 class DatasetTest(unittest.TestCase):

@@ -126,7 +126,8 @@ Features featuresOf(const py::sequence& views, const py::sequence& labels, const
 
 py::object train(const Features& f, const py::object& blocks, const py::object& rows, const std::string& classifier,
                  const std::string& label, std::uint64_t seed, const py::object& rounds, const py::object& epochs,
-                 const std::string& open_set, double false_accept) {
+                 const std::string& open_set, double false_accept, int open_set_groups,
+                 const std::string& open_set_rule) {
   learning::ClassifierParams params;
   params.kind = classifier;
   params.seed = seed;
@@ -140,7 +141,13 @@ py::object train(const Features& f, const py::object& blocks, const py::object& 
   learning::OpenSetOptions open;
   open.false_accept = false_accept;
   if (!(false_accept >= 0 && false_accept < 1)) throw py::value_error("train: false_accept must be within [0, 1)");
+  // The CLI's bounds (--open-set-groups 2..1000).
+  if (open_set_groups < 2 || open_set_groups > 1000)
+    throw py::value_error("train: open_set_groups must be within 2..1000, not " + std::to_string(open_set_groups));
+  open.groups = open_set_groups;
+  open.rule = open_set_rule;
   try {
+    learning::checkOpenSetRule(open_set_rule);
     learning::setOpenSetMethod(open, open_set);
     kind = learning::parseLabelKind(label);
     if (!blocks.is_none()) {
@@ -245,17 +252,19 @@ void bindDataset(py::module_& m) {
   m.def("train", &train, py::arg("features"), py::arg("blocks") = py::none(), py::kw_only(),
         py::arg("rows") = py::none(), py::arg("classifier") = "xgboost", py::arg("label") = "instance", py::arg("seed") = 7,
         py::arg("rounds") = py::none(), py::arg("epochs") = py::none(), py::arg("open_set") = "none",
-        py::arg("false_accept") = 0.05,
+        py::arg("false_accept") = 0.05, py::arg("open_set_groups") = 5, py::arg("open_set_rule") = "pooled",
         "train(features, blocks=None, *, rows=None, classifier='xgboost', label='instance', seed=7, rounds=None, "
-        "epochs=None, open_set='none', false_accept=0.05) -> Model\n\n"
+        "epochs=None, open_set='none', false_accept=0.05, open_set_groups=5, open_set_rule='pooled') -> Model\n\n"
         "A classifier trained on a dataset's features (Dataset.features, features_of), as `keyturn train` trains "
         "it: on the features' blocks (or `blocks`), on every view or those of rows (indices or a boolean mask), labelled by instance or category (the class column), XGBoost (rounds, "
         "default 30), the libtorch network (epochs, default 30) or, classifier='setnet', the set network over the "
         "keypoints (blocks 'kpset' first; epochs, default 30). Model.save writes it; Model.classify applies it "
         "with the features' parameters. open_set: 'none' (closed-set, the default), 'knn-relative', 'knn' or "
         "'max-probability' (a threshold calibrated for false_accept on categories left out in turn; needs at least 3 "
-        "categories) or 'auto' (knn-relative where the views have 3 categories, else closed-set) (Model.open_set). GIL released while it "
-        "trains.");
+        "categories) or 'auto' (knn-relative where the views have 3 categories, else closed-set) (Model.open_set); "
+        "open_set_groups: the groups of categories left out in turn (trainings; 2..1000), open_set_rule: the rate "
+        "met on their views pooled or on each group's alone ('per-group'), as train's --open-set-groups and "
+        "--open-set-rule. GIL released while it trains.");
 
   py::class_<PyDataset>(m, "Dataset", "A keyturn dataset folder (docs/dataset-format.md)")
       .def(py::init([](const py::object& path) {

@@ -178,8 +178,10 @@ void bindModel(py::module_& m) {
         if (!o.enabled()) return py::none();
         py::dict d;
         d["method"] = o.method, d["threshold"] = o.threshold, d["false_accept"] = o.false_accept;
+        d["rule"] = o.rule;
         return std::move(d);
-      }, "{'method', 'threshold', 'false_accept'} of an open-set model; None for a closed-set one")
+      }, "{'method', 'threshold', 'false_accept', 'rule'} of an open-set model (rule: how its threshold was "
+         "calibrated, 'pooled' or 'per-group'); None for a closed-set one")
       .def("__repr__", [](const PyModel& p) {
         return "<keyturn.Model " + p.source() + ", " + std::to_string(p.info().classes.size()) + " classes>";
       });

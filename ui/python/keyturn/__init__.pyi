@@ -248,6 +248,8 @@ def train(
     epochs: Optional[int] = None,
     open_set: Literal["none", "knn", "knn-relative", "max-probability", "auto"] = "none",
     false_accept: float = 0.05,
+    open_set_groups: int = 5,
+    open_set_rule: Literal["pooled", "per-group"] = "pooled",
 ) -> Model: ...
 
 class Reconstruction:
