@@ -154,41 +154,19 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
       for (double& p : pdf) p /= static_cast<double>(counted);
     return pdf;
   }
-  if (binning == Binning::Linear && weights && bins >= 2 && width > 0) {
-    // The weighted budget's path (describe's default): the general loop below with the linear step
-    // inline and each triangle's weight taken once for its three angles (same values, same order).
-    std::vector<double> pdf(bins, 0.0);
-    double counted = 0;
-    const std::vector<double>& wt = *weights;
-    TriangleCosines t(kp);
-    const std::size_t k = t.size();
-    for (std::size_t a = 0; a < k; ++a)
-      for (std::size_t b = a + 1; b < k; ++b) {
-        if (!t.row<true>(a, b)) continue;
-        for (std::size_t c = b + 1; c < k; ++c) {
-          if (!t.valid[c]) continue;
-          const double w = wt[a] * wt[b] * wt[c];
-          const float cos3[3] = {t.at_a[c], t.at_b[c], t.at_c[c]};
-          const float rough3[3] = {t.rough_a[c], t.rough_b[c], t.rough_c[c]};
-          for (int q = 0; q < 3; ++q) {
-            if (!std::isfinite(cos3[q])) continue;
-            counted += w;
-            addLinearToHistogram(pdf.data(), bins, rough3[q], range, w);
-          }
-        }
-      }
-    if (counted > 0)
-      for (double& p : pdf) p /= counted;
-    return pdf;
-  }
   if (binning != Binning::Hard || weights) {
     std::vector<double> pdf(bins, 0.0);
     double counted = 0;
+    // The weighted budget's linear bins (describe's default) take the step inline: the same arithmetic.
+    const bool linear = binning == Binning::Linear && width > 0 && bins >= 2;
     forEachAngleCosine<true>(kp, [&](float c, float rough, std::size_t a, std::size_t b, std::size_t d) {
       if (!std::isfinite(c)) return;
       const double w = weights ? (*weights)[a] * (*weights)[b] * (*weights)[d] : 1.0;
       counted += w;
-      addToHistogram(pdf, rough, range, binning, w);
+      if (linear)
+        addLinearToHistogram(pdf.data(), bins, rough, range, w);
+      else
+        addToHistogram(pdf, rough, range, binning, w);
     });
     if (counted > 0)
       for (double& p : pdf) p /= counted;

@@ -126,7 +126,11 @@ TEST(Stability, RigidMotionLeavesEveryKeypointFunctionAsItWas) {
   // GKPCD2's PCA normals differ in the last bits after a motion, and a curvature cost that close
   // to a tie can pick another path: with unsmoothed PDFs it moved by up to L1 0.03 here (below).
   for (const auto& f : s.functions) EXPECT_LE(f.rigidMaxL1(), 0.01) << f.name;
-  const StabilityStudy raw = keypointStudy(withSmoothing(0.0), rigidStudyViews(), perturbationsNamed("rigid"));
+  // The contrast at the budget it was measured at (64): with 128 keypoints a path that flips moves a
+  // quarter of the mass it moved, and the raw GKPCD2 sits at 0.0095 (clang) to just over 0.01 (gcc).
+  DescriptorOptions unsmoothed = withSmoothing(0.0);
+  unsmoothed.iss.max_keypoints = 64;
+  const StabilityStudy raw = keypointStudy(unsmoothed, rigidStudyViews(), perturbationsNamed("rigid"));
   const FunctionStability& gkpcd2 = raw.functions.back();
   ASSERT_EQ(gkpcd2.name, "gkpcd2");
   EXPECT_GT(gkpcd2.rigidMaxL1(), 0.01);
