@@ -55,7 +55,6 @@ std::vector<double> histogramPdf(const std::vector<float>& values, int bins, His
   std::vector<double> pdf(std::max(bins, 1), 0.0);
   double counted = 0;
   int outside = 0;
-  const bool linear = binning == Binning::Linear && range.hi - range.lo > 0 && bins >= 2;
   for (std::size_t i = 0; i < values.size(); ++i) {
     const float v = values[i];
     if (!std::isfinite(v)) continue;
@@ -63,11 +62,7 @@ std::vector<double> histogramPdf(const std::vector<float>& values, int bins, His
     // belongs to the last bin).
     if (range.hi > range.lo && (v < range.lo || v > range.hi)) ++outside;
     const double w = weights ? (*weights)[i] : 1.0;
-    // Linear binning inline (KPD3's C(K,3) areas): the same arithmetic addToHistogram calls.
-    if (linear)
-      addLinearToHistogram(pdf.data(), bins, v, range, w);
-    else
-      addToHistogram(pdf, v, range, binning, w);
+    addToHistogram(pdf, v, range, binning, w);
     counted += w;
   }
   if (counted > 0)

@@ -157,16 +157,11 @@ std::vector<double> keypointAnglePdf(const std::vector<Eigen::Vector3f>& kp, int
   if (binning != Binning::Hard || weights) {
     std::vector<double> pdf(bins, 0.0);
     double counted = 0;
-    // The weighted budget's linear bins (describe's default) take the step inline: the same arithmetic.
-    const bool linear = binning == Binning::Linear && width > 0 && bins >= 2;
     forEachAngleCosine<true>(kp, [&](float c, float rough, std::size_t a, std::size_t b, std::size_t d) {
       if (!std::isfinite(c)) return;
       const double w = weights ? (*weights)[a] * (*weights)[b] * (*weights)[d] : 1.0;
       counted += w;
-      if (linear)
-        addLinearToHistogram(pdf.data(), bins, rough, range, w);
-      else
-        addToHistogram(pdf, rough, range, binning, w);
+      addToHistogram(pdf, rough, range, binning, w);
     });
     if (counted > 0)
       for (double& p : pdf) p /= counted;

@@ -38,6 +38,14 @@ std::vector<int> eightMostSalient(const PointSet& set, const RadiusSearch& searc
   o.max_keypoints = 8;
   return detectIssKeypoints(set, search, res, o).keypoints;
 }
+// The 0.1 m cube's surface sampled 21 × 21 a face (5 mm), centred 1 m before the camera, with its
+// search and resolution: the scene of the budget tests below.
+struct SampledCube {
+  const Eigen::Vector3f centre{0.f, 0.f, 1.f};
+  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
+  const RadiusSearch search{set};
+  const double res = cloudResolution(set, search);
+};
 }  // namespace
 
 TEST(Iss, FindsTheEightCornersOfACube) {
@@ -118,10 +126,8 @@ TEST(Iss, DeterministicAndSortedWhateverTheSearchStructure) {
 // the 12 others are edge points (λ3 > 0 there, 0 on the flat faces), each at least 4 × resolution
 // from every other keypoint.
 TEST(Iss, FillBudgetReachesTheBudgetWithTheMostSalientPointsApart) {
-  const Eigen::Vector3f centre(0.f, 0.f, 1.f);
-  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
-  const RadiusSearch search(set);
-  const double res = cloudResolution(set, search);
+  const SampledCube cube;
+  const auto& [centre, set, search, res] = cube;
   IssOptions o;
   o.nms_radius = 4.0;
   o.max_keypoints = 20;
@@ -165,10 +171,8 @@ TEST(Iss, FillBudgetReachesTheBudgetWithTheMostSalientPointsApart) {
 // over the most salient other point within r_nms, (1 − rival / own) / nms_margin, at most 1. The rival
 // is found here by brute force over every point, not by the detector's radius search.
 TEST(Iss, SoftSuppressionWeighsEachMaximumByItsMarginOverItsRival) {
-  const Eigen::Vector3f centre(0.f, 0.f, 1.f);
-  const PointSet set = PointSet::fromCloud(test::unorganized(test::cubeSurface(0.1f, 21, centre)));
-  const RadiusSearch search(set);
-  const double res = cloudResolution(set, search);
+  const SampledCube cube;
+  const auto& [centre, set, search, res] = cube;
   IssOptions o;
   o.max_keypoints = 0;
   const IssResult hard = detectIssKeypoints(set, search, res, o);
