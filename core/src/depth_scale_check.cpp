@@ -5,6 +5,7 @@
 #include <limits>
 #include <vector>
 
+#include "keyturn/core/median.h"
 #include "keyturn/core/string_format.h"
 
 namespace keyturn {
@@ -38,8 +39,7 @@ void checkDepthScale(const std::string& file, const Cloud& cloud, double scale, 
       if (r.back() >= lo && r.back() <= hi) ++in_range;
     }
   if (r.empty() || in_range * 100 >= r.size()) return;  // 1 % or more in range: the scale is not the problem
-  std::nth_element(r.begin(), r.begin() + r.size() / 2, r.end());
-  const double median = r[r.size() / 2];
+  const double median = upperMedian(r);  // a copy: r.size() is reported below
   if (!(median > 10 * hi || median < lo / 10)) return;  // near the range: a scene, not a scale, problem
 
   const auto fits = [&](double s) { return median / scale * s >= lo && median / scale * s <= hi; };

@@ -15,6 +15,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "keyturn/core/median.h"
 #include "keyturn/core/nearest_neighbours.h"
 #include "keyturn/core/radius_search.h"
 #include "pcl_points.h"
@@ -178,8 +179,7 @@ bool removeDominantPlane(Cloud& cloud, const FilterOptions& options, Eigen::Vect
     std::vector<float> d;
     d.reserve(inliers.size());
     for (const auto i : inliers) d.push_back(std::abs(pl.head<3>().dot((*sample)[i].getVector3fMap()) + pl[3]));
-    std::nth_element(d.begin(), d.begin() + d.size() / 2, d.end());
-    const float sigma = 1.4826f * d[d.size() / 2];
+    const float sigma = 1.4826f * upperMedian(std::move(d));
     fine_band = std::clamp(options.plane_band_sigmas * sigma, std::min(options.plane_min_band, options.plane_distance),
                            options.plane_distance);
   }

@@ -9,6 +9,7 @@
 #include <unordered_set>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "voxel_key.h"
 
 namespace keyturn {
@@ -188,8 +189,7 @@ std::vector<Eigen::Vector3f> placeKeypoints(const PointSet& measured, const std:
     if (at[k] >= 0) taken.insert(at[k]);
   }
   if (o.fine_scale > 0 && !spacing.empty()) {
-    std::nth_element(spacing.begin(), spacing.begin() + static_cast<long>(spacing.size() / 2), spacing.end());
-    const double u = o.fine_scale * spacing[spacing.size() / 2], fside = o.cube * u;
+    const double u = o.fine_scale * upperMedian(spacing), fside = o.cube * u;
     const double fr = iss.frame_radius * u, fw = o.fine_window * iss.nms_radius * u;
     taken.clear();
     for (std::size_t k = 0; k < keypoints.size(); ++k) {

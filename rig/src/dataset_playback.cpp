@@ -11,6 +11,7 @@
 #include <thread>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "keyturn/rig/frame_files.h"
 #include "keyturn/dataset/sidecars.h"
 #include "keyturn/rig/captured_views.h"
@@ -44,8 +45,7 @@ double recordedRate(const std::vector<dataset::ViewRecord>& views) {
     if (std::isfinite(d) && d > 0) gaps.push_back(d);
   }
   if (gaps.empty()) return 0;
-  std::nth_element(gaps.begin(), gaps.begin() + static_cast<std::ptrdiff_t>(gaps.size() / 2), gaps.end());
-  return 1.0 / gaps[gaps.size() / 2];
+  return 1.0 / upperMedian(std::move(gaps));
 }
 
 double angleDiff(double a, double b) {

@@ -6,6 +6,7 @@
 #include <map>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "keyturn/learning/feature_cache.h"
 #include "reference_value_json.h"
 #include "standardised_views.h"
@@ -138,10 +139,10 @@ std::vector<float> classScales(const OpenSet& s, const std::vector<int>& y, std:
       if (nearest_of && std::isfinite(best)) (*nearest_of)[static_cast<std::size_t>(a)] = best;
     }
     if (nearest.empty()) continue;
-    scale[c] = static_cast<float>(std::max(1e-6, detail::medianOf(nearest)));
+    scale[c] = static_cast<float>(std::max(1e-6, upperMedian(nearest)));
     all.push_back(scale[c]);
   }
-  const float fallback = all.empty() ? 1.f : static_cast<float>(detail::medianOf(all));
+  const float fallback = all.empty() ? 1.f : static_cast<float>(upperMedian(all));
   for (float& v : scale)
     if (std::isnan(v)) v = fallback;
   return scale;
@@ -150,7 +151,7 @@ std::vector<float> classScales(const OpenSet& s, const std::vector<int>& y, std:
 // The classes' scales drawn toward their median: s_c^p · median^(1-p) (p = 1 leaves them as they are).
 void drawTowardMedian(std::vector<float>& scale, double p) {
   if (p == 1 || scale.empty()) return;
-  const double median = detail::medianOf(std::vector<double>(scale.begin(), scale.end()));
+  const double median = upperMedian(std::vector<double>(scale.begin(), scale.end()));
   for (float& v : scale) v = static_cast<float>(std::pow(static_cast<double>(v), p) * std::pow(median, 1 - p));
 }
 
@@ -164,7 +165,7 @@ std::map<std::string, float> cameraScales(const std::vector<std::string>& camera
     if (!cameras[r].empty() && std::isfinite(nearest[r]))
       ratios[cameras[r]].push_back(nearest[r] / class_scale[static_cast<std::size_t>(y[r])]);
   std::map<std::string, float> out;
-  for (const auto& [camera, v] : ratios) out[camera] = static_cast<float>(std::max(1e-6, detail::medianOf(v)));
+  for (const auto& [camera, v] : ratios) out[camera] = static_cast<float>(std::max(1e-6, upperMedian(v)));
   return out;
 }
 
@@ -189,10 +190,10 @@ std::vector<double> instanceSpreadRatios(const OpenSet& s, const std::vector<int
       if (std::isfinite(best)) nearest.push_back(best);
     }
     if (nearest.empty()) continue;  // one instance
-    ratio[c] = std::max(1e-6, detail::medianOf(nearest)) / static_cast<double>(own[c]);
+    ratio[c] = std::max(1e-6, upperMedian(nearest)) / static_cast<double>(own[c]);
     measured.push_back(ratio[c]);
   }
-  const double fallback = measured.empty() ? 1.0 : detail::medianOf(measured);
+  const double fallback = measured.empty() ? 1.0 : upperMedian(measured);
   for (double& v : ratio)
     if (std::isnan(v)) v = fallback;
   return ratio;

@@ -45,11 +45,4 @@ double rmsDistance(const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
   return std::sqrt(static_cast<double>((a - b).squaredNorm()) / static_cast<double>(std::max<Eigen::Index>(1, a.size())));
 }
 
-double medianOf(std::vector<double> v) {
-  if (v.empty()) return std::nan("");
-  const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
-  std::nth_element(v.begin(), mid, v.end());
-  return *mid;
-}
-
 }  // namespace keyturn::learning::detail

@@ -15,7 +15,5 @@ Eigen::RowVectorXf standardisedRow(const Eigen::RowVectorXf& x, const std::vecto
                                    const std::vector<float>& scale);
 // The RMS per-feature distance between two standardised rows.
 double rmsDistance(const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b);
-// The upper median (NaN for none).
-double medianOf(std::vector<double> v);
 
 }  // namespace keyturn::learning::detail

@@ -5,6 +5,7 @@
 #include <limits>
 
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "standardised_views.h"
 
 namespace keyturn::learning {
@@ -74,7 +75,7 @@ PoseReferences fitPoseReferences(const Matrix& x, const std::vector<int>& y, con
     if (std::isfinite(best_across)) across.push_back(best_across);
     if (std::isfinite(best_within)) within.push_back(best_within);
   }
-  const double s = !across.empty() ? detail::medianOf(across) : detail::medianOf(within);
+  const double s = !across.empty() ? upperMedian(across) : upperMedian(within);
   r.sigma = std::isfinite(s) && s > 1e-9 ? s : 1.0;
   return r;
 }

@@ -21,6 +21,7 @@
 #include <sstream>
 
 #include "../src/open3d_plugin.h"
+#include "keyturn/core/median.h"
 #include "keyturn/core/plugin.h"
 
 namespace keyturn::reconstruction::detail {
@@ -356,8 +357,7 @@ void measureResiduals(const std::vector<Level>& lv, const std::vector<Registrati
     for (std::size_t k = 0; k < best.size(); ++k)
       if (best[k] <= radius * radius) close.push_back(plane[k]);
     if (close.empty()) continue;
-    std::nth_element(close.begin(), close.begin() + close.size() / 2, close.end());
-    residual[a] = close[close.size() / 2];
+    residual[a] = upperMedian(close);
     overlap[a] = double(close.size()) / double(best.size());
   }
 }
@@ -474,8 +474,7 @@ RegistrationResult registerAll(const std::vector<RegistrationView>& views, const
       for (std::size_t k = 0; k < f.points_.size(); k += stride)
         if (tree.SearchKNN(f.points_[k], 2, idx, d2) == 2) spacing.push_back(std::sqrt(d2[1]));
     }
-    std::nth_element(spacing.begin(), spacing.begin() + spacing.size() / 2, spacing.end());
-    voxel = std::max((hi - lo).norm() / 250.0, spacing[spacing.size() / 2]);
+    voxel = std::max((hi - lo).norm() / 250.0, upperMedian(spacing));
   }
   res.voxel_m = voxel;
   // The first correspondence distance covers the poses' expected error: 1/20 of the object (a

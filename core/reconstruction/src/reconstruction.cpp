@@ -15,6 +15,7 @@
 #include "keyturn/core/cloud_io.h"
 #include "keyturn/core/durable_file.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/string_format.h"
 #include "keyturn/reconstruction/support.h"
@@ -30,13 +31,6 @@ std::string formatNumber(double x, int digits) {
   std::string out;
   appendFormat(out, "%.*g", digits, x);
   return out;
-}
-
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return std::nan("");
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
 }
 
 class StageClock {
@@ -82,7 +76,7 @@ TsdfOptions tsdfOptionsFor(const ReconstructionOptions& options, const std::vect
     const float band_sigmas = options.filter_options.plane_band_sigmas;
     for (const auto& f : filtered)
       if (band_sigmas > 0 && f.plane_found && f.plane_band > 0) sigmas.push_back(f.plane_band / band_sigmas);
-    const double sigma = median(sigmas);
+    const double sigma = upperMedian(sigmas);
     if (std::isfinite(sigma)) {
       tsdf.truncation_m = 1.5 * sigma;
       from = " (1.5 σ of the support's noise)";
@@ -126,7 +120,7 @@ std::vector<std::size_t> supportFromRigCamera(const std::vector<PosedView>& view
     std::vector<double> b;
     for (std::size_t i = 0; i < views.size(); ++i)
       if (rig[i] == int(k) && filtered[i].plane_found) b.push_back(filtered[i].plane_band);
-    band[k] = median(b);
+    band[k] = upperMedian(b);
   }
   std::vector<std::size_t> redo;
   for (std::size_t i = 0; i < views.size(); ++i)
@@ -244,8 +238,8 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
     std::ostringstream d;
     d << (ro.refine ? "refined (" + std::string(poseModelName(r.model)) + " poses), " : "not refined, ")
       << reg.pairs.size() << " overlapping pairs, views to each other (median) "
-      << formatNumber(median(reg.residual_before_m) * 1000, 3) << " mm → "
-      << formatNumber(median(reg.residual_after_m) * 1000, 3) << " mm";
+      << formatNumber(upperMedian(reg.residual_before_m) * 1000, 3) << " mm → "
+      << formatNumber(upperMedian(reg.residual_after_m) * 1000, 3) << " mm";
     clock.done("registration", d.str());
   }
 
@@ -348,8 +342,8 @@ Reconstruction reconstruct(std::vector<PosedView> views, const ReconstructionOpt
       return points;
     };
     const auto before = fuse(points, r.initial_poses, fuse_voxel);
-    r.cloud_distance_before_m = median(distancesToMesh(moved(before.points, g0), *options.reference_surface));
-    r.cloud_distance_after_m = median(distancesToMesh(moved(r.cloud.points, g1), *options.reference_surface));
+    r.cloud_distance_before_m = upperMedian(distancesToMesh(moved(before.points, g0), *options.reference_surface));
+    r.cloud_distance_after_m = upperMedian(distancesToMesh(moved(r.cloud.points, g1), *options.reference_surface));
     Mesh surface = r.mesh;
     surface.vertices = moved(surface.vertices, g1);
     r.mesh_comparison = compareSurfaces(surface, *options.reference_surface, options.fscore_tau_m);
@@ -391,14 +385,14 @@ std::string reconstructionJson(const Reconstruction& r, const std::string& input
     }
     j["views"].push_back(v);
   }
-  j["residual_median_before_m"] = num(median(before));
-  j["residual_median_after_m"] = num(median(after));
+  j["residual_median_before_m"] = num(upperMedian(before));
+  j["residual_median_after_m"] = num(upperMedian(after));
   if (!err_r0.empty()) {
     auto mx = [](const std::vector<double>& v) { return *std::max_element(v.begin(), v.end()); };
-    j["pose_error"] = {{"before", {{"rotation_deg_median", median(err_r0)}, {"rotation_deg_max", mx(err_r0)},
-                                   {"translation_m_median", median(err_t0)}, {"translation_m_max", mx(err_t0)}}},
-                       {"after", {{"rotation_deg_median", median(err_r1)}, {"rotation_deg_max", mx(err_r1)},
-                                  {"translation_m_median", median(err_t1)}, {"translation_m_max", mx(err_t1)}}}};
+    j["pose_error"] = {{"before", {{"rotation_deg_median", upperMedian(err_r0)}, {"rotation_deg_max", mx(err_r0)},
+                                   {"translation_m_median", upperMedian(err_t0)}, {"translation_m_max", mx(err_t0)}}},
+                       {"after", {{"rotation_deg_median", upperMedian(err_r1)}, {"rotation_deg_max", mx(err_r1)},
+                                  {"translation_m_median", upperMedian(err_t1)}, {"translation_m_max", mx(err_t1)}}}};
   }
   for (const auto& p : r.pairs)
     j["pairs"].push_back({{"a", p.a}, {"b", p.b}, {"overlap", p.overlap}, {"fitness", p.fitness}, {"pruned", p.pruned}});
@@ -438,15 +432,15 @@ std::string reconstructionSummary(const Reconstruction& r) {
   }
   std::ostringstream s;
   s << r.outcomes.size() << " views, " << poseModelName(r.model) << " poses" << (r.refined ? " refined" : " kept")
-    << ": views to each other " << formatNumber(median(before) * 1000, 3) << " mm → "
-    << formatNumber(median(after) * 1000, 3) << " mm (median point-to-plane); pose change median "
-    << formatNumber(median(change_r), 3) << "° / " << formatNumber(median(change_t) * 1000, 3) << " mm\n";
+    << ": views to each other " << formatNumber(upperMedian(before) * 1000, 3) << " mm → "
+    << formatNumber(upperMedian(after) * 1000, 3) << " mm (median point-to-plane); pose change median "
+    << formatNumber(upperMedian(change_r), 3) << "° / " << formatNumber(upperMedian(change_t) * 1000, 3) << " mm\n";
   std::vector<double> e_r, e_t;
   for (const auto& o : r.outcomes)
     if (o.error_after) e_r.push_back(o.error_after->rotation_deg), e_t.push_back(o.error_after->translation_m);
   if (!e_r.empty())
-    s << "pose error against the reference: median " << formatNumber(median(e_r), 3) << "° / "
-      << formatNumber(median(e_t) * 1000, 3) << " mm, max " << formatNumber(*std::max_element(e_r.begin(), e_r.end()), 3)
+    s << "pose error against the reference: median " << formatNumber(upperMedian(e_r), 3) << "° / "
+      << formatNumber(upperMedian(e_t) * 1000, 3) << " mm, max " << formatNumber(*std::max_element(e_r.begin(), e_r.end()), 3)
       << "° / " << formatNumber(*std::max_element(e_t.begin(), e_t.end()) * 1000, 3) << " mm\n";
   for (const auto& a : r.axes)
     s << "axis (" << (a.camera.empty() ? "camera" : a.camera) << ", camera frame): calibrated ["

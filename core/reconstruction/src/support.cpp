@@ -1,5 +1,7 @@
 #include "keyturn/reconstruction/support.h"
 
+#include "keyturn/core/median.h"
+
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
@@ -8,11 +10,6 @@
 namespace keyturn::reconstruction {
 
 namespace {
-
-double median(std::vector<double> v) {
-  std::nth_element(v.begin(), v.begin() + v.size() / 2, v.end());
-  return v[v.size() / 2];
-}
 
 // The median of `planes` (unit normals, n·x + d = 0): its normal the component-wise median, its
 // offset the median over the planes within `agree_deg` of that normal; none unless more than half of
@@ -24,7 +21,7 @@ std::optional<Eigen::Vector4d> medianPlane(const std::vector<Eigen::Vector4d>& p
   for (int k = 0; k < 3; ++k) {
     std::vector<double> c;
     for (const auto& p : planes) c.push_back(p[k]);
-    m[k] = median(c);
+    m[k] = upperMedian(c);
   }
   const Eigen::Vector3d n = m.normalized();
   std::vector<double> offsets;
@@ -32,7 +29,7 @@ std::optional<Eigen::Vector4d> medianPlane(const std::vector<Eigen::Vector4d>& p
     if (p.head<3>().dot(n) > std::cos(agree_deg * M_PI / 180)) offsets.push_back(p[3]);
   if (2 * offsets.size() <= views) return std::nullopt;  // the views disagree on it
   if (agreeing) *agreeing = int(offsets.size());
-  return Eigen::Vector4d(n.x(), n.y(), n.z(), median(offsets));
+  return Eigen::Vector4d(n.x(), n.y(), n.z(), upperMedian(offsets));
 }
 
 }  // namespace
@@ -53,7 +50,7 @@ std::optional<Support> commonSupport(const std::vector<SupportView>& views) {
   const auto plane = medianPlane(planes, views.size(), 10, &s.views);
   if (!plane) return std::nullopt;
   s.plane = *plane;
-  s.band_m = median(bands);
+  s.band_m = upperMedian(bands);
   return s;
 }
 
@@ -102,7 +99,7 @@ RigLevelling levelRigOnSupport(const std::vector<SupportView>& views, const std:
     heights.push_back(pivot[k]);
   }
   if (heights.empty()) return out;
-  out.height_m = median(heights);
+  out.height_m = upperMedian(heights);
   for (int k = 0; k < cameras; ++k) {
     if (!out.camera_plane[k]) continue;
     // Turn the plane level about where the axis meets it, then lift it to the common height.

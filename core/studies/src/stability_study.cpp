@@ -12,21 +12,12 @@
 
 #include "keyturn/core/dissimilarity.h"
 #include "keyturn/core/error.h"
+#include "keyturn/core/median.h"
 #include "keyturn/core/parallel_for.h"
 #include "keyturn/core/pcl_baselines.h"
 
 namespace keyturn {
 namespace {
-
-double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
-  if (v.empty()) return std::nan("");
-  const std::size_t m = v.size() / 2;
-  std::nth_element(v.begin(), v.begin() + m, v.end());
-  const double hi = v[m];
-  if (v.size() % 2) return hi;
-  return 0.5 * (hi + *std::max_element(v.begin(), v.begin() + m));
-}
 
 std::vector<double> normalised(const std::vector<float>& h) {
   std::vector<double> out(h.begin(), h.end());
