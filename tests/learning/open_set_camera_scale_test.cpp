@@ -256,7 +256,7 @@ TEST(OpenSetClassScale, ThePowerDrawsEachClassScaleTowardTheMedianClasss) {
   ASSERT_EQ(own.class_scale.size(), 6u);
   std::vector<float> sorted = own.class_scale;
   std::sort(sorted.begin(), sorted.end());
-  const double median = sorted[3];  // detail::medianOf: the upper middle of an even count
+  const double median = sorted[3];  // upperMedian (core/median.h): the upper middle of an even count
   // The spread-out class's own scale is about 3 × the tidy ones' (its noise is).
   EXPECT_GT(own.class_scale[5], 2.f * sorted[2]);
   for (std::size_t c = 0; c < 6; ++c) {
