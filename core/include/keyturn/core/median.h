@@ -11,9 +11,16 @@ namespace keyturn {
 // The value at the middle of v once sorted: of an even count the upper of the two middle values, so
 // always one of v's own values (a measured residual or spacing, not a blend of two). Non-finite values
 // are left out; NaN when none is left. Linear time (nth_element), v taken by value.
+namespace detail {
+template <typename T>
+void keepFinite(std::vector<T>& v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](T x) { return !std::isfinite(x); }), v.end());
+}
+}  // namespace detail
+
 template <typename T>
 T upperMedian(std::vector<T> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](T x) { return !std::isfinite(x); }), v.end());
+  detail::keepFinite(v);
   if (v.empty()) return std::numeric_limits<T>::quiet_NaN();
   const auto mid = v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2);
   std::nth_element(v.begin(), mid, v.end());
@@ -23,7 +30,7 @@ T upperMedian(std::vector<T> v) {
 // The textbook median: of an even count the mean of the two middle values. Non-finite values are
 // left out; NaN when none is left.
 inline double median(std::vector<double> v) {
-  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return !std::isfinite(x); }), v.end());
+  detail::keepFinite(v);
   if (v.empty()) return std::nan("");
   const std::size_t m = v.size() / 2;
   std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(m), v.end());
