@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <map>
+#include <optional>
 
 #include "keyturn/core/error.h"
 #include "keyturn/core/median.h"
@@ -71,25 +72,69 @@ void checkOpenSetMethodsFor(const std::vector<std::string>& methods, const std::
   }
 }
 
-double openSetDistance(const OpenSet& s, const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
-  if (s.distance == "rms") return detail::rmsDistance(a, b);
-  // The rows as described: a standardised value times the column's spread plus its mean (a missing
-  // value stands at the mean in both forms). A value the model file keeps as 0's (4 decimals,
-  // reference_value_json.h) is 0: an empty bin came back as ±5e-5 spreads, which L1 and χ² count in
-  // full, and a training view then lay farther from its own reference than from its neighbours.
-  const bool l1 = s.distance == "l1";
-  const auto described = [&](float v, std::size_t k) {
-    if (referenceValue(v) == referenceValue((0.f - s.mean[k]) / s.scale[k])) return 0.0;
-    return std::max(0.0, static_cast<double>(v) * s.scale[k] + s.mean[k]);
-  };
-  double sum = 0;
-  for (Eigen::Index k = 0; k < a.size(); ++k) {
+namespace {
+
+// The rows as described, for the PDF distances (l1, chi2): a standardised value times the column's
+// spread plus its mean (a missing value stands at the mean in both forms). A value the model file
+// keeps as 0's (4 decimals, reference_value_json.h) is 0: an empty bin came back as ±5e-5 spreads,
+// which L1 and χ² count in full, and a training view then lay farther from its own reference than
+// from its neighbours. Converted once per row, not once per pair: the pair loops of fitting and
+// scoring converted both rows for every pair (5 of an evaluate's 21 s on 1,944 views).
+using DescribedRows = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+DescribedRows described(const OpenSet& s, const Matrix& rows) {
+  DescribedRows out(rows.rows(), rows.cols());
+  for (Eigen::Index k = 0; k < rows.cols(); ++k) {
     const auto kk = static_cast<std::size_t>(k);
-    const double p = described(a(k), kk), q = described(b(k), kk);
-    if (l1) sum += std::abs(p - q);
-    else if (p + q > 0) sum += 0.5 * (p - q) * (p - q) / (p + q);
+    const double zero = referenceValue((0.f - s.mean[kk]) / s.scale[kk]);
+    for (Eigen::Index r = 0; r < rows.rows(); ++r) {
+      const float v = rows(r, k);
+      out(r, k) = referenceValue(v) == zero ? 0.0 : std::max(0.0, static_cast<double>(v) * s.scale[kk] + s.mean[kk]);
+    }
+  }
+  return out;
+}
+
+double pdfDistance(bool l1, const double* p, const double* q, Eigen::Index n) {
+  double sum = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    if (l1) sum += std::abs(p[k] - q[k]);
+    else if (p[k] + q[k] > 0) sum += 0.5 * (p[k] - q[k]) * (p[k] - q[k]) / (p[k] + q[k]);
   }
   return sum;
+}
+
+// The scorer's distance between rows of a set of standardised rows: RMS on the rows themselves, the
+// PDF distances on the rows as described (converted once, when the set is made).
+class RowDistances {
+ public:
+  RowDistances(const OpenSet& s, const Matrix& rows)
+      : rows_(rows), rms_(s.distance == "rms"), l1_(s.distance == "l1") {
+    if (!rms_) described_ = described(s, rows);
+  }
+  double operator()(Eigen::Index a, Eigen::Index b) const {
+    if (rms_) return detail::rmsDistance(rows_.row(a), rows_.row(b));
+    return pdfDistance(l1_, described_.row(a).data(), described_.row(b).data(), described_.cols());
+  }
+  // Between row a and another set's row b (both made by the same scorer).
+  double operator()(Eigen::Index a, const RowDistances& other, Eigen::Index b) const {
+    if (rms_) return detail::rmsDistance(rows_.row(a), other.rows_.row(b));
+    return pdfDistance(l1_, described_.row(a).data(), other.described_.row(b).data(), described_.cols());
+  }
+
+ private:
+  const Matrix& rows_;
+  bool rms_, l1_;
+  DescribedRows described_;
+};
+
+}  // namespace
+
+double openSetDistance(const OpenSet& s, const Eigen::RowVectorXf& a, const Eigen::RowVectorXf& b) {
+  if (s.distance == "rms") return detail::rmsDistance(a, b);
+  Matrix pair(2, a.size());
+  pair.row(0) = a, pair.row(1) = b;
+  return RowDistances(s, pair)(0, 1);
 }
 
 const std::vector<std::string>& openSetScales() {
@@ -122,7 +167,7 @@ namespace {
 // calibrated rate held worse (docs/results.md, "Open-set answers"). A class with one view takes
 // the median of the others. nearest (optional) receives each row's distance (NaN: its class has no other).
 std::vector<float> classScales(const OpenSet& s, const std::vector<int>& y, std::vector<double>* nearest_of = nullptr) {
-  const Matrix& refs = s.references;
+  const RowDistances distance(s, s.references);
   const int classes = y.empty() ? 0 : *std::max_element(y.begin(), y.end()) + 1;
   std::vector<std::vector<Eigen::Index>> rows_of(static_cast<std::size_t>(classes));
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
@@ -134,7 +179,7 @@ std::vector<float> classScales(const OpenSet& s, const std::vector<int>& y, std:
     for (Eigen::Index a : rows_of[c]) {
       double best = std::numeric_limits<double>::infinity();
       for (Eigen::Index b : rows_of[c])
-        if (b != a) best = std::min(best, openSetDistance(s, refs.row(a), refs.row(b)));
+        if (b != a) best = std::min(best, distance(a, b));
       if (std::isfinite(best)) nearest.push_back(best);
       if (nearest_of && std::isfinite(best)) (*nearest_of)[static_cast<std::size_t>(a)] = best;
     }
@@ -176,7 +221,7 @@ std::map<std::string, float> cameraScales(const std::vector<std::string>& camera
 // instance). A single-instance class takes the median ratio of the others (1 when no class has two).
 std::vector<double> instanceSpreadRatios(const OpenSet& s, const std::vector<int>& y,
                                          const std::vector<std::string>& instances, const std::vector<float>& own) {
-  const Matrix& refs = s.references;
+  const RowDistances distance(s, s.references);
   std::vector<std::vector<Eigen::Index>> rows_of(own.size());
   for (std::size_t r = 0; r < y.size(); ++r) rows_of[static_cast<std::size_t>(y[r])].push_back(static_cast<Eigen::Index>(r));
   std::vector<double> ratio(own.size(), std::nan("")), measured;
@@ -186,7 +231,7 @@ std::vector<double> instanceSpreadRatios(const OpenSet& s, const std::vector<int
       double best = std::numeric_limits<double>::infinity();
       for (Eigen::Index b : rows_of[c])
         if (instances[static_cast<std::size_t>(b)] != instances[static_cast<std::size_t>(a)])
-          best = std::min(best, openSetDistance(s, refs.row(a), refs.row(b)));
+          best = std::min(best, distance(a, b));
       if (std::isfinite(best)) nearest.push_back(best);
     }
     if (nearest.empty()) continue;  // one instance
@@ -244,11 +289,12 @@ OpenSet fitOpenSetScorer(const std::string& method, const Matrix& x, const std::
 
 namespace {
 
-// Mean distance from standardised row v to the `k` nearest references of class c; NaN without any.
-double nearestDistance(const OpenSet& s, const Eigen::RowVectorXf& v, int c) {
+// Mean distance from row v of `views` to the `k` nearest references of class c; NaN without any.
+double nearestDistance(const OpenSet& s, const RowDistances& references, const RowDistances& views, Eigen::Index v,
+                       int c) {
   std::vector<double> d;
   for (Eigen::Index r = 0; r < s.references.rows(); ++r)
-    if (s.reference_class[static_cast<std::size_t>(r)] == c) d.push_back(openSetDistance(s, s.references.row(r), v));
+    if (s.reference_class[static_cast<std::size_t>(r)] == c) d.push_back(references(r, views, v));
   if (d.empty()) return std::nan("");
   const std::size_t k = std::min(d.size(), static_cast<std::size_t>(s.neighbours));
   std::partial_sort(d.begin(), d.begin() + static_cast<std::ptrdiff_t>(k), d.end());
@@ -267,6 +313,17 @@ std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matri
   if (cameras && cameras->size() != static_cast<std::size_t>(x.rows()))
     throw Error("open-set scores: " + std::to_string(x.rows()) + " views but " + std::to_string(cameras->size()) + " cameras");
   std::vector<double> out(static_cast<std::size_t>(x.rows()), 0.0);
+  if (s.method != "max-probability" && x.rows() > 0 && x.cols() != static_cast<Eigen::Index>(s.mean.size()))
+    throw Error("knn open-set scores: the model has " + std::to_string(s.mean.size()) + " features, the view " +
+                std::to_string(x.cols()));
+  // The views standardised and, for the PDF distances, the views and references described, once.
+  Matrix views;
+  std::optional<RowDistances> references, view_rows;
+  if (s.method != "max-probability" && x.rows() > 0) {
+    views = detail::standardisedRows(x, s.mean, s.scale);
+    references.emplace(s, s.references);
+    view_rows.emplace(s, views);
+  }
   for (Eigen::Index r = 0; r < x.rows(); ++r) {
     if (p.cols() == 0 || !p.row(r).allFinite()) continue;  // scores 0: rejected by any calibrated threshold
     Eigen::Index best = 0;
@@ -275,11 +332,7 @@ std::vector<double> openSetScores(const OpenSet& s, const Matrix& x, const Matri
       out[static_cast<std::size_t>(r)] = top;
       continue;
     }
-    if (x.cols() != static_cast<Eigen::Index>(s.mean.size()))
-      throw Error("knn open-set scores: the model has " + std::to_string(s.mean.size()) + " features, the view " +
-                  std::to_string(x.cols()));
-    const Eigen::RowVectorXf v = detail::standardisedRow(x.row(r), s.mean, s.scale);
-    double d = nearestDistance(s, v, static_cast<int>(best));
+    double d = nearestDistance(s, *references, *view_rows, r, static_cast<int>(best));
     if (s.method == "knn-relative")
       d = static_cast<std::size_t>(best) < s.class_scale.size()
               ? d / (s.class_scale[static_cast<std::size_t>(best)] *
