@@ -10,6 +10,7 @@
 
 #include "keyturn/core/error.h"
 #include "support/synthetic_clouds.h"
+#include "support/under_asan.h"
 
 using namespace keyturn;
 
@@ -33,12 +34,6 @@ TEST(PclBaselines, SeededEsfRepeatsAcrossSecondsAndChangesWithTheSeed) {
   EXPECT_NE(a, c);
   EXPECT_GT(std::accumulate(a.begin(), a.end(), 0.0), 0.0);
 }
-
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define KEYTURN_UNDER_ASAN 1
-#endif
-#endif
 
 TEST(PclBaselines, VfhAndOurCvfhGiveTheirHistograms) {
 #ifdef KEYTURN_UNDER_ASAN

@@ -17,6 +17,7 @@
 #include "keyturn/drivers/openni2_camera.h"
 #include "support/error_of.h"
 #include "support/scratch_path.h"
+#include "support/under_asan.h"
 
 namespace keyturn {
 namespace {
@@ -106,12 +107,6 @@ TEST(OpenNi2CameraDeathTest, TheSystemsDriversAreThereAndTheirDeviceComesFirst) 
   };
   EXPECT_EXIT(firstIsTheRealDevice(), ::testing::ExitedWithCode(0), "");
 }
-
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define KEYTURN_UNDER_ASAN 1
-#endif
-#endif
 
 // How long the reopen test waits for a frame. The simulated device casts its scene when it is opened
 // and keeps it across the replug (issue 51), so a fresh device's first frame costs what later ones do;

@@ -13,13 +13,7 @@
 #include <cstring>
 #include <initializer_list>
 
-#if defined(__SANITIZE_ADDRESS__)
-#define KEYTURN_ASAN 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define KEYTURN_ASAN 1
-#endif
-#endif
+#include "support/under_asan.h"
 
 namespace {
 
@@ -47,7 +41,7 @@ void printStackAndDie(int sig, siginfo_t* info, void*) {
 }
 
 bool install() {
-#ifndef KEYTURN_ASAN
+#ifndef KEYTURN_UNDER_ASAN
   void* warm[1];
   backtrace(warm, 1);
   // A stack overflow leaves no stack to run the handler on: give the main thread a spare one.

@@ -3,16 +3,12 @@
 #include <gtest/gtest.h>
 #include <signal.h>
 
+#include "support/under_asan.h"
+
 namespace {
 
-#if defined(__SANITIZE_ADDRESS__)
+#ifdef KEYTURN_UNDER_ASAN
 constexpr bool kAsan = true;
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-constexpr bool kAsan = true;
-#else
-constexpr bool kAsan = false;
-#endif
 #else
 constexpr bool kAsan = false;
 #endif
