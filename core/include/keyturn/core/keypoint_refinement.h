@@ -39,4 +39,12 @@ std::vector<Eigen::Vector3f> refineKeypointsOnMeasuredPoints(const PointSet& mea
                                                              double working_resolution, const IssOptions& iss,
                                                              const KeypointRefinementOptions& options);
 
+namespace detail {
+// The weighted scatters of the refinement take an AVX2 path where the CPU has it: the scalar loop's
+// sums up to the order of addition. true forces the scalar loop (tests and benchmarks compare them).
+void useScalarScatter(bool scalar);
+// Whether the scatters take the AVX2 path now (the CPU has AVX2 and it is not switched off).
+bool scatterUsesAvx2();
+}  // namespace detail
+
 }  // namespace keyturn
