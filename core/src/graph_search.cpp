@@ -1,5 +1,7 @@
 #include "graph_search.h"
 
+#include "cpu_features.h"
+
 namespace keyturn {
 namespace {
 bool g_scalar_geodesics = false;  // detail::useScalarGeodesics
@@ -7,8 +9,7 @@ bool g_scalar_geodesics = false;  // detail::useScalarGeodesics
 
 bool detail::useAvx2() {
 #ifdef KEYTURN_GEODESIC_AVX2
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has && !g_scalar_geodesics;
+  return cpuHasAvx2() && !g_scalar_geodesics;
 #else
   return false;
 #endif

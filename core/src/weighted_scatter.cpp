@@ -1,5 +1,6 @@
 #include "weighted_scatter.h"
 
+#include "cpu_features.h"
 #include "keyturn/core/keypoint_refinement.h"
 
 #if defined(__x86_64__) && (defined(__GNUC__) || defined(__clang__))
@@ -69,8 +70,7 @@ void useScalarScatter(bool scalar) { g_scalar_scatter = scalar; }
 
 bool scatterUsesAvx2() {
 #ifdef KEYTURN_SCATTER_AVX2
-  static const bool has = __builtin_cpu_supports("avx2");
-  return has && !g_scalar_scatter;
+  return cpuHasAvx2() && !g_scalar_scatter;
 #else
   return false;
 #endif
