@@ -36,7 +36,8 @@ __attribute__((target("avx2"))) WeightedScatter scatterAvx2(const ScatterNeighbo
     const __m256d dx = _mm256_sub_pd(_mm256_loadu_pd(q.x() + i), px);
     const __m256d dy = _mm256_sub_pd(_mm256_loadu_pd(q.y() + i), py);
     const __m256d dz = _mm256_sub_pd(_mm256_loadu_pd(q.z() + i), pz);
-    const __m256d d2 = _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
+    const __m256d d2 =
+        _mm256_add_pd(_mm256_add_pd(_mm256_mul_pd(dx, dx), _mm256_mul_pd(dy, dy)), _mm256_mul_pd(dz, dz));
     const __m256d inside = _mm256_cmp_pd(d2, limit, _CMP_LT_OQ);
     const __m256d w = _mm256_and_pd(_mm256_loadu_pd(q.w() + i), inside);
     const __m256d wx = _mm256_mul_pd(w, dx), wy = _mm256_mul_pd(w, dy), wz = _mm256_mul_pd(w, dz);

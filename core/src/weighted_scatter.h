@@ -14,7 +14,9 @@ namespace keyturn::detail {
 class ScatterNeighbours {
  public:
   void clear() { x_.clear(), y_.clear(), z_.clear(), w_.clear(); }
-  void add(const Eigen::Vector3d& q, double w) { x_.push_back(q.x()), y_.push_back(q.y()), z_.push_back(q.z()), w_.push_back(w); }
+  void add(const Eigen::Vector3d& q, double w) {
+    x_.push_back(q.x()), y_.push_back(q.y()), z_.push_back(q.z()), w_.push_back(w);
+  }
   void pad() {
     while (x_.size() % 4 != 0) add(Eigen::Vector3d::Constant(1e30), 0.0);
   }
