@@ -2,6 +2,7 @@
 // Values that cross between the studio's threads (registered with Qt's meta-type
 // system so queued signals can carry them).
 #include <QMetaType>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <vector>
@@ -23,6 +24,7 @@ struct ViewResult {
   bool no_object = false;  // the error is a view too empty to describe (EmptyViewError)
   std::vector<std::vector<Eigen::Vector3f>> geodesic_paths;  // when asked for
   double latency_ms = 0;  // frame timestamp → result
+  std::uint64_t epoch = 0;  // the camera run its frame came from (RecognitionPool::restart)
 };
 using ViewResultPtr = std::shared_ptr<const ViewResult>;
 

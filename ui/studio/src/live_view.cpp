@@ -52,6 +52,7 @@ void LiveView::showFrame(const FramePtr& frame) {
 }
 
 void LiveView::cameraRestarted() {
+  pool_->restart();
   last_result_sequence_ = 0;
   frame_poses_.clear();
   resetFusion();
@@ -93,6 +94,9 @@ void LiveView::setGeodesicPaths(bool on) { pool_->setGeodesicPaths(on); }
 
 void LiveView::showResult(const ViewResultPtr& r) {
   if (paused_ || !r || !r->frame) return;
+  // A result of the camera before a reconnect: its sequence would lift the mark below above the new
+  // camera's frames, and every result of theirs would be dropped until it counted past it.
+  if (r->epoch != pool_->epoch()) return;
   // Two workers can finish out of order: never step back to an older frame.
   // (A reopened camera counts from 0 again: cameraRestarted() resets the mark.)
   if (r->frame->sequence < last_result_sequence_) return;

@@ -38,10 +38,27 @@ void RecognitionPool::submit(FramePtr frame) {
   wake_.notify_one();
 }
 
+void RecognitionPool::restart() {
+  std::lock_guard<std::mutex> l(mutex_);
+  pending_.reset();
+  ++epoch_;
+}
+
+std::uint64_t RecognitionPool::epoch() const {
+  std::lock_guard<std::mutex> l(mutex_);
+  return epoch_;
+}
+
+bool RecognitionPool::waiting() const {
+  std::lock_guard<std::mutex> l(mutex_);
+  return pending_ != nullptr;
+}
+
 void RecognitionPool::work() {
   for (;;) {
     FramePtr frame;
     std::shared_ptr<const learning::Recognizer> rec;
+    std::uint64_t epoch = 0;
     {
       std::unique_lock<std::mutex> l(mutex_);
       wake_.wait(l, [&] { return quit_ || pending_; });
@@ -49,9 +66,11 @@ void RecognitionPool::work() {
       frame = std::move(pending_);
       pending_.reset();
       rec = recognizer_;
+      epoch = epoch_;
     }
     auto out = std::make_shared<ViewResult>();
     out->frame = frame;
+    out->epoch = epoch;
     out->recognizer = rec;
     if (!rec) {
       out->error = "no recogniser";

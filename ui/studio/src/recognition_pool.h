@@ -6,6 +6,7 @@
 // one thread's latency allows.
 #include <QObject>
 #include <condition_variable>
+#include <cstdint>
 #include <deque>
 #include <mutex>
 #include <thread>
@@ -25,6 +26,12 @@ class RecognitionPool : public QObject {
   std::shared_ptr<const learning::Recognizer> recognizer() const;
   void setGeodesicPaths(bool on) { paths_ = on; }
   void submit(FramePtr frame);  // GUI thread
+  // A new camera run (a reconnect: its frames count from 0 again): the frame waiting is dropped and
+  // the results of frames submitted before carry the older epoch, so the GUI can tell them from the
+  // new camera's (a late one would set its sequence mark above every new frame's). GUI thread.
+  void restart();
+  std::uint64_t epoch() const;
+  bool waiting() const;  // a frame is waiting for a worker
   int threads() const { return static_cast<int>(workers_.size()); }
   long dropped() const { return dropped_; }
 
@@ -37,6 +44,7 @@ class RecognitionPool : public QObject {
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   FramePtr pending_;
+  std::uint64_t epoch_ = 0;  // restart()s so far
   std::shared_ptr<const learning::Recognizer> recognizer_;
   std::atomic<bool> paths_{false};
   bool quit_ = false;
